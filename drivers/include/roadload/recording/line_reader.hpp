@@ -1,0 +1,47 @@
+#pragma once
+// Reads a text file line by line through a fixed buffer: memory stays bounded whatever the file
+// size, and every line comes with its number for error messages.
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "roadload/parse_error.hpp"
+
+namespace roadload::recording {
+
+class LineReader {
+ public:
+  static constexpr std::size_t kDefaultBuffer = 1 << 20;
+  static constexpr std::size_t kMaxLine = 64 * 1024;
+
+  // Opens `path`; "-" reads standard input.
+  static Parsed<LineReader> open(const std::string& path, std::size_t buffer_bytes = kDefaultBuffer);
+
+  // Next line without its terminator; nullopt at end of file. A line longer than kMaxLine is an
+  // error (see error()), not a silent truncation.
+  std::optional<std::string_view> next();
+  long line_number() const { return line_; }
+  const std::string& path() const { return path_; }
+  const std::optional<ParseError>& error() const { return error_; }
+
+ private:
+  struct FileCloser {
+    void operator()(std::FILE* f) const;
+  };
+  LineReader(std::string path, std::FILE* f, std::size_t buffer_bytes);
+  bool refill();
+
+  std::string path_;
+  std::unique_ptr<std::FILE, FileCloser> file_;
+  std::vector<char> buf_;
+  std::size_t begin_ = 0;
+  std::size_t end_ = 0;
+  bool eof_ = false;
+  long line_ = 0;
+  std::optional<ParseError> error_;
+};
+
+}  // namespace roadload::recording

@@ -1,0 +1,40 @@
+#pragma once
+// meta.toml of a recording: what was recorded, with what, and on which clock. It never says which
+// simulator effects were on; that lives only in a simulation's ground truth.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "roadload/parse_error.hpp"
+
+namespace roadload::recording {
+
+inline constexpr std::int64_t kFormatVersion = 1;
+
+struct SensorInfo {
+  std::int64_t id = 0;       // the `sensor` column of accel.csv
+  std::string name;          // e.g. TLF1, as the report labels its accelerometers
+  std::string kind;          // "accelerometer", "gnss", "weather", "anemometer"
+  std::string position;      // e.g. "tractor-front-axle-left"
+  std::string part;          // e.g. "ADXL355"
+  double rate_hz = 0.0;
+};
+
+struct Metadata {
+  std::int64_t version = kFormatVersion;
+  std::string created_by;                // program and version that wrote it
+  std::string clock_source;              // where capture stamps came from: "kernel", "simulated", ...
+  std::optional<std::int64_t> utc_offset_ns;  // UTC = capture + offset, when a GNSS fix gave one
+  std::map<std::string, std::string> vehicle_text;  // vin, name, ...
+  std::map<std::string, double> vehicle;            // mass_kg, ... (names carry units)
+  std::vector<std::string> can_interfaces;
+  std::vector<SensorInfo> sensors;
+};
+
+Parsed<Metadata> parse_metadata(std::string_view text, std::string_view source);
+std::string format_metadata(const Metadata& m);
+
+}  // namespace roadload::recording

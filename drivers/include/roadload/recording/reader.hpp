@@ -1,0 +1,104 @@
+#pragma once
+// Reads a recording folder (or a bare candump log) and merges its streams in capture-time order,
+// holding one pending record per stream: memory stays bounded for a drive of any length.
+// Malformed lines are counted, the first of them kept with file, line and field, and skipped:
+// the caller decides whether that is fatal, and nothing is dropped without being reported.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "roadload/can_frame.hpp"
+#include "roadload/parse_error.hpp"
+#include "roadload/recording/candump.hpp"
+#include "roadload/recording/line_reader.hpp"
+#include "roadload/recording/metadata.hpp"
+#include "roadload/samples.hpp"
+
+namespace roadload::recording {
+
+using Record = std::variant<CanFrame, AccelSample, GnssFix, WeatherSample>;
+
+inline constexpr const char* kCanFile = "can.log";
+inline constexpr const char* kAccelFile = "accel.csv";
+inline constexpr const char* kGnssFile = "gnss.csv";
+inline constexpr const char* kWeatherFile = "weather.csv";
+inline constexpr const char* kMetaFile = "meta.toml";
+
+// Bad input kept for the report: every error is counted, the first kMaxKept are kept whole.
+class ErrorLog {
+ public:
+  static constexpr std::size_t kMaxKept = 20;
+  void add(ParseError e);
+  std::uint64_t count() const { return count_; }
+  const std::vector<ParseError>& kept() const { return kept_; }
+
+ private:
+  std::uint64_t count_ = 0;
+  std::vector<ParseError> kept_;
+};
+
+struct StreamCounts {
+  std::uint64_t records = 0;
+  std::uint64_t ignored_lines = 0;   // lines canplayer would skip too (comments, blank)
+  std::uint64_t backwards = 0;       // stamps earlier than the stream's previous one
+};
+
+class Stream {
+ public:
+  virtual ~Stream() = default;
+  // Next good record of this stream; false at the end. Bad lines go to `errors`.
+  virtual bool next(Record& out, ErrorLog& errors) = 0;
+  virtual const char* name() const = 0;
+  const StreamCounts& counts() const { return counts_; }
+
+ protected:
+  StreamCounts counts_;
+};
+
+// A candump -L log, also usable alone (decode of a bare log, benchmarks).
+class CandumpStream final : public Stream {
+ public:
+  static Parsed<std::unique_ptr<CandumpStream>> open(const std::string& path);
+  bool next(Record& out, ErrorLog& errors) override;
+  // The same without the variant, for the tight decode loop.
+  bool next_frame(CanFrame& out, ErrorLog& errors);
+  const char* name() const override { return kCanFile; }
+  const InterfaceTable& interfaces() const { return ifaces_; }
+
+ private:
+  explicit CandumpStream(LineReader lines) : lines_(std::move(lines)) {}
+  LineReader lines_;
+  InterfaceTable ifaces_;
+  CaptureTime last_{};
+};
+
+class RecordingReader {
+ public:
+  // `path` is a recording folder or a candump log file.
+  static Parsed<RecordingReader> open(const std::string& path);
+
+  // Next record across all streams, earliest stamp first (ties: can, accel, gnss, weather).
+  const Record* next();
+
+  const Metadata& metadata() const { return meta_; }
+  bool has_metadata() const { return has_meta_; }
+  const InterfaceTable& interfaces() const;
+  const ErrorLog& errors() const { return errors_; }
+  const std::vector<std::unique_ptr<Stream>>& streams() const { return streams_; }
+
+ private:
+  RecordingReader() = default;
+  Metadata meta_;
+  bool has_meta_ = false;
+  std::vector<std::unique_ptr<Stream>> streams_;
+  std::vector<Record> heads_;
+  std::vector<bool> live_;
+  Record current_;
+  ErrorLog errors_;
+  bool primed_ = false;
+};
+
+}  // namespace roadload::recording

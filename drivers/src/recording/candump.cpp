@@ -1,0 +1,172 @@
+#include "roadload/recording/candump.hpp"
+
+#include <cstdio>
+
+namespace roadload::recording {
+namespace {
+
+constexpr std::uint32_t kErrFlag = 0x20000000u;
+constexpr std::uint32_t kEffMask = 0x1FFFFFFFu;
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  return -1;
+}
+
+// "(1635188455.020850)" with 6 or 9 fractional digits.
+std::optional<LineError> parse_stamp(std::string_view& s, CaptureTime& t) {
+  std::size_t i = 1;
+  std::int64_t sec = 0;
+  const std::size_t sec_begin = i;
+  while (i < s.size() && s[i] >= '0' && s[i] <= '9') {
+    if (i - sec_begin >= 12) return LineError{"timestamp", "too many digits in seconds"};
+    sec = sec * 10 + (s[i++] - '0');
+  }
+  if (i == sec_begin || i >= s.size() || s[i] != '.') return LineError{"timestamp", "expected (seconds.fraction)"};
+  ++i;
+  const std::size_t frac_begin = i;
+  std::int64_t frac = 0;
+  while (i < s.size() && s[i] >= '0' && s[i] <= '9' && i - frac_begin < 9) frac = frac * 10 + (s[i++] - '0');
+  const std::size_t digits = i - frac_begin;
+  if (digits != 6 && digits != 9) return LineError{"timestamp", "fraction must have 6 or 9 digits"};
+  if (i >= s.size() || s[i] != ')') return LineError{"timestamp", "expected ')'"};
+  if (digits == 6) frac *= 1000;
+  t = capture_time_from_ns(sec * 1'000'000'000 + frac);
+  s.remove_prefix(i + 1);
+  return std::nullopt;
+}
+
+std::optional<LineError> parse_bytes(std::string_view s, std::size_t max, CanFrame& out) {
+  std::size_t n = 0;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    if (s[i] == '.') {  // can-utils accepts byte separators
+      ++i;
+      continue;
+    }
+    if (i + 1 >= s.size()) return LineError{"data", "odd number of hex digits"};
+    const int hi = hex_value(s[i]);
+    const int lo = hex_value(s[i + 1]);
+    if (hi < 0 || lo < 0) return LineError{"data", "not a hex digit"};
+    if (n >= max) return LineError{"data", "too many data bytes"};
+    out.data[n++] = static_cast<std::uint8_t>(hi << 4 | lo);
+    i += 2;
+  }
+  out.len = static_cast<std::uint8_t>(n);
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::uint8_t> InterfaceTable::intern(std::string_view name) {
+  for (std::size_t i = 0; i < count_; ++i) {
+    if (names_[i] == name) return static_cast<std::uint8_t>(i);
+  }
+  if (count_ == kMax) return std::nullopt;
+  names_[count_] = std::string(name);
+  return static_cast<std::uint8_t>(count_++);
+}
+
+std::string_view InterfaceTable::name(std::uint8_t index) const {
+  return index < count_ ? std::string_view(names_[index]) : std::string_view("?");
+}
+
+std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTable& ifaces, CanFrame& out,
+                                            LineResult& result) {
+  result = LineResult::ignored;
+  if (line.empty() || line[0] != '(') return std::nullopt;
+  if (auto e = parse_stamp(line, out.t)) return e;
+  if (line.empty() || line[0] != ' ') return LineError{"interface", "expected ' ' after timestamp"};
+  line.remove_prefix(1);
+  const std::size_t sp = line.find(' ');
+  if (sp == 0 || sp == std::string_view::npos) return LineError{"interface", "missing interface name"};
+  const auto idx = ifaces.intern(line.substr(0, sp));
+  if (!idx) return LineError{"interface", "more than 16 interfaces"};
+  out.iface = *idx;
+  line.remove_prefix(sp + 1);
+
+  const std::size_t hash = line.find('#');
+  if (hash == std::string_view::npos) return LineError{"identifier", "missing '#'"};
+  if (hash != 3 && hash != 8) return LineError{"identifier", "identifier must have 3 or 8 hex digits"};
+  std::uint32_t id = 0;
+  for (std::size_t i = 0; i < hash; ++i) {
+    const int v = hex_value(line[i]);
+    if (v < 0) return LineError{"identifier", "not a hex digit"};
+    id = id << 4 | static_cast<std::uint32_t>(v);
+  }
+  if (hash == 3 && id > 0x7FF) return LineError{"identifier", "11-bit identifier above 0x7FF"};
+  if (hash == 8 && id > (kEffMask | kErrFlag)) return LineError{"identifier", "identifier above 29 bits"};
+  std::string_view rest = line.substr(hash + 1);
+  out.id29 = false;
+  out.fd_flags = 0;
+
+  if (!rest.empty() && rest[0] == '#') {  // CAN FD: ID##<flags nibble><data>
+    if (rest.size() < 2 || hex_value(rest[1]) < 0) return LineError{"flags", "expected FD flags nibble"};
+    out.kind = CanFrameKind::fd;
+    out.id29 = hash == 8;
+    out.fd_flags = static_cast<std::uint8_t>(hex_value(rest[1]));
+    out.id = id & kEffMask;
+    if (auto e = parse_bytes(rest.substr(2), 64, out)) return e;
+  } else if (!rest.empty() && (rest[0] == 'R' || rest[0] == 'r')) {
+    out.kind = CanFrameKind::remote;
+    out.id29 = hash == 8;
+    out.id = id & kEffMask;
+    out.len = 0;
+    if (rest.size() == 2 && rest[1] >= '0' && rest[1] <= '8') {
+      out.len = static_cast<std::uint8_t>(rest[1] - '0');
+    } else if (rest.size() != 1) {
+      return LineError{"data", "malformed remote frame length"};
+    }
+  } else {
+    if (hash == 8 && (id & kErrFlag) != 0) {
+      out.kind = CanFrameKind::error;
+      out.id = id & kEffMask;
+    } else {
+      out.kind = hash == 8 ? CanFrameKind::extended : CanFrameKind::standard;
+      out.id = id;
+    }
+    if (auto e = parse_bytes(rest, 8, out)) return e;
+  }
+  result = LineResult::frame;
+  return std::nullopt;
+}
+
+std::size_t format_candump_line(const CanFrame& f, std::string_view iface, char* buf) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  const std::int64_t ns = to_ns(f.t);
+  const std::int64_t sec = ns / 1'000'000'000;
+  const std::int64_t usec = (ns % 1'000'000'000) / 1000;
+  int n = std::snprintf(buf, kMaxLineChars, "(%010lld.%06lld) %.*s ", static_cast<long long>(sec),
+                        static_cast<long long>(usec), static_cast<int>(iface.size()), iface.data());
+  std::size_t pos = static_cast<std::size_t>(n);
+  auto put_id = [&](std::uint32_t id, int digits) {
+    for (int d = digits - 1; d >= 0; --d) buf[pos++] = kHex[(id >> (4 * d)) & 0xF];
+  };
+  switch (f.kind) {
+    case CanFrameKind::standard: put_id(f.id, 3); break;
+    case CanFrameKind::extended: put_id(f.id, 8); break;
+    case CanFrameKind::error: put_id(f.id | kErrFlag, 8); break;
+    case CanFrameKind::remote:
+    case CanFrameKind::fd: put_id(f.id, f.id29 ? 8 : 3); break;
+  }
+  buf[pos++] = '#';
+  if (f.kind == CanFrameKind::remote) {
+    buf[pos++] = 'R';
+    buf[pos] = '\0';
+    return pos;
+  }
+  if (f.kind == CanFrameKind::fd) {
+    buf[pos++] = '#';
+    buf[pos++] = kHex[f.fd_flags & 0xF];
+  }
+  for (std::size_t i = 0; i < f.len; ++i) {
+    buf[pos++] = kHex[f.data[i] >> 4];
+    buf[pos++] = kHex[f.data[i] & 0xF];
+  }
+  buf[pos] = '\0';
+  return pos;
+}
+
+}  // namespace roadload::recording

@@ -1,0 +1,93 @@
+#include "roadload/recording/csv.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace roadload::recording {
+namespace {
+
+std::size_t split(std::string_view line, std::array<std::string_view, CsvReader::kMaxColumns>& out) {
+  std::size_t n = 0;
+  for (;;) {
+    const std::size_t comma = line.find(',');
+    if (n == out.size()) return n + 1;  // too many: caller reports it
+    out[n++] = line.substr(0, comma);
+    if (comma == std::string_view::npos) return n;
+    line.remove_prefix(comma + 1);
+  }
+}
+
+bool skippable(std::string_view line) { return line.empty() || line[0] == '#'; }
+
+}  // namespace
+
+std::optional<std::int64_t> parse_i64(std::string_view s) {
+  std::int64_t v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size() || s.empty()) return std::nullopt;
+  return v;
+}
+
+std::optional<double> parse_f64(std::string_view s) {
+  double v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size() || s.empty() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+Parsed<CsvReader> CsvReader::open(const std::string& path, std::span<const std::string_view> required) {
+  auto lines = LineReader::open(path);
+  if (!lines) return lines.error();
+  std::optional<std::string_view> header;
+  while ((header = lines.value().next()) && skippable(*header)) {
+  }
+  if (!header) {
+    if (lines.value().error()) return *lines.value().error();
+    return ParseError{path, 0, "header", "file is empty: expected a header line"};
+  }
+  std::array<std::string_view, kMaxColumns> cols{};
+  const std::size_t n = split(*header, cols);
+  const long line = lines.value().line_number();
+  if (n > kMaxColumns) return ParseError{path, line, "header", "more than 32 columns"};
+  std::vector<std::string> names;
+  std::vector<std::size_t> map;
+  for (std::string_view want : required) {
+    std::size_t found = n;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (cols[i] == want) found = i;
+    }
+    if (found == n) return ParseError{path, line, std::string(want), "required column missing from header"};
+    names.emplace_back(want);
+    map.push_back(found);
+  }
+  CsvReader r(std::move(lines.value()), std::move(names), std::move(map));
+  r.file_columns_ = n;
+  return r;
+}
+
+CsvReader::Status CsvReader::next(std::span<const std::string_view>& row) {
+  for (;;) {
+    const auto line = lines_.next();
+    if (!line) {
+      error_ = lines_.error();
+      return Status::end;
+    }
+    if (skippable(*line)) continue;
+    const std::size_t n = split(*line, split_);
+    if (n != file_columns_) {
+      error_ = ParseError{path(), line_number(), "row",
+                          "expected " + std::to_string(file_columns_) + " fields, found " +
+                              (n > kMaxColumns ? std::string("more than 32") : std::to_string(n))};
+      return Status::bad_row;
+    }
+    for (std::size_t i = 0; i < map_.size(); ++i) row_[i] = split_[map_[i]];
+    row = std::span<const std::string_view>(row_.data(), map_.size());
+    return Status::row;
+  }
+}
+
+ParseError CsvReader::field_error(std::size_t column, std::string message) const {
+  return ParseError{path(), line_number(), names_[column], std::move(message)};
+}
+
+}  // namespace roadload::recording

@@ -1,0 +1,151 @@
+#include "roadload/recording/metadata.hpp"
+
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace roadload::recording {
+namespace {
+
+constexpr std::string_view kFormatName = "roadload-recording";
+
+struct Bad {
+  ParseError error;
+};
+
+long line_of(const toml::node& n) { return static_cast<long>(n.source().begin.line); }
+
+class Reader {
+ public:
+  explicit Reader(std::string_view source) : source_(source) {}
+
+  [[noreturn]] void fail(const toml::node* n, std::string field, std::string message) const {
+    throw Bad{ParseError{std::string(source_), n != nullptr ? line_of(*n) : 0, std::move(field), std::move(message)}};
+  }
+
+  std::string text(const toml::table& t, std::string_view key, std::string_view where, bool required = false) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) {
+      if (required) fail(&t, std::string(where) + std::string(key), "required key missing");
+      return {};
+    }
+    if (!n->is_string()) fail(n, std::string(where) + std::string(key), "expected a string");
+    return std::string(*n->value<std::string_view>());
+  }
+
+  double number(const toml::node& n, const std::string& field) const {
+    if (auto v = n.value<double>()) return *v;
+    fail(&n, field, "expected a number");
+  }
+
+  std::int64_t integer(const toml::node& n, const std::string& field) const {
+    if (!n.is_integer()) fail(&n, field, "expected an integer");
+    return *n.value<std::int64_t>();
+  }
+
+  Metadata read(const toml::table& root) const {
+    Metadata m;
+    if (text(root, "format", "", true) != kFormatName) {
+      fail(root.get("format"), "format", "expected \"roadload-recording\"");
+    }
+    const toml::node* version = root.get("version");
+    if (version == nullptr) fail(&root, "version", "required key missing");
+    m.version = integer(*version, "version");
+    if (m.version != kFormatVersion) fail(version, "version", "unsupported format version");
+    m.created_by = text(root, "created_by", "");
+    if (const toml::table* clock = root["clock"].as_table()) {
+      m.clock_source = text(*clock, "source", "clock.");
+      if (const toml::node* off = clock->get("utc_offset_ns")) m.utc_offset_ns = integer(*off, "clock.utc_offset_ns");
+    }
+    if (const toml::table* vehicle = root["vehicle"].as_table()) {
+      for (const auto& [key, node] : *vehicle) {
+        const std::string field = "vehicle." + std::string(key.str());
+        if (node.is_string()) {
+          m.vehicle_text[std::string(key.str())] = std::string(*node.value<std::string_view>());
+        } else {
+          m.vehicle[std::string(key.str())] = number(node, field);
+        }
+      }
+    }
+    if (const toml::table* can = root["can"].as_table()) {
+      if (const toml::node* ifs = can->get("interfaces")) {
+        const toml::array* arr = ifs->as_array();
+        if (arr == nullptr) fail(ifs, "can.interfaces", "expected an array of names");
+        for (const toml::node& n : *arr) {
+          if (!n.is_string()) fail(&n, "can.interfaces", "expected a string");
+          m.can_interfaces.emplace_back(*n.value<std::string_view>());
+        }
+      }
+    }
+    if (const toml::node* sensors = root.get("sensor")) {
+      const toml::array* arr = sensors->as_array();
+      if (arr == nullptr) fail(sensors, "sensor", "expected [[sensor]] tables");
+      for (const toml::node& n : *arr) m.sensors.push_back(sensor(n, m.sensors.size()));
+    }
+    return m;
+  }
+
+ private:
+  SensorInfo sensor(const toml::node& n, std::size_t index) const {
+    const std::string where = "sensor[" + std::to_string(index) + "].";
+    const toml::table* t = n.as_table();
+    if (t == nullptr) fail(&n, where, "expected a table");
+    SensorInfo s;
+    const toml::node* id = t->get("id");
+    if (id == nullptr) fail(t, where + "id", "required key missing");
+    s.id = integer(*id, where + "id");
+    s.name = text(*t, "name", where, true);
+    s.kind = text(*t, "kind", where, true);
+    s.position = text(*t, "position", where);
+    s.part = text(*t, "part", where);
+    if (const toml::node* rate = t->get("rate_hz")) s.rate_hz = number(*rate, where + "rate_hz");
+    return s;
+  }
+
+  std::string_view source_;
+};
+
+std::string quoted(const std::string& s) {
+  std::ostringstream o;
+  o << toml::value<std::string>(s);
+  return o.str();
+}
+
+}  // namespace
+
+Parsed<Metadata> parse_metadata(std::string_view text, std::string_view source) {
+  toml::parse_result parsed = toml::parse(text, source);
+  if (!parsed) {
+    const toml::parse_error& e = parsed.error();
+    return ParseError{std::string(source), static_cast<long>(e.source().begin.line), "toml",
+                      std::string(e.description())};
+  }
+  try {
+    return Reader(source).read(parsed.table());
+  } catch (const Bad& b) {
+    return b.error;
+  }
+}
+
+std::string format_metadata(const Metadata& m) {
+  std::ostringstream o;
+  o << "format = \"roadload-recording\"\nversion = " << m.version << "\n";
+  if (!m.created_by.empty()) o << "created_by = " << quoted(m.created_by) << "\n";
+  o << "\n[clock]\nsource = " << quoted(m.clock_source) << "\n";
+  if (m.utc_offset_ns) o << "utc_offset_ns = " << *m.utc_offset_ns << "\n";
+  o << "\n[vehicle]\n";
+  for (const auto& [k, v] : m.vehicle_text) o << k << " = " << quoted(v) << "\n";
+  o.precision(17);
+  for (const auto& [k, v] : m.vehicle) o << k << " = " << toml::value<double>(v) << "\n";
+  o << "\n[can]\ninterfaces = [";
+  for (std::size_t i = 0; i < m.can_interfaces.size(); ++i) o << (i ? ", " : "") << quoted(m.can_interfaces[i]);
+  o << "]\n";
+  for (const SensorInfo& s : m.sensors) {
+    o << "\n[[sensor]]\nid = " << s.id << "\nname = " << quoted(s.name) << "\nkind = " << quoted(s.kind) << "\n";
+    if (!s.position.empty()) o << "position = " << quoted(s.position) << "\n";
+    if (!s.part.empty()) o << "part = " << quoted(s.part) << "\n";
+    if (s.rate_hz > 0) o << "rate_hz = " << toml::value<double>(s.rate_hz) << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace roadload::recording

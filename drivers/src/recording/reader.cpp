@@ -1,0 +1,249 @@
+#include "roadload/recording/reader.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "roadload/recording/csv.hpp"
+
+namespace roadload::recording {
+namespace {
+
+namespace fs = std::filesystem;
+
+CaptureTime stamp_of(const Record& r) {
+  return std::visit([](const auto& s) { return s.t; }, r);
+}
+
+// Reads a CSV stream whose rows map to one sample type. `Row` converts fields into the sample
+// and names the first bad field.
+template <typename Sample, std::size_t N, typename Convert>
+class CsvStream final : public Stream {
+ public:
+  CsvStream(CsvReader csv, const char* name, Convert convert)
+      : csv_(std::move(csv)), name_(name), convert_(convert) {}
+
+  bool next(Record& out, ErrorLog& errors) override {
+    std::span<const std::string_view> row;
+    for (;;) {
+      const CsvReader::Status st = csv_.next(row);
+      if (st == CsvReader::Status::end) {
+        if (csv_.error()) errors.add(*csv_.error());
+        return false;
+      }
+      if (st == CsvReader::Status::bad_row) {
+        errors.add(*csv_.error());
+        continue;
+      }
+      Sample s;
+      if (auto bad = convert_(row, s)) {
+        errors.add(csv_.field_error(bad->first, bad->second));
+        continue;
+      }
+      if (s.t < last_) ++counts_.backwards;
+      last_ = s.t;
+      ++counts_.records;
+      out = s;
+      return true;
+    }
+  }
+  const char* name() const override { return name_; }
+
+ private:
+  CsvReader csv_;
+  const char* name_;
+  Convert convert_;
+  CaptureTime last_{};
+};
+
+using FieldError = std::optional<std::pair<std::size_t, std::string>>;
+
+// Reads numeric fields in order, remembering the first that does not parse.
+class Fields {
+ public:
+  explicit Fields(std::span<const std::string_view> row) : row_(row) {}
+  std::int64_t i64(std::size_t i) {
+    if (auto v = parse_i64(row_[i])) return *v;
+    fail(i, "expected an integer");
+    return 0;
+  }
+  double f64(std::size_t i) {
+    if (auto v = parse_f64(row_[i])) return *v;
+    fail(i, "expected a finite number");
+    return 0.0;
+  }
+  std::uint8_t small(std::size_t i, std::int64_t max) {
+    const std::int64_t v = i64(i);
+    if (v < 0 || v > max) fail(i, "out of range 0.." + std::to_string(max));
+    return static_cast<std::uint8_t>(v);
+  }
+  FieldError error() const { return error_; }
+
+ private:
+  void fail(std::size_t i, std::string m) {
+    if (!error_) error_.emplace(i, std::move(m));
+  }
+  std::span<const std::string_view> row_;
+  FieldError error_;
+};
+
+constexpr std::string_view kAccelColumns[] = {"t_ns", "sensor", "x_mps2", "y_mps2", "z_mps2"};
+constexpr std::string_view kGnssColumns[] = {"t_ns",   "utc_ns",    "lat_deg",    "lon_deg", "alt_m",
+                                             "speed_mps", "course_deg", "mode", "hdop"};
+constexpr std::string_view kWeatherColumns[] = {"t_ns", "station", "air_temp_c", "pressure_pa",
+                                                "wind_speed_mps", "wind_from_deg"};
+
+FieldError to_accel(std::span<const std::string_view> row, AccelSample& s) {
+  Fields f(row);
+  s.t = capture_time_from_ns(f.i64(0));
+  s.sensor = f.small(1, 255);
+  s.x_mps2 = f.f64(2);
+  s.y_mps2 = f.f64(3);
+  s.z_mps2 = f.f64(4);
+  return f.error();
+}
+
+FieldError to_gnss(std::span<const std::string_view> row, GnssFix& s) {
+  Fields f(row);
+  s.t = capture_time_from_ns(f.i64(0));
+  s.utc_ns = f.i64(1);
+  s.lat_deg = f.f64(2);
+  s.lon_deg = f.f64(3);
+  s.alt_m = f.f64(4);
+  s.speed_mps = f.f64(5);
+  s.course_deg = f.f64(6);
+  s.mode = static_cast<GnssFixMode>(f.small(7, 5));
+  s.hdop = f.f64(8);
+  if (!f.error() && (s.lat_deg < -90 || s.lat_deg > 90)) return std::make_pair(std::size_t{2}, std::string("latitude out of range"));
+  if (!f.error() && (s.lon_deg < -180 || s.lon_deg > 180)) return std::make_pair(std::size_t{3}, std::string("longitude out of range"));
+  return f.error();
+}
+
+FieldError to_weather(std::span<const std::string_view> row, WeatherSample& s) {
+  Fields f(row);
+  s.t = capture_time_from_ns(f.i64(0));
+  s.station = f.small(1, 255);
+  s.air_temp_c = f.f64(2);
+  s.pressure_pa = f.f64(3);
+  s.wind_speed_mps = f.f64(4);
+  s.wind_from_deg = f.f64(5);
+  return f.error();
+}
+
+template <typename Sample, std::size_t N, typename Convert>
+Parsed<std::unique_ptr<Stream>> open_csv(const fs::path& path, const std::string_view (&cols)[N], const char* name,
+                                         Convert convert) {
+  auto csv = CsvReader::open(path.string(), cols);
+  if (!csv) return csv.error();
+  return std::unique_ptr<Stream>(new CsvStream<Sample, N, Convert>(std::move(csv.value()), name, convert));
+}
+
+}  // namespace
+
+void ErrorLog::add(ParseError e) {
+  ++count_;
+  if (kept_.size() < kMaxKept) kept_.push_back(std::move(e));
+}
+
+Parsed<std::unique_ptr<CandumpStream>> CandumpStream::open(const std::string& path) {
+  auto lines = LineReader::open(path);
+  if (!lines) return lines.error();
+  return std::unique_ptr<CandumpStream>(new CandumpStream(std::move(lines.value())));
+}
+
+bool CandumpStream::next_frame(CanFrame& out, ErrorLog& errors) {
+  while (const auto line = lines_.next()) {
+    LineResult result;
+    if (const auto e = parse_candump_line(*line, ifaces_, out, result)) {
+      errors.add(ParseError{lines_.path(), lines_.line_number(), e->field, e->message});
+      continue;
+    }
+    if (result == LineResult::ignored) {
+      ++counts_.ignored_lines;
+      continue;
+    }
+    if (out.t < last_) ++counts_.backwards;
+    last_ = out.t;
+    ++counts_.records;
+    return true;
+  }
+  if (lines_.error()) errors.add(*lines_.error());
+  return false;
+}
+
+bool CandumpStream::next(Record& out, ErrorLog& errors) {
+  CanFrame f;
+  if (!next_frame(f, errors)) return false;
+  out = f;
+  return true;
+}
+
+Parsed<RecordingReader> RecordingReader::open(const std::string& path) {
+  RecordingReader r;
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) {
+    auto can = CandumpStream::open(path);
+    if (!can) return can.error();
+    r.streams_.push_back(std::move(can.value()));
+    return r;
+  }
+  const fs::path dir(path);
+  if (fs::exists(dir / kMetaFile)) {
+    std::ifstream in(dir / kMetaFile);
+    std::stringstream text;
+    text << in.rdbuf();
+    auto meta = parse_metadata(text.str(), (dir / kMetaFile).string());
+    if (!meta) return meta.error();
+    r.meta_ = std::move(meta.value());
+    r.has_meta_ = true;
+  }
+  if (fs::exists(dir / kCanFile)) {
+    auto can = CandumpStream::open((dir / kCanFile).string());
+    if (!can) return can.error();
+    r.streams_.push_back(std::move(can.value()));
+  }
+  const struct {
+    const char* file;
+    Parsed<std::unique_ptr<Stream>> (*open)(const fs::path&);
+  } csvs[] = {
+      {kAccelFile, [](const fs::path& p) { return open_csv<AccelSample>(p, kAccelColumns, kAccelFile, to_accel); }},
+      {kGnssFile, [](const fs::path& p) { return open_csv<GnssFix>(p, kGnssColumns, kGnssFile, to_gnss); }},
+      {kWeatherFile,
+       [](const fs::path& p) { return open_csv<WeatherSample>(p, kWeatherColumns, kWeatherFile, to_weather); }},
+  };
+  for (const auto& c : csvs) {
+    if (!fs::exists(dir / c.file)) continue;
+    auto s = c.open(dir / c.file);
+    if (!s) return s.error();
+    r.streams_.push_back(std::move(s.value()));
+  }
+  if (r.streams_.empty()) return ParseError{path, 0, "", "not a recording: no can.log or sensor CSV in the folder"};
+  return r;
+}
+
+const InterfaceTable& RecordingReader::interfaces() const {
+  static const InterfaceTable kNone;
+  for (const auto& s : streams_) {
+    if (const auto* can = dynamic_cast<const CandumpStream*>(s.get())) return can->interfaces();
+  }
+  return kNone;
+}
+
+const Record* RecordingReader::next() {
+  if (!primed_) {
+    heads_.resize(streams_.size());
+    live_.resize(streams_.size());
+    for (std::size_t i = 0; i < streams_.size(); ++i) live_[i] = streams_[i]->next(heads_[i], errors_);
+    primed_ = true;
+  }
+  std::size_t best = streams_.size();
+  for (std::size_t i = 0; i < streams_.size(); ++i) {
+    if (live_[i] && (best == streams_.size() || stamp_of(heads_[i]) < stamp_of(heads_[best]))) best = i;
+  }
+  if (best == streams_.size()) return nullptr;
+  current_ = heads_[best];
+  live_[best] = streams_[best]->next(heads_[best], errors_);
+  return &current_;
+}
+
+}  // namespace roadload::recording

@@ -1,0 +1,24 @@
+#pragma once
+// Each subcommand of `roadload` is one entry in a table: a name, a one-line summary and a function.
+#include <span>
+#include <string_view>
+
+namespace roadload::cli {
+
+using Args = std::span<char* const>;  // arguments after the subcommand name
+
+struct Command {
+  std::string_view name;
+  std::string_view summary;
+  int (*run)(Args args);
+};
+
+int run_decode(Args args);
+
+// Exit codes, as sysexits.h names them.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitDataErr = 65;  // input was read but some of it was malformed
+inline constexpr int kExitUsage = 64;
+inline constexpr int kExitNoInput = 66;
+
+}  // namespace roadload::cli

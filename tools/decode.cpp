@@ -1,0 +1,201 @@
+// roadload decode: what a recording's CAN log says, as signals, transport messages or statistics.
+#include <algorithm>
+#include <cinttypes>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "options.hpp"
+#include "roadload/definitions.hpp"
+#include "roadload/j1939/assembler.hpp"
+#include "roadload/j1939/database.hpp"
+#include "roadload/recording/reader.hpp"
+
+namespace roadload::cli {
+namespace {
+
+constexpr const char* kHelp =
+    "usage: roadload decode [options] <recording-folder | can.log>\n\n"
+    "Prints the J1939 signals of every message the definitions know, one line per message.\n\n"
+    "  --pgn-stats     CSV with one row per PGN: pgn,name,frames,sources,mean_period_ms,tp_messages\n"
+    "  --tp            one line per reassembled transport-protocol message (BAM, RTS/CTS, ETP)\n"
+    "  --pgn N         only this PGN (decimal or 0x hex); repeatable\n"
+    "  --dbc FILE      load FILE after the built-in definitions (overrides the same PGN); repeatable\n"
+    "  -h, --help      this text\n\n"
+    "A summary of frame kinds, skipped lines and transport counters goes to standard error.\n"
+    "Malformed lines are reported with file, line and field and make the exit status 65.\n";
+
+struct PgnStats {
+  std::uint64_t frames = 0;
+  std::uint64_t tp_messages = 0;
+  std::array<bool, 256> sources{};
+  CaptureTime first{};
+  CaptureTime last{};
+};
+
+struct KindCounts {
+  std::uint64_t extended = 0, standard = 0, remote = 0, error = 0, fd = 0;
+  void add(CanFrameKind k) {
+    switch (k) {
+      case CanFrameKind::extended: ++extended; break;
+      case CanFrameKind::standard: ++standard; break;
+      case CanFrameKind::remote: ++remote; break;
+      case CanFrameKind::error: ++error; break;
+      case CanFrameKind::fd: ++fd; break;
+    }
+  }
+  std::uint64_t total() const { return extended + standard + remote + error + fd; }
+};
+
+void print_stamp(std::FILE* out, CaptureTime t) {
+  const std::int64_t ns = to_ns(t);
+  std::fprintf(out, "(%010" PRId64 ".%06" PRId64 ")", ns / 1'000'000'000, (ns % 1'000'000'000) / 1000);
+}
+
+void print_signals(std::FILE* out, const j1939::Message& m, const j1939::MessageDef& def,
+                   const recording::InterfaceTable& ifaces) {
+  print_stamp(out, m.t);
+  const std::string_view iface = ifaces.name(m.iface);
+  std::fprintf(out, " %.*s %02X %s", static_cast<int>(iface.size()), iface.data(), m.sa, def.name.c_str());
+  for (const j1939::SignalDef& s : def.signals) {
+    const j1939::SignalReading r = j1939::decode(s, m.data);
+    if (r.state == j1939::SignalState::missing) continue;
+    if (r.state == j1939::SignalState::valid) {
+      std::fprintf(out, " %s=%.10g%s", s.name.c_str(), r.value, s.unit.c_str());
+    } else {
+      std::fprintf(out, " %s=%s", s.name.c_str(), j1939::to_string(r.state));
+    }
+  }
+  std::fputc('\n', out);
+}
+
+void print_tp(std::FILE* out, const j1939::Message& m, const recording::InterfaceTable& ifaces) {
+  print_stamp(out, m.t);
+  const std::string_view iface = ifaces.name(m.iface);
+  std::fprintf(out, " %.*s TP pgn=%u sa=0x%02x da=0x%02x len=%zu data=", static_cast<int>(iface.size()), iface.data(),
+               m.pgn, m.sa, m.da, m.data.size());
+  for (std::uint8_t b : m.data) std::fprintf(out, "%02x", b);
+  std::fputc('\n', out);
+}
+
+void print_pgn_stats(std::FILE* out, const std::map<j1939::Pgn, PgnStats>& stats, const j1939::Database& db) {
+  std::fprintf(out, "pgn,name,frames,sources,mean_period_ms,tp_messages\n");
+  for (const auto& [pgn, s] : stats) {
+    const j1939::MessageDef* def = db.find(pgn);
+    std::string sources;
+    for (std::size_t a = 0; a < s.sources.size(); ++a) {
+      if (!s.sources[a]) continue;
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%02X", static_cast<unsigned>(a));
+      sources += (sources.empty() ? "" : ";") + std::string(hex);
+    }
+    const double period_ms =
+        s.frames > 1 ? to_seconds(s.last - s.first) * 1e3 / static_cast<double>(s.frames - 1) : 0.0;
+    std::fprintf(out, "%u,%s,%" PRIu64 ",%s,%.3f,%" PRIu64 "\n", pgn, def != nullptr ? def->name.c_str() : "",
+                 s.frames, sources.c_str(), period_ms, s.tp_messages);
+  }
+}
+
+void print_summary(const KindCounts& k, const recording::RecordingReader& rec, const j1939::TpCounters& tp) {
+  std::uint64_t ignored = 0;
+  for (const auto& s : rec.streams()) ignored += s->counts().ignored_lines;
+  std::fprintf(stderr,
+               "frames=%" PRIu64 " extended=%" PRIu64 " standard_11bit=%" PRIu64 " remote=%" PRIu64
+               " error=%" PRIu64 " fd=%" PRIu64 " ignored_lines=%" PRIu64 " malformed_lines=%" PRIu64 "\n",
+               k.total(), k.extended, k.standard, k.remote, k.error, k.fd, ignored, rec.errors().count());
+  std::fprintf(stderr,
+               "transport: completed=%" PRIu64 " bam=%" PRIu64 " rts=%" PRIu64 " etp=%" PRIu64 " aborted=%" PRIu64
+               " timed_out=%" PRIu64 " superseded=%" PRIu64 " duplicates=%" PRIu64 " orphans=%" PRIu64
+               " malformed=%" PRIu64 "\n",
+               tp.completed, tp.bam_started, tp.rts_started, tp.etp_started, tp.aborted, tp.timed_out, tp.superseded,
+               tp.duplicate_packets, tp.orphan_packets, tp.malformed);
+  for (const ParseError& e : rec.errors().kept()) std::fprintf(stderr, "%s\n", e.to_string().c_str());
+  if (rec.errors().count() > rec.errors().kept().size()) {
+    std::fprintf(stderr, "... and %" PRIu64 " more malformed lines\n", rec.errors().count() - rec.errors().kept().size());
+  }
+}
+
+}  // namespace
+
+int run_decode(Args args) {
+  bool pgn_stats = false;
+  bool tp_only = false;
+  std::vector<std::string> dbcs;
+  std::vector<j1939::Pgn> only;
+  std::string input;
+  OptionParser opts("decode", args);
+  while (opts.more()) {
+    if (opts.flag("-h", "--help")) {
+      std::fputs(kHelp, stdout);
+      return kExitOk;
+    } else if (opts.flag("--pgn-stats")) {
+      pgn_stats = true;
+    } else if (opts.flag("--tp")) {
+      tp_only = true;
+    } else if (auto v = opts.value("--dbc")) {
+      dbcs.emplace_back(*v);
+    } else if (auto n = opts.number("--pgn", 0, 0x3FFFF)) {
+      only.push_back(static_cast<j1939::Pgn>(*n));
+    } else if (auto p = opts.positional()) {
+      if (!input.empty()) return opts.fail("only one input may be given");
+      input = *p;
+    } else {
+      return opts.fail_unknown();
+    }
+  }
+  if (opts.failed()) return kExitUsage;
+  if (input.empty()) {
+    std::fputs(kHelp, stderr);
+    return kExitUsage;
+  }
+
+  j1939::Database db;
+  dbcs.insert(dbcs.begin(), core_dbc_path());
+  for (const std::string& path : dbcs) {
+    if (auto e = load_dbc_file(db, path)) {
+      std::fprintf(stderr, "roadload decode: %s\n", e->to_string().c_str());
+      return kExitNoInput;
+    }
+  }
+  auto rec = recording::RecordingReader::open(input);
+  if (!rec) {
+    std::fprintf(stderr, "roadload decode: %s\n", rec.error().to_string().c_str());
+    return kExitNoInput;
+  }
+  auto wanted = [&](j1939::Pgn p) { return only.empty() || std::find(only.begin(), only.end(), p) != only.end(); };
+
+  static char out_buf[1 << 16];
+  std::setvbuf(stdout, out_buf, _IOFBF, sizeof out_buf);
+  j1939::MessageAssembler assembler;
+  std::map<j1939::Pgn, PgnStats> stats;
+  KindCounts kinds;
+  while (const recording::Record* r = rec.value().next()) {
+    const auto* frame = std::get_if<CanFrame>(r);
+    if (frame == nullptr) continue;
+    kinds.add(frame->kind);
+    if (pgn_stats && frame->kind == CanFrameKind::extended) {
+      const j1939::Id id = j1939::parse_id(frame->id);
+      PgnStats& s = stats[id.pgn()];
+      if (s.frames++ == 0) s.first = frame->t;
+      s.last = frame->t;
+      s.sources[id.sa] = true;
+    }
+    const auto m = assembler.push(*frame);
+    if (!m || !wanted(m->pgn)) continue;
+    if (pgn_stats) {
+      if (m->reassembled) ++stats[m->pgn].tp_messages;
+    } else if (tp_only) {
+      if (m->reassembled) print_tp(stdout, *m, rec.value().interfaces());
+    } else if (const j1939::MessageDef* def = db.find(m->pgn)) {
+      print_signals(stdout, *m, *def, rec.value().interfaces());
+    }
+  }
+  if (pgn_stats) print_pgn_stats(stdout, stats, db);
+  std::fflush(stdout);
+  print_summary(kinds, rec.value(), assembler.transport().counters());
+  return rec.value().errors().count() > 0 ? kExitDataErr : kExitOk;
+}
+
+}  // namespace roadload::cli

@@ -1,0 +1,47 @@
+#include <cstdio>
+#include <cstring>
+
+#include "command.hpp"
+
+namespace {
+
+using roadload::cli::Command;
+
+constexpr Command kCommands[] = {
+    {"decode", "print decoded J1939 signals, transport messages or per-PGN statistics of a recording",
+     roadload::cli::run_decode},
+};
+
+void usage(std::FILE* out) {
+  std::fprintf(out,
+               "usage: roadload <command> [options]\n\n"
+               "Measures what a heavy truck spends on rolling resistance, pavement by pavement.\n\n"
+               "commands:\n");
+  for (const Command& c : kCommands) std::fprintf(out, "  %-10.*s %.*s\n", static_cast<int>(c.name.size()),
+                                                  c.name.data(), static_cast<int>(c.summary.size()), c.summary.data());
+  std::fprintf(out, "\n'roadload <command> --help' describes a command.\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    usage(stderr);
+    return roadload::cli::kExitUsage;
+  }
+  const std::string_view name = argv[1];
+  if (name == "--help" || name == "-h" || name == "help") {
+    usage(stdout);
+    return 0;
+  }
+  if (name == "--version") {
+    std::puts("roadload " ROADLOAD_VERSION);
+    return 0;
+  }
+  for (const Command& c : kCommands) {
+    if (c.name == name) return c.run(roadload::cli::Args(argv + 2, static_cast<std::size_t>(argc - 2)));
+  }
+  std::fprintf(stderr, "roadload: unknown command '%s'\n\n", argv[1]);
+  usage(stderr);
+  return roadload::cli::kExitUsage;
+}

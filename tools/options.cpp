@@ -1,0 +1,80 @@
+#include "options.hpp"
+
+#include <charconv>
+#include <cstdio>
+
+namespace roadload::cli {
+
+bool OptionParser::flag(std::string_view a, std::string_view b) {
+  if (!more()) return false;
+  if (current() != a && (b.empty() || current() != b)) return false;
+  ++pos_;
+  return true;
+}
+
+std::optional<std::string_view> OptionParser::value(std::string_view name) {
+  if (!more()) return std::nullopt;
+  const std::string_view arg = current();
+  if (arg.size() > name.size() && arg.substr(0, name.size()) == name && arg[name.size()] == '=') {
+    ++pos_;
+    return arg.substr(name.size() + 1);
+  }
+  if (arg != name) return std::nullopt;
+  if (pos_ + 1 >= args_.size()) {
+    fail(std::string(name) + " needs a value");
+    return std::nullopt;
+  }
+  pos_ += 2;
+  return std::string_view(args_[pos_ - 1]);
+}
+
+std::optional<std::int64_t> OptionParser::number(std::string_view name, std::int64_t min, std::int64_t max) {
+  const auto v = value(name);
+  if (!v) return std::nullopt;
+  std::string_view s = *v;
+  int base = 10;
+  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
+    s.remove_prefix(2);
+    base = 16;
+  }
+  std::int64_t n = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), n, base);
+  if (ec != std::errc() || end != s.data() + s.size() || n < min || n > max) {
+    fail(std::string(name) + ": '" + std::string(*v) + "' is not a whole number in " + std::to_string(min) + ".." +
+         std::to_string(max));
+    return std::nullopt;
+  }
+  return n;
+}
+
+std::optional<double> OptionParser::real(std::string_view name, double min, double max) {
+  const auto v = value(name);
+  if (!v) return std::nullopt;
+  double d = 0;
+  const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), d);
+  if (ec != std::errc() || end != v->data() + v->size() || d < min || d > max) {
+    fail(std::string(name) + ": '" + std::string(*v) + "' is not a number in " + std::to_string(min) + ".." +
+         std::to_string(max));
+    return std::nullopt;
+  }
+  return d;
+}
+
+std::optional<std::string_view> OptionParser::positional() {
+  if (!more()) return std::nullopt;
+  const std::string_view arg = current();
+  if (arg.size() > 1 && arg[0] == '-') return std::nullopt;
+  ++pos_;
+  return arg;
+}
+
+int OptionParser::fail(const std::string& message) {
+  if (!failed_) std::fprintf(stderr, "roadload %.*s: %s (see --help)\n", static_cast<int>(command_.size()),
+                             command_.data(), message.c_str());
+  failed_ = true;
+  return kExitUsage;
+}
+
+int OptionParser::fail_unknown() { return fail("unknown option '" + std::string(current()) + "'"); }
+
+}  // namespace roadload::cli

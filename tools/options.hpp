@@ -1,0 +1,38 @@
+#pragma once
+// A small option parser: each call looks at the current argument and consumes it on a match, so a
+// command's loop reads like its --help. Accepts "--name value" and "--name=value".
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "command.hpp"
+
+namespace roadload::cli {
+
+class OptionParser {
+ public:
+  OptionParser(std::string_view command, Args args) : command_(command), args_(args) {}
+
+  bool more() const { return !failed_ && pos_ < args_.size(); }
+  bool failed() const { return failed_; }
+
+  bool flag(std::string_view a, std::string_view b = {});
+  std::optional<std::string_view> value(std::string_view name);
+  std::optional<std::int64_t> number(std::string_view name, std::int64_t min, std::int64_t max);
+  std::optional<double> real(std::string_view name, double min, double max);
+  std::optional<std::string_view> positional();
+
+  int fail(const std::string& message);
+  int fail_unknown();
+
+ private:
+  std::string_view current() const { return args_[pos_]; }
+
+  std::string_view command_;
+  Args args_;
+  std::size_t pos_ = 0;
+  bool failed_ = false;
+};
+
+}  // namespace roadload::cli
