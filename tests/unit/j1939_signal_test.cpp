@@ -117,6 +117,22 @@ TEST(Signal, EncodeStateWritesNotAvailableAndError) {
   EXPECT_EQ(decode(bits, p).state, SignalState::error);
 }
 
+TEST(Signal, WiderBitFieldsReserveOnlyAllOnes) {
+  // A 7-bit occurrence count: 126 is a count, 127 is "not available".
+  const SignalDef count = def(0, 7);
+  const std::array<std::uint8_t, 1> c126{0x7E}, c127{0x7F};
+  EXPECT_DOUBLE_EQ(*decode(count, c126).get(), 126.0);
+  EXPECT_EQ(decode(count, c127).state, SignalState::not_available);
+  EXPECT_EQ(max_valid_raw(count), 126u);
+}
+
+TEST(Signal, FieldWithoutJ1939RangesDecodesEveryPattern) {
+  SignalDef s = def(0, 16);
+  s.j1939_ranges = false;
+  const std::array<std::uint8_t, 2> p{0xFF, 0xFF};
+  EXPECT_DOUBLE_EQ(*decode(s, p).get(), 65535.0);
+}
+
 TEST(Signal, SignedSignalSignExtends) {
   SignalDef s = def(0, 12, 0.5);
   s.is_signed = true;

@@ -122,13 +122,17 @@ class Cursor {
 
   std::string string(std::string_view field) {
     expect('"', field);
+    const long start_line = line_;
     std::string s;
     while (pos_ < text_.size() && text_[pos_] != '"') {
       if (text_[pos_] == '\\' && pos_ + 1 < text_.size()) ++pos_;
       if (text_[pos_] == '\n') ++line_;
       s.push_back(text_[pos_++]);
     }
-    if (pos_ >= text_.size()) fail(field, "unterminated string");
+    if (pos_ >= text_.size()) {
+      line_ = start_line;
+      fail(field, "unterminated string");
+    }
     ++pos_;
     return s;
   }
@@ -311,6 +315,15 @@ class DbcReader {
       const auto spn = in_.unsigned_integer("BA_ SPN", 524287);
       for (SignalDef& s : m->def.signals) {
         if (s.name == sig) s.spn = static_cast<std::uint32_t>(spn);
+      }
+      in_.expect(';', "BA_");
+    } else if (object == "SG_" && name == "J1939Ranges") {
+      // 0 marks a field with no reserved ranges (a raw bit pattern such as a DTC's SPN bits).
+      PendingMessage* m = find(in_.unsigned_integer("BA_ message id", 0xFFFFFFFFu));
+      const std::string_view sig = in_.identifier("BA_ signal name");
+      const auto on = in_.unsigned_integer("BA_ J1939Ranges", 1);
+      for (SignalDef& s : m->def.signals) {
+        if (s.name == sig) s.j1939_ranges = on != 0;
       }
       in_.expect(';', "BA_");
     } else {

@@ -117,14 +117,15 @@ void insert_raw(const SignalDef& s, std::uint64_t raw, std::span<std::uint8_t> p
 }
 
 // J1939-71: for fields of a byte or more the most significant byte carries the indicator
-// (0xFB parameter specific, 0xFC-0xFD reserved, 0xFE error, 0xFF not available); for shorter
-// bit fields all ones is "not available" and all ones minus one "error".
+// (0xFB parameter specific, 0xFC-0xFD reserved, 0xFE error, 0xFF not available). Shorter bit
+// fields reserve all ones for "not available"; only 2-bit status fields also reserve 10b for
+// "error", since wider fields (torque mode, occurrence count) define all ones minus one as a value.
 SignalState classify_raw(const SignalDef& s, std::uint64_t raw) {
   if (!has_reserved_ranges(s)) return SignalState::valid;
   if (s.length < 8) {
     const std::uint64_t ones = all_ones(s.length);
     if (raw == ones) return SignalState::not_available;
-    if (raw == ones - 1) return SignalState::error;
+    if (s.length == 2 && raw == ones - 1) return SignalState::error;
     return SignalState::valid;
   }
   const std::uint64_t top = raw >> (s.length - 8);
@@ -137,7 +138,7 @@ SignalState classify_raw(const SignalDef& s, std::uint64_t raw) {
 
 std::uint64_t max_valid_raw(const SignalDef& s) {
   if (!has_reserved_ranges(s)) return s.is_signed ? all_ones(s.length - 1u) : all_ones(s.length);
-  if (s.length < 8) return all_ones(s.length) - 2;
+  if (s.length < 8) return all_ones(s.length) - (s.length == 2 ? 2 : 1);
   return (std::uint64_t{0xFA} << (s.length - 8)) | all_ones(s.length - 8u);
 }
 
