@@ -90,6 +90,7 @@ TEST_P(CandumpLineRejects, NamingTheField) {
 INSTANTIATE_TEST_SUITE_P(Malformed, CandumpLineRejects,
                          testing::Values(BadLine{"(1.00) can0 123#", "timestamp"},
                                          BadLine{"(1.000000 can0 123#", "timestamp"},
+                                         BadLine{"(16351888455.031950) can0 123#", "timestamp"},
                                          BadLine{"(1.000000)can0 123#", "interface"},
                                          BadLine{"(1.000000) can0", "interface"},
                                          BadLine{"(1.000000) can0 12#00", "identifier"},

@@ -111,6 +111,12 @@ TEST_F(RecordingFolder, MetadataErrorsNameTheKeyAndLine) {
   EXPECT_EQ(rec.error().line, 4);
 }
 
+TEST(Metadata, NonAsciiIsRejectedWithItsLine) {
+  auto m = parse_metadata("format = \"roadload-recording\"\nversion = 1\n\xcf\xa6 = 1\n", "meta.toml");
+  ASSERT_FALSE(m);
+  EXPECT_EQ(m.error().line, 3);
+}
+
 TEST_F(RecordingFolder, MetadataRoundTrips) {
   auto m = parse_metadata(kMeta, "meta.toml");
   ASSERT_TRUE(m) << m.error().to_string();

@@ -110,9 +110,23 @@ std::string quoted(const std::string& s) {
   return o.str();
 }
 
+// toml++ 3.3 reaches undefined behaviour on some non-ASCII bare keys (found by fuzzing), so
+// the metadata is ASCII; strings can still carry any character as a \uXXXX escape.
+std::optional<ParseError> non_ascii(std::string_view text, std::string_view source) {
+  long line = 1;
+  for (const char c : text) {
+    if (c == '\n') ++line;
+    if (static_cast<unsigned char>(c) >= 0x80) {
+      return ParseError{std::string(source), line, "toml", "non-ASCII byte; write such characters as \\uXXXX escapes"};
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 Parsed<Metadata> parse_metadata(std::string_view text, std::string_view source) {
+  if (auto e = non_ascii(text, source)) return *e;
   toml::parse_result parsed = toml::parse(text, source);
   if (!parsed) {
     const toml::parse_error& e = parsed.error();

@@ -96,6 +96,7 @@ class TpReassembler {
     std::size_t data_at = 0;          // offset of this slot in storage_
     std::size_t bits_at = 0;          // offset of this slot in received_
   };
+
   void on_control(const CanFrame& frame, bool etp);
   void announce(const CanFrame& frame, bool etp);
   void follow_up(const CanFrame& frame, bool etp);
