@@ -8,12 +8,19 @@ namespace {
 constexpr std::uint32_t kErrFlag = 0x20000000u;
 constexpr std::uint32_t kEffMask = 0x1FFFFFFFu;
 
-int hex_value(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
-}
+// A table beats three range compares per digit in the 110-million-frame decode loop.
+constexpr auto kHexTable = [] {
+  std::array<std::int8_t, 256> t{};
+  t.fill(-1);
+  for (int i = 0; i < 10; ++i) t['0' + i] = static_cast<std::int8_t>(i);
+  for (int i = 0; i < 6; ++i) {
+    t['A' + i] = static_cast<std::int8_t>(10 + i);
+    t['a' + i] = static_cast<std::int8_t>(10 + i);
+  }
+  return t;
+}();
+
+int hex_value(char c) { return kHexTable[static_cast<unsigned char>(c)]; }
 
 // "(1635188455.020850)" with 6 or 9 fractional digits.
 std::optional<LineError> parse_stamp(std::string_view& s, CaptureTime& t) {
@@ -63,8 +70,12 @@ std::optional<LineError> parse_bytes(std::string_view s, std::size_t max, CanFra
 }  // namespace
 
 std::optional<std::uint8_t> InterfaceTable::intern(std::string_view name) {
+  if (last_ < count_ && names_[last_] == name) return last_;
   for (std::size_t i = 0; i < count_; ++i) {
-    if (names_[i] == name) return static_cast<std::uint8_t>(i);
+    if (names_[i] == name) {
+      last_ = static_cast<std::uint8_t>(i);
+      return last_;
+    }
   }
   if (count_ == kMax) return std::nullopt;
   names_[count_] = std::string(name);

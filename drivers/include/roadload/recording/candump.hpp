@@ -22,6 +22,7 @@ class InterfaceTable {
  private:
   std::array<std::string, kMax> names_;
   std::size_t count_ = 0;
+  std::uint8_t last_ = 0;  // most logs repeat one interface line after line
 };
 
 struct LineError {
