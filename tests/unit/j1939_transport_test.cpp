@@ -37,15 +37,7 @@ using roadload::CaptureTime;
 using roadload::Nanoseconds;
 using namespace std::chrono_literals;
 
-constexpr std::uint8_t kRts = 0x10;
-constexpr std::uint8_t kCts = 0x11;
-constexpr std::uint8_t kEoma = 0x13;
-constexpr std::uint8_t kBam = 0x20;
-constexpr std::uint8_t kEtpRts = 0x14;
-constexpr std::uint8_t kEtpCts = 0x15;
-constexpr std::uint8_t kEtpDpo = 0x16;
-constexpr std::uint8_t kEtpEoma = 0x17;
-constexpr std::uint8_t kAbort = 0xFF;
+using namespace roadload::j1939::tp_control;
 constexpr std::uint8_t kGlobal = 0xFF;
 constexpr j::Pgn kEc1 = 0xFEE3;
 constexpr j::Pgn kDm1 = 0xFECA;

@@ -310,25 +310,25 @@ class DbcReader {
       m->def.cycle_time_ms = static_cast<std::uint32_t>(ms);
       in_.expect(';', "BA_");
     } else if (object == "SG_" && name == "SPN") {
-      PendingMessage* m = find(in_.unsigned_integer("BA_ message id", 0xFFFFFFFFu));
-      const std::string_view sig = in_.identifier("BA_ signal name");
-      const auto spn = in_.unsigned_integer("BA_ SPN", 524287);
-      for (SignalDef& s : m->def.signals) {
-        if (s.name == sig) s.spn = static_cast<std::uint32_t>(spn);
-      }
-      in_.expect(';', "BA_");
+      signal_attribute("BA_ SPN", 524287, [](SignalDef& s, std::uint64_t v) { s.spn = static_cast<std::uint32_t>(v); });
     } else if (object == "SG_" && name == "J1939Ranges") {
       // 0 marks a field with no reserved ranges (a raw bit pattern such as a DTC's SPN bits).
-      PendingMessage* m = find(in_.unsigned_integer("BA_ message id", 0xFFFFFFFFu));
-      const std::string_view sig = in_.identifier("BA_ signal name");
-      const auto on = in_.unsigned_integer("BA_ J1939Ranges", 1);
-      for (SignalDef& s : m->def.signals) {
-        if (s.name == sig) s.j1939_ranges = on != 0;
-      }
-      in_.expect(';', "BA_");
+      signal_attribute("BA_ J1939Ranges", 1, [](SignalDef& s, std::uint64_t v) { s.j1939_ranges = v != 0; });
     } else {
       in_.skip_statement("BA_");
     }
+  }
+
+  // `BA_ "Name" SG_ <message id> <signal> <value>;` applied to the named signal.
+  template <typename Apply>
+  void signal_attribute(std::string_view field, std::uint64_t max, Apply apply) {
+    PendingMessage* m = find(in_.unsigned_integer("BA_ message id", 0xFFFFFFFFu));
+    const std::string_view sig = in_.identifier("BA_ signal name");
+    const std::uint64_t value = in_.unsigned_integer(field, max);
+    for (SignalDef& s : m->def.signals) {
+      if (s.name == sig) apply(s, value);
+    }
+    in_.expect(';', "BA_");
   }
 
   PendingMessage* find(std::uint64_t dbc_id) {

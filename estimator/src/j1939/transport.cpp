@@ -5,16 +5,7 @@
 namespace roadload::j1939 {
 namespace {
 
-// Control bytes (byte 1 of TP.CM / ETP.CM).
-constexpr std::uint8_t kRts = 0x10;
-constexpr std::uint8_t kCts = 0x11;
-constexpr std::uint8_t kEoma = 0x13;
-constexpr std::uint8_t kBam = 0x20;
-constexpr std::uint8_t kEtpRts = 0x14;
-constexpr std::uint8_t kEtpCts = 0x15;
-constexpr std::uint8_t kEtpDpo = 0x16;
-constexpr std::uint8_t kEtpEoma = 0x17;
-constexpr std::uint8_t kAbort = 0xFF;
+using namespace tp_control;
 
 constexpr std::size_t kBytesPerPacket = 7;
 constexpr std::size_t kTpMaxPackets = 255;

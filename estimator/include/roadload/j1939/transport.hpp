@@ -20,6 +20,19 @@ inline constexpr Pgn kPgnEtpCm = 0xC800;
 inline constexpr Pgn kPgnEtpDt = 0xC700;
 inline constexpr std::size_t kTpMaxBytes = 255 * 7;
 
+// Control bytes: byte 1 of TP.CM and ETP.CM.
+namespace tp_control {
+inline constexpr std::uint8_t kRts = 0x10;
+inline constexpr std::uint8_t kCts = 0x11;
+inline constexpr std::uint8_t kEoma = 0x13;
+inline constexpr std::uint8_t kBam = 0x20;
+inline constexpr std::uint8_t kEtpRts = 0x14;
+inline constexpr std::uint8_t kEtpCts = 0x15;
+inline constexpr std::uint8_t kEtpDpo = 0x16;
+inline constexpr std::uint8_t kEtpEoma = 0x17;
+inline constexpr std::uint8_t kAbort = 0xFF;
+}  // namespace tp_control
+
 struct TpConfig {
   // J1939-21 T1 (750 ms) bounds the gap between BAM packets; T2/T3 (1250 ms) bound a connection.
   Nanoseconds bam_timeout = Nanoseconds{750'000'000};
