@@ -57,6 +57,13 @@ TEST(CandumpLine, RemoteErrorAndFdFramesAreTold) {
   EXPECT_TRUE(fd.frame.id29);
 }
 
+TEST(CandumpLine, InterfaceNameWithControlBytesIsRejected) {
+  constexpr std::string_view line("(1.000000) can\0\0 123#", 23);
+  const Parsed p = parse(line);
+  ASSERT_TRUE(p.error);
+  EXPECT_STREQ(p.error->field, "interface");
+}
+
 TEST(CandumpLine, LinesCanplayerIgnoresAreIgnored) {
   EXPECT_EQ(parse("").result, LineResult::ignored);
   EXPECT_EQ(parse("# comment").result, LineResult::ignored);
@@ -93,6 +100,7 @@ INSTANTIATE_TEST_SUITE_P(Malformed, CandumpLineRejects,
                                          BadLine{"(16351888455.031950) can0 123#", "timestamp"},
                                          BadLine{"(1.000000)can0 123#", "interface"},
                                          BadLine{"(1.000000) can0", "interface"},
+                                         BadLine{"(1.000000) a_name_longer_than_15 123#", "interface"},
                                          BadLine{"(1.000000) can0 12#00", "identifier"},
                                          BadLine{"(1.000000) can0 800#00", "identifier"},
                                          BadLine{"(1.000000) can0 1G3#00", "identifier"},

@@ -22,6 +22,15 @@ constexpr auto kHexTable = [] {
 
 int hex_value(char c) { return kHexTable[static_cast<unsigned char>(c)]; }
 
+// Linux interface names: at most 15 bytes (IFNAMSIZ - 1), printable, no '/' or blanks.
+bool valid_interface_name(std::string_view name) {
+  if (name.size() > 15) return false;
+  for (const char c : name) {
+    if (c <= ' ' || c > '~' || c == '/') return false;
+  }
+  return true;
+}
+
 // "(1635188455.020850)" with 6 or 9 fractional digits.
 std::optional<LineError> parse_stamp(std::string_view& s, CaptureTime& t) {
   std::size_t i = 1;
@@ -95,7 +104,9 @@ std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTabl
   line.remove_prefix(1);
   const std::size_t sp = line.find(' ');
   if (sp == 0 || sp == std::string_view::npos) return LineError{"interface", "missing interface name"};
-  const auto idx = ifaces.intern(line.substr(0, sp));
+  const std::string_view name = line.substr(0, sp);
+  if (!valid_interface_name(name)) return LineError{"interface", "not a network interface name"};
+  const auto idx = ifaces.intern(name);
   if (!idx) return LineError{"interface", "more than 16 interfaces"};
   out.iface = *idx;
   line.remove_prefix(sp + 1);
