@@ -71,7 +71,7 @@ TEST(CandumpLine, LinesCanplayerIgnoresAreIgnored) {
 }
 
 TEST(CandumpLine, FormatRoundTripsEveryKind) {
-  for (const char* line : {"(1635188455.029900) can0 0CF00400#607D844A1400F084", "(0000000001.000000) can0 123#R",
+  for (const char* line : {"(1635188455.029900) can0 0CF00400#607D844A1400F084", "(0000000001.000000) can0 123#R", "(0000000001.000000) can0 123#R2",
                            "(0000000001.000000) can0 1CECFF00#R", "(0000000001.000000) can0 20000080#0000000000000000",
                            "(0000000001.000000) can0 18FEF100##1112233445566778899AABBCC",
                            "(0000000001.000000) can0 7FF#"}) {

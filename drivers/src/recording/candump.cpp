@@ -178,6 +178,8 @@ std::size_t format_candump_line(const CanFrame& f, std::string_view iface, char*
   buf[pos++] = '#';
   if (f.kind == CanFrameKind::remote) {
     buf[pos++] = 'R';
+    // A requested length is part of the frame; can-utils writes it as one digit after R.
+    if (f.len > 0) buf[pos++] = static_cast<char>('0' + f.len);
     buf[pos] = '\0';
     return pos;
   }

@@ -100,7 +100,7 @@ class Cursor {
     double v = 0;
     const char* first = text_.data() + begin;
     const char* last = text_.data() + pos_;
-    if (*first == '+') ++first;
+    if (first != last && *first == '+') ++first;
     const auto [end, ec] = std::from_chars(first, last, v);
     if (ec != std::errc() || end != last || first == last) {
       pos_ = begin;
