@@ -17,7 +17,7 @@ CaptureTime stamp_of(const Record& r) {
 
 // Reads a CSV stream whose rows map to one sample type. `Row` converts fields into the sample
 // and names the first bad field.
-template <typename Sample, std::size_t N, typename Convert>
+template <typename Sample, typename Convert>
 class CsvStream final : public Stream {
  public:
   CsvStream(CsvReader csv, const char* name, Convert convert)
@@ -135,7 +135,7 @@ Parsed<std::unique_ptr<Stream>> open_csv(const fs::path& path, const std::string
                                          Convert convert) {
   auto csv = CsvReader::open(path.string(), cols);
   if (!csv) return csv.error();
-  return std::unique_ptr<Stream>(new CsvStream<Sample, N, Convert>(std::move(csv.value()), name, convert));
+  return std::unique_ptr<Stream>(new CsvStream<Sample, Convert>(std::move(csv.value()), name, convert));
 }
 
 }  // namespace
