@@ -10,6 +10,8 @@ using roadload::cli::Command;
 constexpr Command kCommands[] = {
     {"decode", "print decoded J1939 signals, transport messages or per-PGN statistics of a recording",
      roadload::cli::run_decode},
+    {"simulate", "drive the simulated truck over a simulated road; write a recording and its ground truth",
+     roadload::cli::run_simulate},
 };
 
 void usage(std::FILE* out) {

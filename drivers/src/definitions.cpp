@@ -10,10 +10,12 @@
 
 namespace roadload {
 
-std::string core_dbc_path() {
+std::string data_dir() {
   const char* dir = std::getenv("ROADLOAD_DATADIR");
-  return std::string(dir != nullptr && *dir != '\0' ? dir : ROADLOAD_DATADIR) + "/j1939-core.dbc";
+  return dir != nullptr && *dir != '\0' ? dir : ROADLOAD_DATADIR;
 }
+
+std::string core_dbc_path() { return data_dir() + "/j1939-core.dbc"; }
 
 std::optional<ParseError> load_dbc_file(j1939::Database& db, const std::string& path) {
   std::ifstream in(path, std::ios::binary);

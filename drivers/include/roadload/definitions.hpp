@@ -8,7 +8,9 @@
 
 namespace roadload {
 
-// $ROADLOAD_DATADIR/j1939-core.dbc when set, else the data directory fixed at build time.
+// $ROADLOAD_DATADIR when set, else the data directory fixed at build time (config/ of the source).
+std::string data_dir();
+// data_dir()/j1939-core.dbc.
 std::string core_dbc_path();
 std::optional<ParseError> load_dbc_file(j1939::Database& db, const std::string& path);
 

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "roadload/recording/csv.hpp"
@@ -72,6 +73,11 @@ class Fields {
     fail(i, "expected a finite number");
     return 0.0;
   }
+  // An empty field is a quantity this sensor does not measure (an anemometer has no barometer).
+  double f64_or_nan(std::size_t i) {
+    if (row_[i].empty()) return std::numeric_limits<double>::quiet_NaN();
+    return f64(i);
+  }
   std::uint8_t small(std::size_t i, std::int64_t max) {
     const std::int64_t v = i64(i);
     if (v < 0 || v > max) fail(i, "out of range 0.." + std::to_string(max));
@@ -123,10 +129,10 @@ FieldError to_weather(std::span<const std::string_view> row, WeatherSample& s) {
   Fields f(row);
   s.t = capture_time_from_ns(f.i64(0));
   s.station = f.small(1, 255);
-  s.air_temp_c = f.f64(2);
-  s.pressure_pa = f.f64(3);
-  s.wind_speed_mps = f.f64(4);
-  s.wind_from_deg = f.f64(5);
+  s.air_temp_c = f.f64_or_nan(2);
+  s.pressure_pa = f.f64_or_nan(3);
+  s.wind_speed_mps = f.f64_or_nan(4);
+  s.wind_from_deg = f.f64_or_nan(5);
   return f.error();
 }
 

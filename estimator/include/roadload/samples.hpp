@@ -29,6 +29,7 @@ struct GnssFix {
   double hdop = 0.0;
 };
 
+// A field the station does not measure is NaN (an empty field in weather.csv).
 struct WeatherSample {
   CaptureTime t;
   std::uint8_t station = 0;

@@ -1,0 +1,77 @@
+#pragma once
+// Writes a recording folder (docs/recording-format.md): meta.toml, can.log and the CSV streams.
+// Streams are created on first use, so a recording holds only what was recorded.
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "roadload/can_frame.hpp"
+#include "roadload/parse_error.hpp"
+#include "roadload/recording/metadata.hpp"
+#include "roadload/samples.hpp"
+
+namespace roadload::recording {
+
+// A buffered output file that remembers its first error instead of throwing.
+class OutputFile {
+ public:
+  OutputFile() = default;
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  OutputFile(OutputFile&& o) noexcept;
+  OutputFile& operator=(OutputFile&& o) noexcept;
+  ~OutputFile();
+
+  static Parsed<OutputFile> create(std::string path);
+  void write(std::string_view text);
+  long lines() const { return lines_; }
+  const std::string& path() const { return path_; }
+  // Flushes and closes; the first write or close error, naming the file and the line reached.
+  std::optional<ParseError> close();
+  bool is_open() const { return file_ != nullptr; }
+
+ private:
+  std::FILE* file_ = nullptr;
+  std::string path_;
+  long lines_ = 0;
+  int errno_ = 0;
+};
+
+// Appends fixed-point numbers to a line without locale or allocation.
+class LineBuilder {
+ public:
+  LineBuilder& num(std::int64_t v);
+  LineBuilder& num(double v, int decimals);  // NaN gives an empty field
+  LineBuilder& text(std::string_view s);
+  LineBuilder& sep() { return text(","); }
+  std::string_view finish();  // appends '\n'; the view lives until the next clear()
+  void clear() { len_ = 0; }
+
+ private:
+  char buf_[512];
+  std::size_t len_ = 0;
+};
+
+class RecordingWriter {
+ public:
+  static Parsed<RecordingWriter> create(const std::string& folder, const Metadata& meta);
+
+  void write(const CanFrame& f, std::string_view iface);
+  void write(const AccelSample& s);
+  void write(const GnssFix& s);
+  void write(const WeatherSample& s);
+  std::optional<ParseError> close();
+
+ private:
+  explicit RecordingWriter(std::string folder) : folder_(std::move(folder)) {}
+  OutputFile& stream(OutputFile& f, const char* name, std::string_view header);
+
+  std::string folder_;
+  OutputFile can_, accel_, gnss_, weather_;
+  std::optional<ParseError> error_;
+  LineBuilder line_;
+};
+
+}  // namespace roadload::recording

@@ -1,0 +1,141 @@
+#include "roadload/recording/writer.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <utility>
+
+#include "roadload/recording/candump.hpp"
+
+namespace roadload::recording {
+
+OutputFile::OutputFile(OutputFile&& o) noexcept
+    : file_(std::exchange(o.file_, nullptr)), path_(std::move(o.path_)), lines_(o.lines_), errno_(o.errno_) {}
+
+OutputFile& OutputFile::operator=(OutputFile&& o) noexcept {
+  if (this != &o) {
+    close();
+    file_ = std::exchange(o.file_, nullptr);
+    path_ = std::move(o.path_);
+    lines_ = o.lines_;
+    errno_ = o.errno_;
+  }
+  return *this;
+}
+
+OutputFile::~OutputFile() { close(); }
+
+Parsed<OutputFile> OutputFile::create(std::string path) {
+  OutputFile f;
+  f.file_ = std::fopen(path.c_str(), "w");
+  if (!f.file_) return ParseError{path, 0, "file", std::strerror(errno)};
+  // Large buffer: a one-hour simulated drive writes gigabytes of accelerometer lines.
+  std::setvbuf(f.file_, nullptr, _IOFBF, 1 << 20);
+  f.path_ = std::move(path);
+  return f;
+}
+
+void OutputFile::write(std::string_view text) {
+  if (!file_ || errno_ != 0) return;
+  if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) errno_ = errno ? errno : EIO;
+  ++lines_;
+}
+
+std::optional<ParseError> OutputFile::close() {
+  if (!file_) return std::nullopt;
+  if (std::fclose(std::exchange(file_, nullptr)) != 0 && errno_ == 0) errno_ = errno ? errno : EIO;
+  if (errno_ == 0) return std::nullopt;
+  return ParseError{path_, lines_, "write", std::strerror(errno_)};
+}
+
+LineBuilder& LineBuilder::num(std::int64_t v) {
+  len_ = static_cast<std::size_t>(std::to_chars(buf_ + len_, buf_ + sizeof buf_, v).ptr - buf_);
+  return *this;
+}
+
+LineBuilder& LineBuilder::num(double v, int decimals) {
+  if (std::isnan(v)) return *this;
+  // Avoid "-0.000": it reads back equal, but a diff of two recordings would flag it.
+  const double scale = std::pow(10.0, decimals);
+  if (std::abs(v) * scale < 0.5) v = 0.0;
+  len_ = static_cast<std::size_t>(
+      std::to_chars(buf_ + len_, buf_ + sizeof buf_, v, std::chars_format::fixed, decimals).ptr - buf_);
+  return *this;
+}
+
+LineBuilder& LineBuilder::text(std::string_view s) {
+  const std::size_t n = std::min(s.size(), sizeof buf_ - 1 - len_);
+  std::memcpy(buf_ + len_, s.data(), n);
+  len_ += n;
+  return *this;
+}
+
+std::string_view LineBuilder::finish() {
+  buf_[len_++] = '\n';
+  return {buf_, len_};
+}
+
+Parsed<RecordingWriter> RecordingWriter::create(const std::string& folder, const Metadata& meta) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) return ParseError{folder, 0, "folder", ec.message()};
+  auto m = OutputFile::create(folder + "/meta.toml");
+  if (!m) return m.error();
+  m.value().write(format_metadata(meta));
+  if (auto e = m.value().close()) return *e;
+  return RecordingWriter(folder);
+}
+
+OutputFile& RecordingWriter::stream(OutputFile& f, const char* name, std::string_view header) {
+  if (f.is_open() || error_) return f;
+  auto opened = OutputFile::create(folder_ + "/" + name);
+  if (!opened) {
+    error_ = opened.error();
+    return f;
+  }
+  f = std::move(opened.value());
+  f.write(header);
+  return f;
+}
+
+void RecordingWriter::write(const CanFrame& frame, std::string_view iface) {
+  char buf[kMaxLineChars + 1];
+  const std::size_t n = format_candump_line(frame, iface, buf);
+  buf[n] = '\n';
+  stream(can_, "can.log", {}).write({buf, n + 1});
+}
+
+void RecordingWriter::write(const AccelSample& s) {
+  line_.clear();
+  line_.num(to_ns(s.t)).sep().num(std::int64_t{s.sensor}).sep();
+  line_.num(s.x_mps2, 6).sep().num(s.y_mps2, 6).sep().num(s.z_mps2, 6);
+  stream(accel_, "accel.csv", "t_ns,sensor,x_mps2,y_mps2,z_mps2\n").write(line_.finish());
+}
+
+void RecordingWriter::write(const GnssFix& s) {
+  line_.clear();
+  line_.num(to_ns(s.t)).sep().num(s.utc_ns).sep().num(s.lat_deg, 9).sep().num(s.lon_deg, 9).sep();
+  line_.num(s.alt_m, 3).sep().num(s.speed_mps, 3).sep().num(s.course_deg, 2).sep();
+  line_.num(static_cast<std::int64_t>(s.mode)).sep().num(s.hdop, 1);
+  stream(gnss_, "gnss.csv", "t_ns,utc_ns,lat_deg,lon_deg,alt_m,speed_mps,course_deg,mode,hdop\n")
+      .write(line_.finish());
+}
+
+void RecordingWriter::write(const WeatherSample& s) {
+  line_.clear();
+  line_.num(to_ns(s.t)).sep().num(std::int64_t{s.station}).sep().num(s.air_temp_c, 2).sep();
+  line_.num(s.pressure_pa, 1).sep().num(s.wind_speed_mps, 2).sep().num(s.wind_from_deg, 1);
+  stream(weather_, "weather.csv", "t_ns,station,air_temp_c,pressure_pa,wind_speed_mps,wind_from_deg\n")
+      .write(line_.finish());
+}
+
+std::optional<ParseError> RecordingWriter::close() {
+  for (OutputFile* f : {&can_, &accel_, &gnss_, &weather_}) {
+    if (auto e = f->close(); e && !error_) error_ = e;
+  }
+  return error_;
+}
+
+}  // namespace roadload::recording

@@ -1,0 +1,114 @@
+#pragma once
+// The truck as a physical system: longitudinal motion with the whole powertrain, one quarter car
+// per axle on the road profile, and a cruise control driving it. Every force is kept in an energy
+// ledger so that fuel energy in equals the work of every force plus every loss.
+#include <array>
+
+#include "roadload/sim/air.hpp"
+#include "roadload/sim/effects.hpp"
+#include "roadload/sim/random.hpp"
+#include "roadload/sim/road_profile.hpp"
+#include "roadload/sim/route.hpp"
+#include "roadload/sim/truck.hpp"
+#include "roadload/sim/vertical.hpp"
+
+namespace roadload::sim {
+
+struct TruckState {
+  double t_s = 0;
+  double x_m = 0;          // front axle along the route
+  double speed_mps = 0;
+  double accel_mps2 = 0;   // dv/dt over the last step
+  double heading_deg = 0;
+  double grade_rad = 0;    // at the centre of gravity
+  int gear = 0;            // 0: neutral or shifting
+  bool clutch_engaged = false;
+  double engine_rpm = 0;
+  double indicated_torque_nm = 0;  // what J1939 calls actual engine torque
+  double clutch_torque_nm = 0;     // brake torque delivered to the driveline
+  double friction_torque_nm = 0;
+  double accessory_torque_nm = 0;  // alternator, steering, compressor, idling fan
+  double fan_torque_nm = 0;        // engaged fan beyond its idle drag
+  bool fan_on = false;
+  double demand_torque_nm = 0;     // what the cruise control asked for, indicated
+  double fuel_kgps = 0;
+  double fuel_lph = 0;
+  bool service_brake = false;
+  double air_density_kgpm3 = 0;
+  double airspeed_mps = 0;
+  double yaw_rad = 0;
+  // Forces at the wheels, positive when resisting motion (tractive positive when driving).
+  double tractive_n = 0, roll_n = 0, aero_n = 0, grade_n = 0, profile_n = 0, brake_n = 0;
+  double crr_mean = 0;             // roll_n / sum of vertical tire forces
+  std::array<double, kTruckAxles> crr{};
+  std::array<AxleOutputs, kTruckAxles> axles{};
+};
+
+// Energy in joules since start. fuel = thermal + friction + accessories + fan + driveline
+//  + roll + aero + grade + profile + brake + kinetic + clutch.
+struct EnergyLedger {
+  double fuel_j = 0, thermal_j = 0, friction_j = 0, accessories_j = 0, fan_j = 0, driveline_j = 0;
+  double roll_j = 0, aero_j = 0, grade_j = 0, profile_j = 0, brake_j = 0;
+  double kinetic_j = 0;  // change of the kinetic energy of the truck and everything that turns
+  double clutch_j = 0;   // slip at gear changes
+  double distance_m = 0;
+};
+
+struct PlantOptions {
+  double warm_s = 1800.0;  // driving before the run starts (the report warmed up >= 30 min)
+  double cruise_kp_per_s = 0.3;
+  double cruise_ki_per_s2 = 0.02;
+};
+
+class TruckPlant {
+ public:
+  TruckPlant(const TruckParams& truck, const Route& route, const RoadProfile& profile, const EffectSet& effects,
+             std::uint64_t seed, PlantOptions options = {});
+
+  // Places the truck at steady cruise: gear by the driver's rule, controller preloaded.
+  void start(double x_m, double speed_mps, const Environment& env);
+  void set_cruise_speed(double speed_mps) { set_speed_mps_ = speed_mps; }
+  // Neutral coasting (coast-down tests): no engine torque, no brakes.
+  void set_coasting(bool coasting) { coasting_ = coasting; }
+
+  void step(double dt_s, const Environment& env);
+
+  const TruckState& state() const { return state_; }
+  const EnergyLedger& ledger() const { return ledger_; }
+  const TruckParams& truck() const { return truck_; }
+  // Mass seen by the longitudinal motion in the current gear, rotating parts included.
+  double effective_mass_kg() const;
+  // Stored energy of the vertical system (for the energy balance).
+  double vertical_stored_energy_j() const;
+
+ private:
+  double engine_speed_radps(double speed_mps) const;
+  double crr_of_axle(std::size_t axle, const Environment& env) const;
+  double aero_force_n(const Environment& env);
+  void update_gear(double dt_s);
+  void update_fan(double dt_s);
+  double drafting_factor(double dt_s);
+  double road_height(std::size_t axle, double x_front_m) const;
+
+  TruckParams truck_;
+  const Route& route_;
+  const RoadProfile& profile_;
+  EffectSet effects_;
+  PlantOptions options_;
+  Rng rng_;
+  VerticalModel vertical_;
+  TruckState state_;
+  EnergyLedger ledger_;
+  double set_speed_mps_ = 0;
+  bool coasting_ = false;
+  double integrator_mps2_ = 0;
+  double shift_left_s_ = 0;
+  int target_gear_ = 0;
+  double fan_left_s_ = 0;
+  double draft_left_s_ = 0;
+  double draft_reduction_ = 0;
+  double mass_kg_ = 0;
+  double wheel_inertia_mass_kg_ = 0;  // sum of J/r^2 of every wheel end
+};
+
+}  // namespace roadload::sim

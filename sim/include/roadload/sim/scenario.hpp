@@ -1,0 +1,44 @@
+#pragma once
+// A scenario: which road, at what speed, in what weather, with which sensors and effects.
+// Built-in scenarios are files in the data directory (config/scenarios), so users read and copy them.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "roadload/parse_error.hpp"
+#include "roadload/sim/effects.hpp"
+#include "roadload/sim/route.hpp"
+#include "roadload/sim/truck.hpp"
+#include "roadload/sim/wind.hpp"
+
+namespace roadload::sim {
+
+struct Scenario {
+  std::string name;
+  std::string description;
+  std::string source;           // the file it came from
+  RouteDef route;
+  double speed_mps = 0;         // cruise set speed
+  double start_m = 0;           // front axle at the start
+  double end_m = 0;             // the run ends when the front axle passes here
+  std::optional<double> duration_s;  // or after this long, whichever first
+  std::int64_t start_utc_ns = 0;
+  std::uint64_t road_seed = 1;  // the road is the same whatever the run's seed
+  WeatherSpec weather;
+  EffectSet effects;
+  UnsprungDefinition unsprung = UnsprungDefinition::physical;
+  double accel_rate_hz = 1200;
+  std::size_t accelerometers = 8;
+  double gnss_rate_hz = 10;
+  double physics_rate_hz = 2400;
+  bool coast = false;           // neutral coast-down instead of cruise
+};
+
+// NAME (a built-in, data_dir/scenarios/NAME.toml) or a path to a scenario file.
+Parsed<Scenario> load_scenario(std::string_view name_or_path, const std::string& data_dir);
+// Names of the built-in scenarios, sorted.
+std::vector<std::string> builtin_scenarios(const std::string& data_dir);
+
+}  // namespace roadload::sim

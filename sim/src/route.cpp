@@ -1,0 +1,192 @@
+#include "roadload/sim/route.hpp"
+
+#include <GeographicLib/Geodesic.hpp>
+#include <algorithm>
+#include <cmath>
+
+#include "toml_fields.hpp"
+
+namespace roadload::sim {
+namespace {
+
+constexpr double kElevationStep_m = 1.0;
+constexpr double kElevationSmooth_m = 60.0;
+constexpr double kRunIn_m = 2000.0;  // elevation and geometry defined this far beyond both ends
+
+double raw_elevation(const RouteDef& d, const std::vector<double>& cum, double s) {
+  if (s <= 0) return d.points.front().elev_m;
+  if (s >= cum.back()) return d.points.back().elev_m;
+  const auto i = static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), s) - cum.begin()) - 1;
+  const double w = (s - cum[i]) / (cum[i + 1] - cum[i]);
+  return d.points[i].elev_m + w * (d.points[i + 1].elev_m - d.points[i].elev_m);
+}
+
+Cell read_cell(const detail::TomlFields& f, const toml::table& t, std::size_t index) {
+  const std::string where = "cell[" + std::to_string(index) + "].";
+  Cell c;
+  c.id = f.required_text(t, "id", where);
+  c.start_m = f.required_number(t, "start_m", where);
+  c.end_m = c.start_m + f.required_number(t, "length_m", where);
+  c.surface = f.required_text(t, "surface", where);
+  if (c.surface != "concrete" && c.surface != "bituminous") {
+    f.fail(t.get("surface"), where + "surface", "expected \"concrete\" or \"bituminous\"");
+  }
+  c.crr = f.required_number(t, "crr", where);
+  if (c.crr <= 0 || c.crr > 0.05) f.fail(t.get("crr"), where + "crr", "outside 0..0.05");
+  if (auto iri = f.number(t, "iri_m_per_km", where)) {
+    c.gd_n0_m3 = gd_from_iri_m3(*iri);
+  } else if (auto cls = f.text(t, "iso8608_class", where)) {
+    c.gd_n0_m3 = cls->size() == 1 ? iso8608_class_gd_m3((*cls)[0]) : std::nan("");
+    if (std::isnan(c.gd_n0_m3)) f.fail(t.get("iso8608_class"), where + "iso8608_class", "expected A..H");
+  }
+  c.joint_spacing_m = f.number(t, "joint_spacing_m", where, 0.0);
+  if (c.joint_spacing_m < 0) f.fail(t.get("joint_spacing_m"), where + "joint_spacing_m", "negative");
+  return c;
+}
+
+}  // namespace
+
+Parsed<RouteDef> load_route(const std::string& path) {
+  auto parsed = detail::parse_toml_file(path);
+  if (!parsed) return parsed.error();
+  const toml::table& root = parsed.value();
+  detail::TomlFields f(path);
+  try {
+    RouteDef d;
+    d.name = f.required_text(root, "name", "");
+    d.source = f.text(root, "source", "").value_or("");
+    d.default_crr = f.number(root, "default_crr", "", d.default_crr);
+    if (auto iri = f.number(root, "default_iri_m_per_km", "")) d.default_gd_n0_m3 = gd_from_iri_m3(*iri);
+    const toml::array* points = root["point"].as_array();
+    if (points == nullptr || points->size() < 2) f.fail(&root, "point", "at least two [[point]] tables required");
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      const toml::table* t = (*points)[i].as_table();
+      const std::string where = "point[" + std::to_string(i) + "].";
+      if (t == nullptr) f.fail(&(*points)[i], where, "expected a table");
+      RoutePoint p;
+      p.lat_deg = f.required_number(*t, "lat_deg", where);
+      p.lon_deg = f.required_number(*t, "lon_deg", where);
+      p.elev_m = f.required_number(*t, "elev_m", where);
+      if (std::abs(p.lat_deg) > 90) f.fail(t->get("lat_deg"), where + "lat_deg", "outside -90..90");
+      if (std::abs(p.lon_deg) > 180) f.fail(t->get("lon_deg"), where + "lon_deg", "outside -180..180");
+      d.points.push_back(p);
+    }
+    if (const toml::array* cells = root["cell"].as_array()) {
+      for (std::size_t i = 0; i < cells->size(); ++i) {
+        const toml::table* t = (*cells)[i].as_table();
+        if (t == nullptr) f.fail(&(*cells)[i], "cell[" + std::to_string(i) + "]", "expected a table");
+        Cell c = read_cell(f, *t, i);
+        if (c.gd_n0_m3 == 0) c.gd_n0_m3 = d.default_gd_n0_m3;
+        if (!d.cells.empty() && c.start_m < d.cells.back().end_m - 1e-6) {
+          f.fail(t, "cell[" + std::to_string(i) + "].start_m", "overlaps the previous cell");
+        }
+        d.cells.push_back(std::move(c));
+      }
+    }
+    return d;
+  } catch (const detail::TomlFailure& e) {
+    return e.error;
+  }
+}
+
+Parsed<Route> Route::build(RouteDef def) {
+  if (def.points.size() < 2) return ParseError{def.name, 0, "point", "a route needs at least two points"};
+  const auto& geod = GeographicLib::Geodesic::WGS84();
+  Route r;
+  r.cumulative_m_.push_back(0.0);
+  for (std::size_t i = 0; i + 1 < def.points.size(); ++i) {
+    double s12 = 0, azi1 = 0, azi2 = 0;
+    geod.Inverse(def.points[i].lat_deg, def.points[i].lon_deg, def.points[i + 1].lat_deg, def.points[i + 1].lon_deg,
+                 s12, azi1, azi2);
+    if (s12 < 1e-3) return ParseError{def.name, 0, "point[" + std::to_string(i + 1) + "]", "repeats the previous point"};
+    r.cumulative_m_.push_back(r.cumulative_m_.back() + s12);
+    r.azimuth_deg_.push_back(azi1);
+  }
+  for (const Cell& c : def.cells) {
+    if (c.start_m < 0 || c.end_m > r.cumulative_m_.back() + 1e-6 || c.end_m <= c.start_m) {
+      return ParseError{def.name, 0, "cell " + c.id, "lies outside the route or has no length"};
+    }
+  }
+  // Smooth the polyline's elevation as a road is graded: grade must not jump at survey points.
+  r.elev_origin_m_ = -kRunIn_m;
+  const auto n = static_cast<std::size_t>((r.cumulative_m_.back() + 2 * kRunIn_m) / kElevationStep_m) + 1;
+  std::vector<double> raw(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    raw[i] = raw_elevation(def, r.cumulative_m_, r.elev_origin_m_ + static_cast<double>(i) * kElevationStep_m);
+  }
+  const auto half = static_cast<std::size_t>(kElevationSmooth_m / kElevationStep_m / 2);
+  r.elevation_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t lo = i > half ? i - half : 0;
+    const std::size_t hi = std::min(n - 1, i + half);
+    double sum = 0;
+    for (std::size_t j = lo; j <= hi; ++j) sum += raw[j];
+    r.elevation_[i] = sum / static_cast<double>(hi - lo + 1);
+  }
+  r.def_ = std::make_shared<const RouteDef>(std::move(def));
+  return r;
+}
+
+Route::Position Route::at(double s_m) const {
+  const auto& geod = GeographicLib::Geodesic::WGS84();
+  std::size_t i = 0;
+  if (s_m >= cumulative_m_.back()) {
+    i = azimuth_deg_.size() - 1;
+  } else if (s_m > 0) {
+    i = static_cast<std::size_t>(std::upper_bound(cumulative_m_.begin(), cumulative_m_.end(), s_m) - cumulative_m_.begin()) - 1;
+  }
+  const RoutePoint& p = def_->points[i];
+  double lat = 0, lon = 0, azi2 = 0;
+  geod.Direct(p.lat_deg, p.lon_deg, azimuth_deg_[i], s_m - cumulative_m_[i], lat, lon, azi2);
+  const double heading = std::fmod(azi2 + 360.0, 360.0);
+  return {lat, lon, heading, elevation_m(s_m)};
+}
+
+double Route::elevation_m(double s_m) const {
+  const double u = std::clamp((s_m - elev_origin_m_) / kElevationStep_m, 0.0, static_cast<double>(elevation_.size() - 2));
+  const auto i = static_cast<std::size_t>(u);
+  const double w = u - static_cast<double>(i);
+  return elevation_[i] + w * (elevation_[i + 1] - elevation_[i]);
+}
+
+double Route::grade_rad(double s_m) const {
+  constexpr double h = 5.0;
+  return std::atan((elevation_m(s_m + h) - elevation_m(s_m - h)) / (2 * h));
+}
+
+const Cell* Route::cell_at(double s_m) const {
+  const auto& cells = def_->cells;
+  auto it = std::upper_bound(cells.begin(), cells.end(), s_m, [](double s, const Cell& c) { return s < c.start_m; });
+  if (it == cells.begin()) return nullptr;
+  --it;
+  return s_m < it->end_m ? &*it : nullptr;
+}
+
+double Route::crr_at(double s_m) const {
+  const Cell* c = cell_at(s_m);
+  return c != nullptr ? c->crr : def_->default_crr;
+}
+
+std::vector<ProfileSegment> Route::profile_segments(double from_m, double to_m, double faulting_m, double curl_m) const {
+  std::vector<ProfileSegment> out;
+  double at = from_m;
+  auto filler = [&](double end) {
+    if (end > at) out.push_back({at, end, def_->default_gd_n0_m3, {}});
+  };
+  for (const Cell& c : def_->cells) {
+    if (c.end_m <= from_m || c.start_m >= to_m) continue;
+    filler(c.start_m);
+    ProfileSegment seg{std::max(c.start_m, from_m), std::min(c.end_m, to_m), c.gd_n0_m3, {}};
+    if (c.joint_spacing_m > 0) {
+      seg.joints.spacing_m = c.joint_spacing_m;
+      seg.joints.faulting_m = faulting_m;
+      seg.joints.curl_m = curl_m;
+    }
+    out.push_back(seg);
+    at = seg.end_m;
+  }
+  filler(to_m);
+  return out;
+}
+
+}  // namespace roadload::sim

@@ -1,0 +1,135 @@
+#include "roadload/sim/scenario.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+
+#include "roadload/sim/units.hpp"
+#include "toml_fields.hpp"
+
+namespace roadload::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::int64_t utc_ns(const toml::date_time& dt) {
+  using namespace std::chrono;
+  const sys_days day = year_month_day{year{dt.date.year}, month{dt.date.month}, std::chrono::day{dt.date.day}};
+  const auto secs = sys_seconds{day}.time_since_epoch().count() + dt.time.hour * 3600 + dt.time.minute * 60 + dt.time.second;
+  const std::int64_t offset = dt.offset ? std::int64_t{dt.offset->minutes} * 60 : 0;
+  return (secs - offset) * 1'000'000'000LL + dt.time.nanosecond;
+}
+
+std::string resolve_route(const std::string& name, const fs::path& scenario_path) {
+  const fs::path direct(name);
+  if (direct.has_extension()) return direct.is_absolute() ? name : (scenario_path.parent_path() / direct).string();
+  return (scenario_path.parent_path().parent_path() / "routes" / (name + ".toml")).string();
+}
+
+void read_weather(const detail::TomlFields& f, const toml::table& root, WeatherSpec& w) {
+  const toml::table* t = root["weather"].as_table();
+  if (t == nullptr) return;
+  w.air_temp_c = f.number(*t, "air_temp_c", "weather.", w.air_temp_c);
+  w.pressure_pa = f.number(*t, "pressure_pa", "weather.", w.pressure_pa);
+  w.wind_speed_mps = f.number(*t, "wind_speed_mps", "weather.", w.wind_speed_mps);
+  w.wind_from_deg = f.number(*t, "wind_from_deg", "weather.", w.wind_from_deg);
+  w.wander_mps = f.number(*t, "wander_mps", "weather.", w.wander_mps);
+  w.temp_drift_c_per_h = f.number(*t, "temp_drift_c_per_h", "weather.", w.temp_drift_c_per_h);
+  if (w.pressure_pa < 50000 || w.pressure_pa > 110000) f.fail(t->get("pressure_pa"), "weather.pressure_pa", "outside 50-110 kPa");
+  if (w.wind_speed_mps < 0) f.fail(t->get("wind_speed_mps"), "weather.wind_speed_mps", "negative");
+}
+
+void read_effects(const detail::TomlFields& f, const toml::table& root, EffectSet& effects) {
+  const toml::table* t = root["effects"].as_table();
+  if (t == nullptr) return;
+  for (const auto& [key, node] : *t) {
+    const std::string name(key.str());
+    const auto e = find_effect(name);
+    if (!e) f.fail(&node, "effects." + name, "unknown effect (roadload simulate --list-effects)");
+    const auto v = node.value<double>();
+    if (!v) f.fail(&node, "effects." + name, "expected a number");
+    effects.set(*e, *v);
+  }
+}
+
+Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::path& path) {
+  Scenario s;
+  s.source = path.string();
+  s.name = f.required_text(root, "name", "");
+  s.description = f.text(root, "description", "").value_or("");
+  const std::string route_name = f.required_text(root, "route", "");
+  auto route = load_route(resolve_route(route_name, path));
+  if (!route) throw detail::TomlFailure{route.error()};
+  s.route = std::move(route.value());
+  if (auto mph = f.number(root, "speed_mph", "")) {
+    s.speed_mps = *mph * kMps_per_mph;
+  } else {
+    s.speed_mps = f.required_number(root, "speed_mps", "");
+  }
+  if (s.speed_mps <= 0 || s.speed_mps > 40) f.fail(root.get("speed_mph"), "speed", "outside 0-40 m/s");
+  s.start_m = f.number(root, "start_m", "", 0.0);
+  if (auto end = f.number(root, "end_m", "")) s.end_m = *end;
+  s.duration_s = f.number(root, "duration_s", "");
+  if (const toml::node* utc = root.get("start_utc")) {
+    const auto* dt = utc->as_date_time();
+    if (dt == nullptr) f.fail(utc, "start_utc", "expected a TOML date-time such as 2014-10-20T10:00:00Z");
+    s.start_utc_ns = utc_ns(dt->get());
+  }
+  s.road_seed = static_cast<std::uint64_t>(f.number(root, "road_seed", "", 1.0));
+  s.accel_rate_hz = f.number(root, "accel_rate_hz", "", s.accel_rate_hz);
+  if (s.accel_rate_hz < 1 || s.accel_rate_hz > 4000) f.fail(root.get("accel_rate_hz"), "accel_rate_hz", "outside 1-4000 Hz");
+  const double count = f.number(root, "accelerometers", "", 8.0);
+  if (count < 0 || count > 32) f.fail(root.get("accelerometers"), "accelerometers", "outside 0-32");
+  s.accelerometers = static_cast<std::size_t>(count);
+  s.gnss_rate_hz = f.number(root, "gnss_rate_hz", "", s.gnss_rate_hz);
+  s.physics_rate_hz = std::max(f.number(root, "physics_rate_hz", "", s.physics_rate_hz), 2.0 * s.accel_rate_hz);
+  if (auto u = f.text(root, "unsprung", "")) {
+    if (*u != "physical" && *u != "report") f.fail(root.get("unsprung"), "unsprung", "expected \"physical\" or \"report\"");
+    s.unsprung = *u == "report" ? UnsprungDefinition::report : UnsprungDefinition::physical;
+  }
+  if (auto mode = f.text(root, "mode", "")) {
+    if (*mode != "cruise" && *mode != "coast") f.fail(root.get("mode"), "mode", "expected \"cruise\" or \"coast\"");
+    s.coast = *mode == "coast";
+  }
+  read_weather(f, root, s.weather);
+  read_effects(f, root, s.effects);
+  return s;
+}
+
+}  // namespace
+
+Parsed<Scenario> load_scenario(std::string_view name_or_path, const std::string& data_dir) {
+  fs::path path(name_or_path);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) path = fs::path(data_dir) / "scenarios" / (std::string(name_or_path) + ".toml");
+  if (!fs::is_regular_file(path, ec)) {
+    return ParseError{std::string(name_or_path), 0, "scenario",
+                      "neither a file nor a built-in scenario (roadload simulate --list-scenarios)"};
+  }
+  auto parsed = detail::parse_toml_file(path.string());
+  if (!parsed) return parsed.error();
+  detail::TomlFields f(path.string());
+  try {
+    Scenario s = read(f, parsed.value(), path);
+    if (s.end_m == 0) {
+      auto built = Route::build(s.route);
+      if (!built) return built.error();
+      s.end_m = built.value().length_m();
+    }
+    return s;
+  } catch (const detail::TomlFailure& e) {
+    return e.error;
+  }
+}
+
+std::vector<std::string> builtin_scenarios(const std::string& data_dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(fs::path(data_dir) / "scenarios", ec)) {
+    if (entry.path().extension() == ".toml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace roadload::sim

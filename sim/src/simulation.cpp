@@ -1,0 +1,281 @@
+#include "roadload/sim/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "roadload/sim/j1939_bus.hpp"
+#include "roadload/sim/powertrain.hpp"
+#include "roadload/sim/sensors.hpp"
+#include "roadload/sim/units.hpp"
+#include "roadload/sim/wind.hpp"
+
+namespace roadload::sim {
+namespace {
+
+constexpr double kRunIn_m = 40.0;           // profile before the trailer's last axle and after the end
+constexpr double kAntennaBehind_m = 2.5;    // GNSS antenna on the cab's rear wall
+constexpr double kAntennaHeight_m = 4.0;
+constexpr double kOdometerStart_m = 412345600.0;
+constexpr std::uint8_t kWeatherStationId = 100;
+constexpr std::uint8_t kGnssId = 200;
+
+// Independent random streams per consumer, so adding one does not shift another.
+enum Stream : std::uint64_t { kPlant = 1, kWind, kBus, kGnss, kMast, kVp1, kAccelBase = 100 };
+
+Route build_route(const Scenario& s) {
+  auto r = Route::build(s.route);
+  // load_scenario has built it once already; a failure here is a programming error.
+  return std::move(r.value());
+}
+
+TruckParams scenario_truck(const Scenario& s) { return mnroad_truck(s.unsprung); }
+
+}  // namespace
+
+struct Simulation::Parts {
+  Parts(const Scenario& sc, std::uint64_t sd, const j1939::Database& db)
+      : scenario(sc),
+        seed(sd),
+        route(build_route(sc)),
+        profile(RoadProfile::generate(
+            route.profile_segments(sc.start_m - kRunIn_m - 20.0, sc.end_m + kRunIn_m,
+                                   sc.effects.magnitude(Effect::joint_faulting), sc.effects.magnitude(Effect::slab_curl)),
+            sc.start_m - kRunIn_m - 20.0, sc.end_m + kRunIn_m, sc.road_seed)),
+        truck(scenario_truck(sc)),
+        plant(truck, route, profile, sc.effects, sd),
+        wind(sc.weather, sc.effects.magnitude(Effect::wind_gusts), Rng(sd, kWind)),
+        bus(db, BusOptions{}, Rng(sd, kBus)),
+        gnss(sc.gnss_rate_hz, sc.start_utc_ns, sc.effects.magnitude(Effect::gnss_elevation_bias), Rng(sd, kGnss)),
+        mast(sc.effects.magnitude(Effect::air_density_error), Rng(sd, kMast)),
+        vp1_rng(sd, kVp1) {
+    const auto mounts = default_accel_mounts(sc.accelerometers);
+    for (std::size_t i = 0; i < mounts.size(); ++i) {
+      accels.emplace_back(static_cast<std::uint8_t>(i), mounts[i], sc.accel_rate_hz, Rng(sd, kAccelBase + i));
+    }
+  }
+
+  BusView view(const TruckState& s, const Environment& env) {
+    const auto& e = truck.engine;
+    const double ref = e.ref_torque_nm;
+    BusView v;
+    const double bias = scenario.effects.magnitude(Effect::torque_bias);
+    v.engine_rpm = s.engine_rpm;
+    v.actual_torque_pct = s.indicated_torque_nm * (1.0 + bias) / ref * 100.0;
+    v.demand_torque_pct = s.demand_torque_nm / ref * 100.0;
+    v.friction_torque_pct = s.friction_torque_nm / ref * 100.0;
+    v.parasitic_torque_pct = s.accessory_torque_nm / ref * 100.0;
+    const double max = full_load_indicated_torque_nm(e, s.engine_rpm);
+    v.load_pct = max > 0 ? std::clamp(s.indicated_torque_nm / max * 100.0, 0.0, 125.0) : 0.0;
+    v.engine_controlled = s.clutch_engaged;
+    v.wheel_speed_kmh = s.speed_mps * 3.6;
+    v.front_axle_speed_kmh = s.speed_mps * 3.6;
+    v.cruise_active = s.clutch_engaged && !scenario.coast;
+    v.cruise_set_kmh = scenario.speed_mps * 3.6;
+    v.brake_switch = s.service_brake;
+    v.clutch_switch = !s.clutch_engaged && !scenario.coast;
+    v.fuel_lph = s.fuel_lph;
+    v.gear = s.gear;
+    v.selected_gear = s.gear;
+    v.gear_ratio = s.gear > 0 ? truck.driveline.gear_ratios[static_cast<std::size_t>(s.gear - 1)] : 0.0;
+    v.driveline_engaged = s.clutch_engaged;
+    v.shift_in_process = !s.clutch_engaged && !scenario.coast;
+    v.output_shaft_rpm = s.speed_mps / truck.axles[1].tire_radius_m * truck.driveline.final_drive * 60.0 / (2 * std::numbers::pi);
+    v.pressure_kpa = env.pressure_pa / 1000.0;
+    v.ambient_c = env.air_temp_c + 0.3;  // the truck's sensor sits near warm parts
+    v.intake_c = env.air_temp_c + 5.0;
+    v.total_distance_m = kOdometerStart_m + plant.ledger().distance_m;
+    v.trip_distance_m = plant.ledger().distance_m;
+    v.lat_deg = vp1_lat;
+    v.lon_deg = vp1_lon;
+    v.fan_on = s.fan_on;
+    v.fan_rpm = s.engine_rpm * 1.2 * (s.fan_on ? 1.0 : 0.08);
+    v.coolant_c = s.fan_on ? 95.0 : 88.0;
+    v.ref_torque_nm = ref;
+    v.idle_rpm = e.idle_rpm;
+    v.high_idle_rpm = e.full_load_rpm.back();
+    v.inertia_kgm2 = e.inertia_kgm2;
+    for (std::size_t i = 0; i < 5; ++i) {
+      v.ec1_rpm[i] = e.full_load_rpm[i];
+      v.ec1_pct[i] = e.full_load_fraction[i] * 100.0;
+    }
+    return v;
+  }
+
+  Kinematics kinematics(const TruckState& s) const {
+    Kinematics k;
+    k.t_s = s.t_s;
+    k.accel_long_mps2 = s.accel_mps2;
+    k.grade_rad = s.grade_rad;
+    for (std::size_t i = 0; i < kTruckAxles; ++i) {
+      k.sprung_mps2[i] = s.axles[i].sprung_accel_mps2;
+      k.unsprung_mps2[i] = s.axles[i].unsprung_accel_mps2;
+    }
+    return k;
+  }
+
+  // Capture stamp of an accelerometer sample taken at true time t: the CAN-accelerometer offset
+  // effect makes it late, with a 20 ppm drift.
+  double accel_stamp(double t_s) const {
+    if (!scenario.effects.on(Effect::can_accel_offset)) return t_s;
+    return t_s + scenario.effects.magnitude(Effect::can_accel_offset) + 20e-6 * t_s;
+  }
+
+  Scenario scenario;
+  std::uint64_t seed;
+  Route route;
+  RoadProfile profile;
+  TruckParams truck;
+  TruckPlant plant;
+  WindField wind;
+  J1939Bus bus;
+  GnssReceiver gnss;
+  WeatherMast mast;
+  std::vector<Accelerometer> accels;
+  Rng vp1_rng;
+  double vp1_lat = 0, vp1_lon = 0, vp1_next_s = 0;
+};
+
+Simulation::Simulation(const Scenario& scenario, std::uint64_t seed, const j1939::Database& db)
+    : p_(std::make_unique<Parts>(scenario, seed, db)) {}
+
+Simulation::~Simulation() = default;
+
+const TruckPlant& Simulation::plant() const { return p_->plant; }
+const Route& Simulation::route() const { return p_->route; }
+
+recording::Metadata Simulation::metadata() const {
+  const Scenario& sc = p_->scenario;
+  recording::Metadata m;
+  m.created_by = "roadload simulate";
+  m.clock_source = "simulated";
+  m.utc_offset_ns = sc.start_utc_ns;
+  m.can_interfaces = {"can0"};
+  const double scale = 1.0 + sc.effects.magnitude(Effect::mass_error);
+  const TruckParams& t = p_->truck;
+  m.vehicle_text["vin"] = t.vin;
+  m.vehicle_text["description"] = "International WorkStar 6x4 tractor, tandem semitrailer (MnROAD test truck)";
+  m.vehicle["mass_kg"] = t.total_mass_kg() * scale;
+  for (const auto& a : t.axles) {
+    m.vehicle[a.name + "_load_kg"] = a.load_kg * scale;
+    m.vehicle[a.name + "_position_m"] = a.position_m;
+  }
+  m.vehicle["gnss_antenna_behind_front_axle_m"] = kAntennaBehind_m;
+  m.vehicle["gnss_antenna_height_m"] = kAntennaHeight_m;
+  for (const auto& a : p_->accels) {
+    recording::SensorInfo s;
+    s.id = static_cast<std::int64_t>(&a - p_->accels.data());
+    s.name = a.mount().name;
+    s.kind = "accelerometer";
+    s.position = a.mount().position;
+    s.part = "MEMS, ADXL355-class, +-" + std::to_string(static_cast<int>(std::lround(a.mount().range_g))) + " g";
+    s.rate_hz = a.rate_hz();
+    m.sensors.push_back(s);
+  }
+  m.sensors.push_back({kGnssId, "GNSS", "gnss", "cab-rear-roof", "DGPS receiver", sc.gnss_rate_hz});
+  m.sensors.push_back({kWeatherStationId, "WX", "weather", "roadside-mast", "weather station (5 s means)", 0.2});
+  m.sensors.push_back({kWeatherStationId + 1, "ANEMO", "anemometer", "roadside-mast", "cup anemometer", 1.0});
+  return m;
+}
+
+std::string Simulation::truth_toml() const {
+  const Scenario& sc = p_->scenario;
+  std::ostringstream o;
+  o.precision(12);
+  o << "# Ground truth of a simulated drive: never part of the recording.\n";
+  o << "scenario = \"" << sc.name << "\"\n";
+  o << "scenario_file = \"" << sc.source << "\"\n";
+  o << "seed = " << p_->seed << "\n";
+  o << "road_seed = " << sc.road_seed << "\n";
+  o << "route = \"" << sc.route.name << "\"\n";
+  o << "speed_mps = " << sc.speed_mps << "\n";
+  o << "true_mass_kg = " << p_->truck.total_mass_kg() << "\n";
+  o << "cda_m2 = " << p_->truck.cda_m2 << "\n";
+  o << "driveline_efficiency = " << p_->truck.driveline.efficiency << "\n";
+  o << "effective_mass_top_gear_kg = " << p_->plant.effective_mass_kg() << "\n";
+  o << "\n[effects]\n";
+  for (const auto& e : effect_catalog()) {
+    if (sc.effects.on(e.id)) o << e.name << " = " << sc.effects.magnitude(e.id) << "\n";
+  }
+  return o.str();
+}
+
+RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::function<void(double)>& progress) {
+  Parts& p = *p_;
+  const Scenario& sc = p.scenario;
+  const double dt = 1.0 / sc.physics_rate_hz;
+  RunSummary sum;
+  p.plant.set_coasting(sc.coast);
+  p.plant.start(sc.start_m, sc.speed_mps, p.wind.at_truck());
+  Kinematics before = p.kinematics(p.plant.state());
+  double x_before = p.plant.state().x_m, v_before = p.plant.state().speed_mps;
+  const double total = sc.end_m - sc.start_m;
+  double next_progress = 0.01;
+  auto emit_frame = [&](const CanFrame& f) {
+    ++sum.frames;
+    sink.frame(f);
+  };
+  for (;;) {
+    p.wind.advance(dt);
+    const Environment air = p.wind.at_truck();
+    p.plant.step(dt, air);
+    const TruckState& s = p.plant.state();
+    const Kinematics now = p.kinematics(s);
+
+    // Accelerometers in true-time order across parts.
+    for (;;) {
+      Accelerometer* next = nullptr;
+      for (auto& a : p.accels) {
+        if (a.next_true_s() <= s.t_s && (next == nullptr || a.next_true_s() < next->next_true_s())) next = &a;
+      }
+      if (next == nullptr) break;
+      const double t = next->next_true_s();
+      sink.accel(next->sample(lerp(before, now, t), p.accel_stamp(t)));
+      ++sum.accel_samples;
+    }
+    while (p.gnss.next_true_s() <= s.t_s) {
+      const double t = p.gnss.next_true_s();
+      const double w = (t - before.t_s) / dt;
+      const double x = x_before + w * (s.x_m - x_before);
+      const Route::Position pos = p.route.at(x - kAntennaBehind_m);
+      const GnssTruth g{t, pos.lat_deg, pos.lon_deg, pos.elev_m + kAntennaHeight_m,
+                        v_before + w * (s.speed_mps - v_before), pos.heading_deg};
+      GnssFix fix = p.gnss.fix(g);
+      sink.gnss(fix);
+      ++sum.gnss_fixes;
+    }
+    p.mast.observe(p.wind.at_mast(), dt);
+    WeatherSample ws;
+    while (p.mast.sample(s.t_s, ws)) {
+      ws.station = static_cast<std::uint8_t>(ws.station + kWeatherStationId);
+      sink.weather(ws);
+      ++sum.weather_samples;
+    }
+    if (s.t_s >= p.vp1_next_s) {
+      // The truck's own 1 Hz GPS feeds VP1: metres of noise, no DGPS.
+      const Route::Position pos = p.route.at(s.x_m - kAntennaBehind_m);
+      p.vp1_lat = pos.lat_deg + 2.5 * p.vp1_rng.normal() / 111132.0;
+      p.vp1_lon = pos.lon_deg + 2.5 * p.vp1_rng.normal() / (111320.0 * std::cos(pos.lat_deg * std::numbers::pi / 180.0));
+      p.vp1_next_s += 1.0;
+    }
+    if (p.bus.next_due_s() <= s.t_s) p.bus.run_until(s.t_s, p.view(s, air), emit_frame);
+    if (truth != nullptr) truth->observe(s, air, dt);
+
+    before = now;
+    x_before = s.x_m;
+    v_before = s.speed_mps;
+    const double done = (s.x_m - sc.start_m) / total;
+    if (progress && done >= next_progress) {
+      progress(std::min(done, 1.0));
+      next_progress += 0.01;
+    }
+    const bool timed_out = sc.duration_s && s.t_s >= *sc.duration_s;
+    if (s.x_m >= sc.end_m || timed_out || s.speed_mps <= 0.0) break;
+  }
+  sum.simulated_s = p.plant.state().t_s;
+  sum.distance_m = p.plant.ledger().distance_m;
+  sum.ledger = p.plant.ledger();
+  return sum;
+}
+
+}  // namespace roadload::sim

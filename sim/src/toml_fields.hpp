@@ -1,0 +1,68 @@
+#pragma once
+// Reading route and scenario TOML with errors that name file, line and field. Internal to sim/.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <toml++/toml.h>
+
+#include "roadload/parse_error.hpp"
+
+namespace roadload::sim::detail {
+
+// Thrown inside a parse, caught at its entry point and returned as a value.
+struct TomlFailure {
+  ParseError error;
+};
+
+class TomlFields {
+ public:
+  explicit TomlFields(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const toml::node* n, std::string field, std::string message) const {
+    const long line = n != nullptr ? static_cast<long>(n->source().begin.line) : 0;
+    throw TomlFailure{ParseError{source_, line, std::move(field), std::move(message)}};
+  }
+
+  std::optional<double> number(const toml::table& t, std::string_view key, const std::string& where) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    auto v = n->value<double>();
+    if (!v) fail(n, where + std::string(key), "expected a number");
+    return *v;
+  }
+  double number(const toml::table& t, std::string_view key, const std::string& where, double fallback) const {
+    return number(t, key, where).value_or(fallback);
+  }
+  double required_number(const toml::table& t, std::string_view key, const std::string& where) const {
+    if (auto v = number(t, key, where)) return *v;
+    fail(&t, where + std::string(key), "required key missing");
+  }
+  std::optional<std::string> text(const toml::table& t, std::string_view key, const std::string& where) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    if (!n->is_string()) fail(n, where + std::string(key), "expected a string");
+    return std::string(*n->value<std::string_view>());
+  }
+  std::string required_text(const toml::table& t, std::string_view key, const std::string& where) const {
+    if (auto v = text(t, key, where)) return *v;
+    fail(&t, where + std::string(key), "required key missing");
+  }
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+};
+
+// Parses a TOML file; syntax errors come back with their line.
+inline Parsed<toml::table> parse_toml_file(const std::string& path) {
+  toml::parse_result r = toml::parse_file(path);
+  if (!r) {
+    const auto& e = r.error();
+    const bool missing = e.source().begin.line == 0;
+    return ParseError{path, static_cast<long>(e.source().begin.line), missing ? "file" : "syntax",
+                      std::string(e.description())};
+  }
+  return std::move(r).table();
+}
+
+}  // namespace roadload::sim::detail

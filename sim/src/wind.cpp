@@ -1,0 +1,47 @@
+#include "roadload/sim/wind.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace roadload::sim {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kWanderTau_s = 300.0;
+constexpr double kGustTau_s = 4.0;  // ~60 m length scale at highway speed
+
+}  // namespace
+
+WindField::WindField(const WeatherSpec& spec, double gust_sigma_mps, Rng rng)
+    : spec_(spec), gust_sigma_(gust_sigma_mps), rng_(rng) {}
+
+void WindField::gauss_markov(double& x, double sigma, double tau_s, double dt_s, Rng& rng) {
+  if (sigma <= 0) return;
+  const double a = std::exp(-dt_s / tau_s);
+  x = a * x + sigma * std::sqrt(1.0 - a * a) * rng.normal();
+}
+
+void WindField::advance(double dt_s) {
+  t_s_ += dt_s;
+  gauss_markov(wander_east_, spec_.wander_mps, kWanderTau_s, dt_s, rng_);
+  gauss_markov(wander_north_, spec_.wander_mps, kWanderTau_s, dt_s, rng_);
+  gauss_markov(gust_truck_east_, gust_sigma_, kGustTau_s, dt_s, rng_);
+  gauss_markov(gust_truck_north_, gust_sigma_, kGustTau_s, dt_s, rng_);
+  gauss_markov(gust_mast_east_, gust_sigma_, kGustTau_s, dt_s, rng_);
+  gauss_markov(gust_mast_north_, gust_sigma_, kGustTau_s, dt_s, rng_);
+}
+
+Environment WindField::compose(double gust_east, double gust_north) const {
+  // Wind "from" 270 blows toward the east: its velocity points opposite to where it comes from.
+  const double from = spec_.wind_from_deg * kDeg;
+  const double east = -spec_.wind_speed_mps * std::sin(from) + wander_east_ + gust_east;
+  const double north = -spec_.wind_speed_mps * std::cos(from) + wander_north_ + gust_north;
+  Environment e;
+  e.air_temp_c = spec_.air_temp_c + spec_.temp_drift_c_per_h * t_s_ / 3600.0;
+  e.pressure_pa = spec_.pressure_pa;
+  e.wind_speed_mps = std::hypot(east, north);
+  e.wind_from_deg = std::fmod(std::atan2(-east, -north) / kDeg + 360.0, 360.0);
+  return e;
+}
+
+}  // namespace roadload::sim
