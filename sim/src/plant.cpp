@@ -64,6 +64,18 @@ double TruckPlant::effective_mass_kg() const {
   return m;
 }
 
+AxleEnergy TruckPlant::vertical_energy() const {
+  AxleEnergy sum;
+  for (std::size_t i = 0; i < kTruckAxles; ++i) {
+    const AxleEnergy& e = vertical_.energy(i);
+    sum.road_work_j += e.road_work_j;
+    sum.damper_j += e.damper_j;
+    sum.friction_j += e.friction_j;
+    sum.tire_j += e.tire_j;
+  }
+  return sum;
+}
+
 double TruckPlant::vertical_stored_energy_j() const {
   double e = 0;
   for (std::size_t i = 0; i < kTruckAxles; ++i) e += vertical_.stored_energy_j(i);

@@ -78,7 +78,8 @@ class TruckPlant {
   const TruckParams& truck() const { return truck_; }
   // Mass seen by the longitudinal motion in the current gear, rotating parts included.
   double effective_mass_kg() const;
-  // Stored energy of the vertical system (for the energy balance).
+  // The vertical system's energy since start, summed over axles (for the energy balance).
+  AxleEnergy vertical_energy() const;
   double vertical_stored_energy_j() const;
 
  private:
