@@ -25,7 +25,8 @@ Kinematics lerp(const Kinematics& a, const Kinematics& b, double t_s) {
   Kinematics k;
   k.t_s = t_s;
   k.accel_long_mps2 = a.accel_long_mps2 + w * (b.accel_long_mps2 - a.accel_long_mps2);
-  k.grade_rad = a.grade_rad + w * (b.grade_rad - a.grade_rad);
+  k.gravity_along_mps2 = a.gravity_along_mps2 + w * (b.gravity_along_mps2 - a.gravity_along_mps2);
+  k.gravity_normal_mps2 = a.gravity_normal_mps2 + w * (b.gravity_normal_mps2 - a.gravity_normal_mps2);
   for (std::size_t i = 0; i < kTruckAxles; ++i) {
     k.sprung_mps2[i] = a.sprung_mps2[i] + w * (b.sprung_mps2[i] - a.sprung_mps2[i]);
     k.unsprung_mps2[i] = a.unsprung_mps2[i] + w * (b.unsprung_mps2[i] - a.unsprung_mps2[i]);
@@ -80,8 +81,8 @@ double Accelerometer::reading(double true_mps2, std::size_t axis, double cross_m
 
 AccelSample Accelerometer::sample(const Kinematics& k, double stamp_s) {
   const double vertical = mount_.unsprung ? k.unsprung_mps2[mount_.axle] : k.sprung_mps2[mount_.axle];
-  const double x = k.accel_long_mps2 + kGravity_mps2 * std::sin(k.grade_rad);
-  const double z = vertical + kGravity_mps2 * std::cos(k.grade_rad);
+  const double x = k.accel_long_mps2 + k.gravity_along_mps2;
+  const double z = vertical + k.gravity_normal_mps2;
   AccelSample s;
   s.t = capture_time_from_ns(std::llround(stamp_s * 1e9));
   s.sensor = id_;

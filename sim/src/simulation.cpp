@@ -106,7 +106,8 @@ struct Simulation::Parts {
     Kinematics k;
     k.t_s = s.t_s;
     k.accel_long_mps2 = s.accel_mps2;
-    k.grade_rad = s.grade_rad;
+    k.gravity_along_mps2 = kGravity_mps2 * std::sin(s.grade_rad);
+    k.gravity_normal_mps2 = kGravity_mps2 * std::cos(s.grade_rad);
     for (std::size_t i = 0; i < kTruckAxles; ++i) {
       k.sprung_mps2[i] = s.axles[i].sprung_accel_mps2;
       k.unsprung_mps2[i] = s.axles[i].unsprung_accel_mps2;

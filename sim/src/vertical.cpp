@@ -42,7 +42,8 @@ struct Forces {
 
 Forces forces(const AxleParams& p, const Vec& x, double road_z_m, double road_v_mps) {
   const double rel_v = x[1] - x[3];
-  const double friction = p.coulomb_n * std::tanh(rel_v / kFrictionVelocity_mps);
+  // Most axles have no friction; tanh is the dearest call of a run.
+  const double friction = p.coulomb_n != 0.0 ? p.coulomb_n * std::tanh(rel_v / kFrictionVelocity_mps) : 0.0;
   const double susp = p.k_susp_npm * (x[0] - x[2]) + p.c_susp_nspm * rel_v + friction;
   const double tire = p.k_tire_npm * (road_z_m - x[2]) + p.c_tire_nspm * (road_v_mps - x[3]);
   return {susp, friction, std::max(tire, -static_load_n(p))};

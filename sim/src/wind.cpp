@@ -1,6 +1,7 @@
 #include "roadload/sim/wind.hpp"
 
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 
 namespace roadload::sim {
@@ -15,20 +16,27 @@ constexpr double kGustTau_s = 4.0;  // ~60 m length scale at highway speed
 WindField::WindField(const WeatherSpec& spec, double gust_sigma_mps, Rng rng)
     : spec_(spec), gust_sigma_(gust_sigma_mps), rng_(rng) {}
 
-void WindField::gauss_markov(double& x, double sigma, double tau_s, double dt_s, Rng& rng) {
-  if (sigma <= 0) return;
+WindField::Decay WindField::decay(double sigma, double tau_s, double dt_s) {
   const double a = std::exp(-dt_s / tau_s);
-  x = a * x + sigma * std::sqrt(1.0 - a * a) * rng.normal();
+  return {a, sigma * std::sqrt(1.0 - a * a)};
 }
 
 void WindField::advance(double dt_s) {
   t_s_ += dt_s;
-  gauss_markov(wander_east_, spec_.wander_mps, kWanderTau_s, dt_s, rng_);
-  gauss_markov(wander_north_, spec_.wander_mps, kWanderTau_s, dt_s, rng_);
-  gauss_markov(gust_truck_east_, gust_sigma_, kGustTau_s, dt_s, rng_);
-  gauss_markov(gust_truck_north_, gust_sigma_, kGustTau_s, dt_s, rng_);
-  gauss_markov(gust_mast_east_, gust_sigma_, kGustTau_s, dt_s, rng_);
-  gauss_markov(gust_mast_north_, gust_sigma_, kGustTau_s, dt_s, rng_);
+  if (dt_s != dt_s_) {  // the step is fixed in a run: exp() once, not six times a step
+    dt_s_ = dt_s;
+    wander_ = decay(spec_.wander_mps, kWanderTau_s, dt_s);
+    gust_ = decay(gust_sigma_, kGustTau_s, dt_s);
+  }
+  if (spec_.wander_mps > 0) {
+    wander_east_ = wander_.a * wander_east_ + wander_.b * rng_.normal();
+    wander_north_ = wander_.a * wander_north_ + wander_.b * rng_.normal();
+  }
+  if (gust_sigma_ > 0) {
+    for (double* g : {&gust_truck_east_, &gust_truck_north_, &gust_mast_east_, &gust_mast_north_}) {
+      *g = gust_.a * *g + gust_.b * rng_.normal();
+    }
+  }
 }
 
 Environment WindField::compose(double gust_east, double gust_north) const {

@@ -58,8 +58,8 @@ LineBuilder& LineBuilder::num(std::int64_t v) {
 LineBuilder& LineBuilder::num(double v, int decimals) {
   if (std::isnan(v)) return *this;
   // Avoid "-0.000": it reads back equal, but a diff of two recordings would flag it.
-  const double scale = std::pow(10.0, decimals);
-  if (std::abs(v) * scale < 0.5) v = 0.0;
+  static constexpr double kHalfStep[] = {0.5, 0.05, 5e-3, 5e-4, 5e-5, 5e-6, 5e-7, 5e-8, 5e-9, 5e-10};
+  if (decimals >= 0 && decimals < 10 && std::abs(v) < kHalfStep[decimals]) v = 0.0;
   len_ = static_cast<std::size_t>(
       std::to_chars(buf_ + len_, buf_ + sizeof buf_, v, std::chars_format::fixed, decimals).ptr - buf_);
   return *this;

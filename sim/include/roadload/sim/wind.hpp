@@ -25,12 +25,18 @@ class WindField {
 
  private:
   Environment compose(double gust_east, double gust_north) const;
-  static void gauss_markov(double& x, double sigma, double tau_s, double dt_s, Rng& rng);
+  // First-order Gauss-Markov step x' = a x + b w for a fixed step.
+  struct Decay {
+    double a = 1, b = 0;
+  };
+  static Decay decay(double sigma, double tau_s, double dt_s);
 
   WeatherSpec spec_;
   double gust_sigma_;
   Rng rng_;
   double t_s_ = 0;
+  double dt_s_ = 0;
+  Decay wander_, gust_;
   double wander_east_ = 0, wander_north_ = 0;
   double gust_truck_east_ = 0, gust_truck_north_ = 0, gust_mast_east_ = 0, gust_mast_north_ = 0;
 };
