@@ -53,6 +53,7 @@ Parsed<RouteDef> load_route(const std::string& path) {
   detail::TomlFields f(path);
   try {
     RouteDef d;
+    d.source_file = path;
     d.name = f.required_text(root, "name", "");
     d.source = f.text(root, "source", "").value_or("");
     d.default_crr = f.number(root, "default_crr", "", d.default_crr);
@@ -91,6 +92,8 @@ Parsed<RouteDef> load_route(const std::string& path) {
 
 Parsed<Route> Route::build(RouteDef def) {
   if (def.points.size() < 2) return ParseError{def.name, 0, "point", "a route needs at least two points"};
+  // Errors name the route by its file when it has one.
+  const std::string where = def.source_file.empty() ? def.name : def.source_file;
   const auto& geod = GeographicLib::Geodesic::WGS84();
   Route r;
   r.cumulative_m_.push_back(0.0);
@@ -98,13 +101,14 @@ Parsed<Route> Route::build(RouteDef def) {
     double s12 = 0, azi1 = 0, azi2 = 0;
     geod.Inverse(def.points[i].lat_deg, def.points[i].lon_deg, def.points[i + 1].lat_deg, def.points[i + 1].lon_deg,
                  s12, azi1, azi2);
-    if (s12 < 1e-3) return ParseError{def.name, 0, "point[" + std::to_string(i + 1) + "]", "repeats the previous point"};
+    if (s12 < 1e-3) return ParseError{where, 0, "point[" + std::to_string(i + 1) + "]", "repeats the previous point"};
     r.cumulative_m_.push_back(r.cumulative_m_.back() + s12);
     r.azimuth_deg_.push_back(azi1);
   }
   for (const Cell& c : def.cells) {
     if (c.start_m < 0 || c.end_m > r.cumulative_m_.back() + 1e-6 || c.end_m <= c.start_m) {
-      return ParseError{def.name, 0, "cell " + c.id, "lies outside the route or has no length"};
+      return ParseError{where, 0, "cell " + c.id,
+                        "lies outside the route (" + std::to_string(r.cumulative_m_.back()) + " m) or has no length"};
     }
   }
   // Smooth the polyline's elevation as a road is graded: grade must not jump at survey points.

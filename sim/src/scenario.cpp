@@ -111,11 +111,11 @@ Parsed<Scenario> load_scenario(std::string_view name_or_path, const std::string&
   detail::TomlFields f(path.string());
   try {
     Scenario s = read(f, parsed.value(), path);
-    if (s.end_m == 0) {
-      auto built = Route::build(s.route);
-      if (!built) return built.error();
-      s.end_m = built.value().length_m();
-    }
+    // Build the route once here so that a scenario that loads is one that runs.
+    auto built = Route::build(s.route);
+    if (!built) return built.error();
+    if (s.end_m == 0) s.end_m = built.value().length_m();
+    if (s.end_m <= s.start_m) return ParseError{path.string(), 0, "end_m", "must lie after start_m"};
     return s;
   } catch (const detail::TomlFailure& e) {
     return e.error;

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "roadload/sim/j1939_bus.hpp"
 #include "roadload/sim/powertrain.hpp"
+#include "roadload/sim/road_builder.hpp"
 #include "roadload/sim/sensors.hpp"
 #include "roadload/sim/units.hpp"
 #include "roadload/sim/wind.hpp"
@@ -13,7 +16,6 @@
 namespace roadload::sim {
 namespace {
 
-constexpr double kRunIn_m = 40.0;           // profile before the trailer's last axle and after the end
 constexpr double kAntennaBehind_m = 2.5;    // GNSS antenna on the cab's rear wall
 constexpr double kAntennaHeight_m = 4.0;
 constexpr double kOdometerStart_m = 412345600.0;
@@ -25,7 +27,11 @@ enum Stream : std::uint64_t { kPlant = 1, kWind, kBus, kGnss, kMast, kVp1, kAcce
 
 Route build_route(const Scenario& s) {
   auto r = Route::build(s.route);
-  // load_scenario has built it once already; a failure here is a programming error.
+  // load_scenario has built it once already: only a scenario assembled in code can fail here.
+  if (!r) {
+    std::fprintf(stderr, "roadload: scenario %s: %s\n", s.name.c_str(), r.error().to_string().c_str());
+    std::abort();
+  }
   return std::move(r.value());
 }
 
@@ -38,10 +44,7 @@ struct Simulation::Parts {
       : scenario(sc),
         seed(sd),
         route(build_route(sc)),
-        profile(RoadProfile::generate(
-            route.profile_segments(sc.start_m - kRunIn_m - 20.0, sc.end_m + kRunIn_m,
-                                   sc.effects.magnitude(Effect::joint_faulting), sc.effects.magnitude(Effect::slab_curl)),
-            sc.start_m - kRunIn_m - 20.0, sc.end_m + kRunIn_m, sc.road_seed)),
+        profile(build_road(sc, route)),
         truck(scenario_truck(sc)),
         plant(truck, route, profile, sc.effects, sd),
         wind(sc.weather, sc.effects.magnitude(Effect::wind_gusts), Rng(sd, kWind)),

@@ -31,6 +31,7 @@ struct Cell {
 struct RouteDef {
   std::string name;
   std::string source;        // where the geometry and cells come from
+  std::string source_file;   // the file it was read from, for errors
   std::vector<RoutePoint> points;
   std::vector<Cell> cells;   // in order, not overlapping
   double default_crr = 0.0055;
