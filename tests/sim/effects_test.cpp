@@ -1,0 +1,107 @@
+// Every effect is a switch that changes what the sensors see, and none of them is named in what
+// a recording carries: a diagnosis has to find them blind.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "roadload/recording/metadata.hpp"
+#include "sim_fixture.hpp"
+
+namespace roadload::sim {
+namespace {
+
+struct Observed {
+  std::uint64_t digest = 1469598103934665603ULL;  // FNV-1a over everything the sensors wrote
+  std::string meta;
+  double crr_mean = 0;         // truth
+  double reported_torque = 0;  // mean EEC1 actual torque, % (as sent)
+  double indicated_torque = 0; // truth, % of reference
+  std::size_t frames = 0;
+
+  void mix(const void* p, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (std::size_t i = 0; i < n; ++i) digest = (digest ^ b[i]) * 1099511628211ULL;
+  }
+};
+
+class TruthSink final : public SampleSink {
+ public:
+  explicit TruthSink(Observed& o) : o_(o) {}
+  void frame(const CanFrame& f) override {
+    o_.mix(&f.t, sizeof f.t);
+    o_.mix(&f.id, sizeof f.id);
+    o_.mix(f.data.data(), f.len);
+    if ((f.id >> 8 & 0x3FFFF) == 0xF004) {  // EEC1: byte 3 is actual torque, offset -125
+      torque_sum_ += f.data[2] - 125.0;
+      ++torque_n_;
+    }
+    ++o_.frames;
+  }
+  void accel(const AccelSample& s) override {
+    o_.mix(&s.t, sizeof s.t);
+    o_.mix(&s.x_mps2, sizeof(double) * 3);
+  }
+  void gnss(const GnssFix& s) override {
+    o_.mix(&s.t, sizeof s.t);
+    o_.mix(&s.alt_m, sizeof s.alt_m);
+  }
+  void weather(const WeatherSample& s) override {
+    o_.mix(&s.t, sizeof s.t);
+    o_.mix(&s.air_temp_c, sizeof(double) * 4);
+  }
+  double torque() const { return torque_n_ > 0 ? torque_sum_ / static_cast<double>(torque_n_) : 0.0; }
+
+ private:
+  Observed& o_;
+  double torque_sum_ = 0;
+  std::size_t torque_n_ = 0;
+};
+
+Observed observe(std::optional<Effect> effect, double magnitude) {
+  static const j1939::Database db = test::core_database();
+  Scenario sc = test::builtin("th10-55mph");  // jointed concrete at 31 C: every effect has something to act on
+  sc.effects = EffectSet{};
+  sc.duration_s = 30.0;
+  sc.accelerometers = 2;
+  if (effect) sc.effects.set(*effect, magnitude);
+  Simulation sim(sc, 9, db);
+  Observed o;
+  TruthSink sink(o);
+  TruthRecorder truth(sim.route(), sim.plant().truck());
+  const RunSummary sum = sim.run(sink, &truth);
+  o.meta = recording::format_metadata(sim.metadata());
+  o.mix(o.meta.data(), o.meta.size());
+  o.crr_mean = sum.ledger.roll_j / (sum.ledger.distance_m * sim.plant().truck().total_mass_kg() * 9.80665);
+  o.reported_torque = sink.torque();
+  o.indicated_torque = sim.plant().state().indicated_torque_nm / 2386.0 * 100.0;
+  return o;
+}
+
+TEST(Effects, EveryEffectChangesWhatTheSensorsSeeAndNoneIsNamed) {
+  const Observed base = observe(std::nullopt, 0);
+  for (const EffectInfo& e : effect_catalog()) {
+    const Observed on = observe(e.id, e.typical);
+    EXPECT_NE(on.digest, base.digest) << e.name << " left every sensor stream unchanged";
+    EXPECT_EQ(on.meta.find(std::string(e.name)), std::string::npos) << e.name << " is named in meta.toml";
+    EXPECT_EQ(on.frames, base.frames) << e.name << " changed the bus schedule";
+  }
+}
+
+TEST(Effects, CrrEffectsMoveTheTrueRollingResistanceTheRightWay) {
+  const double base = observe(std::nullopt, 0).crr_mean;
+  EXPECT_NEAR(base, 0.0061, 0.0002);
+  EXPECT_GT(observe(Effect::tire_warmup, 0.3).crr_mean, base * 1.01);    // 30 min warm: 6.7 % excess
+  EXPECT_LT(observe(Effect::temperature_crr, 0.006).crr_mean, base * 0.92);  // 31.1 C vs 14.3 C: -10 %
+  EXPECT_GT(observe(Effect::speed_crr, 0.01).crr_mean, base * 1.10);     // 55 vs 30 mph: +11 %
+  EXPECT_GT(observe(Effect::tire_pressure, -0.1).crr_mean, base * 1.02); // -10 % pressure: +3 %
+}
+
+TEST(Effects, TorqueBiasScalesOnlyTheReportedTorque) {
+  const Observed base = observe(std::nullopt, 0);
+  const Observed biased = observe(Effect::torque_bias, 0.05);
+  EXPECT_NEAR(biased.indicated_torque, base.indicated_torque, 0.5);  // the truck is the same
+  EXPECT_NEAR(biased.reported_torque / base.reported_torque, 1.05, 0.02);
+}
+
+}  // namespace
+}  // namespace roadload::sim
