@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "command.hpp"
 #include "options.hpp"
 #include "roadload/definitions.hpp"
@@ -135,14 +137,22 @@ int run_simulate(Args args) {
   }
   RecordingSink sink(writer.value());
   const auto wall0 = std::chrono::steady_clock::now();
+  // A terminal gets one line redrawn every percent; a log file a line every tenth.
+  const bool tty = isatty(STDERR_FILENO) == 1;
+  int last_tenth = 0;
   auto progress = [&](double f) {
     if (quiet) return;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    std::fprintf(stderr, "\rsimulate: %3.0f %%  %.0f s wall", f * 100.0, wall);
+    if (tty) {
+      std::fprintf(stderr, "\rsimulate: %3.0f %%  %.0f s wall", f * 100.0, wall);
+    } else if (static_cast<int>(f * 10.0 + 1e-9) > last_tenth) {
+      last_tenth = static_cast<int>(f * 10.0 + 1e-9);
+      std::fprintf(stderr, "simulate: %3d %%  %.0f s wall\n", last_tenth * 10, wall);
+    }
   };
   const sim::RunSummary sum = simulation.run(sink, truth ? &*truth : nullptr, progress);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  if (!quiet) std::fputc('\n', stderr);
+  if (!quiet && tty) std::fputc('\n', stderr);
   std::optional<ParseError> err = writer.value().close();
   if (!err && truth) err = truth->finish(simulation.truth_toml());
   if (err) {
