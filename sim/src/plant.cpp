@@ -353,6 +353,7 @@ void TruckPlant::step(double dt_s, const Environment& env) {
   state_.fuel_kgps = fuel_j / truck_.fuel.lhv_jpkg / dt_s;
   state_.fuel_lph = fuel_rate_lph(truck_.fuel, state_.fuel_kgps);
   state_.tractive_n = tractive;
+  state_.driveline_loss_n = state_.clutch_engaged && dx > 0 ? state_.clutch_torque_nm * omega_mean_dt / dx - tractive : 0.0;
   state_.roll_n = roll;
   state_.aero_n = aero;
   state_.grade_n = grade;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 #include "roadload/sim/units.hpp"
@@ -37,6 +38,24 @@ void read_weather(const detail::TomlFields& f, const toml::table& root, WeatherS
   w.temp_drift_c_per_h = f.number(*t, "temp_drift_c_per_h", "weather.", w.temp_drift_c_per_h);
   if (w.pressure_pa < 50000 || w.pressure_pa > 110000) f.fail(t->get("pressure_pa"), "weather.pressure_pa", "outside 50-110 kPa");
   if (w.wind_speed_mps < 0) f.fail(t->get("wind_speed_mps"), "weather.wind_speed_mps", "negative");
+}
+
+void read_clocks(const detail::TomlFields& f, const toml::table& root, ClockSpec& c) {
+  const toml::table* t = root["clocks"].as_table();
+  if (t == nullptr) return;
+  c.can_rx_latency_s = f.number(*t, "can_rx_latency_s", "clocks.", c.can_rx_latency_s);
+  c.can_rx_jitter_s = f.number(*t, "can_rx_jitter_s", "clocks.", c.can_rx_jitter_s);
+  c.ecu_drift_ppm = f.number(*t, "ecu_drift_ppm", "clocks.", c.ecu_drift_ppm);
+  c.accel_offset_s = f.number(*t, "accel_offset_s", "clocks.", c.accel_offset_s);
+  c.accel_drift_ppm = f.number(*t, "accel_drift_ppm", "clocks.", c.accel_drift_ppm);
+  c.gnss_latency_s = f.number(*t, "gnss_latency_s", "clocks.", c.gnss_latency_s);
+  c.weather_offset_s = f.number(*t, "weather_offset_s", "clocks.", c.weather_offset_s);
+  for (const char* key : {"can_rx_latency_s", "can_rx_jitter_s", "ecu_drift_ppm", "gnss_latency_s"}) {
+    if (f.number(*t, key, "clocks.", 0.0) < 0) f.fail(t->get(key), std::string("clocks.") + key, "negative");
+  }
+  for (const char* key : {"accel_offset_s", "weather_offset_s", "gnss_latency_s"}) {
+    if (std::abs(f.number(*t, key, "clocks.", 0.0)) > 10) f.fail(t->get(key), std::string("clocks.") + key, "beyond +-10 s");
+  }
 }
 
 void read_effects(const detail::TomlFields& f, const toml::table& root, EffectSet& effects) {
@@ -92,6 +111,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
     s.coast = *mode == "coast";
   }
   read_weather(f, root, s.weather);
+  read_clocks(f, root, s.clocks);
   read_effects(f, root, s.effects);
   return s;
 }

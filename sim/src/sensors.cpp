@@ -94,8 +94,8 @@ AccelSample Accelerometer::sample(const Kinematics& k, double stamp_s) {
   return s;
 }
 
-GnssReceiver::GnssReceiver(double rate_hz, std::int64_t utc_start_ns, double elevation_bias_m, Rng rng)
-    : rate_hz_(rate_hz), utc_start_ns_(utc_start_ns), elevation_bias_m_(elevation_bias_m), rng_(rng) {
+GnssReceiver::GnssReceiver(double rate_hz, std::int64_t utc_start_ns, double latency_s, double elevation_bias_m, Rng rng)
+    : rate_hz_(rate_hz), utc_start_ns_(utc_start_ns), latency_s_(latency_s), elevation_bias_m_(elevation_bias_m), rng_(rng) {
   // Fixes fall on whole tenths of a UTC second; the run starts on a whole second.
   next_true_s_ = 0.0;
 }
@@ -111,8 +111,8 @@ GnssFix GnssReceiver::fix(const GnssTruth& truth) {
   double up = gm_up_ + 0.2 * rng_.normal();
   if (elevation_bias_m_ != 0.0) up += elevation_bias_m_ * std::sin(2 * std::numbers::pi * truth.t_s / 1200.0 + 0.7);
   GnssFix f;
-  // The receiver outputs the fix ~50 ms after its epoch; the logger stamps it on arrival.
-  f.t = capture_time_from_ns(std::llround((truth.t_s + 0.05 + 0.002 * rng_.uniform()) * 1e9));
+  // The receiver outputs the fix some tens of ms after its epoch; the logger stamps it on arrival.
+  f.t = capture_time_from_ns(std::llround((truth.t_s + latency_s_ + 0.002 * rng_.uniform()) * 1e9));
   f.utc_ns = utc_start_ns_ + std::llround(truth.t_s * 1e9);
   f.lat_deg = truth.lat_deg + north / 111132.0;
   f.lon_deg = truth.lon_deg + east / (111320.0 * std::cos(truth.lat_deg * kDeg));
@@ -127,7 +127,8 @@ GnssFix GnssReceiver::fix(const GnssTruth& truth) {
   return f;
 }
 
-WeatherMast::WeatherMast(double warm_c, Rng rng) : warm_c_(warm_c), rng_(rng) {}
+WeatherMast::WeatherMast(double warm_c, double clock_offset_s, Rng rng)
+    : warm_c_(warm_c), clock_offset_s_(clock_offset_s), rng_(rng) {}
 
 double WeatherMast::next_true_s() const { return std::min(next_station_s_, next_anemometer_s_); }
 
@@ -145,7 +146,7 @@ bool WeatherMast::sample(double t_s, WeatherSample& out) {
   if (next_true_s() > t_s) return false;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (next_station_s_ <= next_anemometer_s_) {
-    out.t = capture_time_from_ns(std::llround(next_station_s_ * 1e9));
+    out.t = capture_time_from_ns(std::max<std::int64_t>(0, std::llround((next_station_s_ + clock_offset_s_) * 1e9)));
     out.station = 0;
     const double n = std::max(sum_dt_, 1e-9);
     out.air_temp_c = sum_temp_ / n + warm_c_ + 0.1 * rng_.normal();
@@ -157,7 +158,7 @@ bool WeatherMast::sample(double t_s, WeatherSample& out) {
     next_station_s_ += 5.0;
     return true;
   }
-  out.t = capture_time_from_ns(std::llround(next_anemometer_s_ * 1e9));
+  out.t = capture_time_from_ns(std::max<std::int64_t>(0, std::llround((next_anemometer_s_ + clock_offset_s_) * 1e9)));
   out.station = 1;
   out.air_temp_c = nan;
   out.pressure_pa = nan;

@@ -37,6 +37,14 @@ Route build_route(const Scenario& s) {
 
 TruckParams scenario_truck(const Scenario& s) { return mnroad_truck(s.unsprung); }
 
+BusOptions bus_options(const ClockSpec& c) {
+  BusOptions o;
+  o.rx_latency_s = c.can_rx_latency_s;
+  o.rx_jitter_s = c.can_rx_jitter_s;
+  o.ecu_drift_ppm = c.ecu_drift_ppm;
+  return o;
+}
+
 }  // namespace
 
 struct Simulation::Parts {
@@ -48,9 +56,10 @@ struct Simulation::Parts {
         truck(scenario_truck(sc)),
         plant(truck, route, profile, sc.effects, sd),
         wind(sc.weather, sc.effects.magnitude(Effect::wind_gusts), Rng(sd, kWind)),
-        bus(db, BusOptions{}, Rng(sd, kBus)),
-        gnss(sc.gnss_rate_hz, sc.start_utc_ns, sc.effects.magnitude(Effect::gnss_elevation_bias), Rng(sd, kGnss)),
-        mast(sc.effects.magnitude(Effect::air_density_error), Rng(sd, kMast)),
+        bus(db, bus_options(sc.clocks), Rng(sd, kBus)),
+        gnss(sc.gnss_rate_hz, sc.start_utc_ns, sc.clocks.gnss_latency_s, sc.effects.magnitude(Effect::gnss_elevation_bias),
+             Rng(sd, kGnss)),
+        mast(sc.effects.magnitude(Effect::air_density_error), sc.clocks.weather_offset_s, Rng(sd, kMast)),
         vp1_rng(sd, kVp1) {
     const auto mounts = default_accel_mounts(sc.accelerometers);
     for (std::size_t i = 0; i < mounts.size(); ++i) {
@@ -118,11 +127,15 @@ struct Simulation::Parts {
     return k;
   }
 
-  // Capture stamp of an accelerometer sample taken at true time t: the CAN-accelerometer offset
-  // effect makes it late, with a 20 ppm drift.
+  // Capture stamp of an accelerometer sample taken at true time t: the scenario's clock offset
+  // and drift, plus the CAN-accelerometer offset effect (late, drifting 20 ppm).
   double accel_stamp(double t_s) const {
-    if (!scenario.effects.on(Effect::can_accel_offset)) return t_s;
-    return t_s + scenario.effects.magnitude(Effect::can_accel_offset) + 20e-6 * t_s;
+    const ClockSpec& c = scenario.clocks;
+    double stamp = t_s + c.accel_offset_s + c.accel_drift_ppm * 1e-6 * t_s;
+    if (scenario.effects.on(Effect::can_accel_offset)) {
+      stamp += scenario.effects.magnitude(Effect::can_accel_offset) + 20e-6 * t_s;
+    }
+    return std::max(stamp, 0.0);
   }
 
   Scenario scenario;

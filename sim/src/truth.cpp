@@ -9,7 +9,7 @@ namespace {
 constexpr const char* kSeriesHeader =
     "t_ns,x_m,speed_mps,accel_mps2,grade_rad,gear,engine_rpm,indicated_torque_nm,clutch_torque_nm,"
     "friction_torque_nm,accessory_torque_nm,fan_torque_nm,fuel_lph,crr,f_tractive_n,f_roll_n,f_aero_n,f_grade_n,"
-    "f_profile_n,f_brake_n,f_inertia_n,air_density_kgpm3,airspeed_mps,yaw_deg,air_temp_c,damper_power_w,tire_power_w\n";
+    "f_profile_n,f_brake_n,f_inertia_n,f_driveline_loss_n,air_density_kgpm3,airspeed_mps,yaw_deg,air_temp_c,damper_power_w,tire_power_w\n";
 
 }  // namespace
 
@@ -69,7 +69,7 @@ void TruthRecorder::observe(const TruckState& s, const Environment& env, double 
                                             s.crr_mean,            s.tractive_n,      s.roll_n,
                                             s.aero_n,              s.grade_n,         s.profile_n,
                                             s.brake_n,             m_inertia,         damper,
-                                            tire};
+                                            tire,                  s.driveline_loss_n};
   for (std::size_t k = 0; k < kSeriesFields; ++k) sum_[k] += v[k] * dt_s;
   sum_dt_ += dt_s;
   if (series_.is_open() && s.t_s >= next_series_s_ - 1e-9) {
@@ -81,6 +81,7 @@ void TruthRecorder::observe(const TruckState& s, const Environment& env, double 
     for (std::size_t k = 0; k < 5; ++k) line_.sep().num(mean(k), 2);
     line_.sep().num(mean(5), 3).sep().num(mean(6), 6);
     for (std::size_t k = 7; k < 14; ++k) line_.sep().num(mean(k), 2);
+    line_.sep().num(mean(16), 2);
     line_.sep().num(s.air_density_kgpm3, 5).sep().num(s.airspeed_mps, 3).sep().num(s.yaw_rad * 180.0 / std::numbers::pi, 3);
     line_.sep().num(env.air_temp_c, 2).sep().num(mean(14), 2).sep().num(mean(15), 2);
     series_.write(line_.finish());

@@ -38,7 +38,7 @@ Parsed<OutputFile> OutputFile::create(std::string path) {
 }
 
 void OutputFile::write(std::string_view text) {
-  if (!file_ || errno_ != 0) return;
+  if (!file_ || errno_ != 0 || text.empty()) return;
   if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) errno_ = errno ? errno : EIO;
   ++lines_;
 }

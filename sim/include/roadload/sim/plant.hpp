@@ -39,6 +39,7 @@ struct TruckState {
   double yaw_rad = 0;
   // Forces at the wheels, positive when resisting motion (tractive positive when driving).
   double tractive_n = 0, roll_n = 0, aero_n = 0, grade_n = 0, profile_n = 0, brake_n = 0;
+  double driveline_loss_n = 0;     // gearbox and axle losses, as a force at the wheels
   double crr_mean = 0;             // roll_n / sum of vertical tire forces
   std::array<double, kTruckAxles> crr{};
   std::array<AxleOutputs, kTruckAxles> axles{};

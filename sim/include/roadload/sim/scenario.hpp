@@ -15,6 +15,18 @@
 
 namespace roadload::sim {
 
+// How each sensor's stamps relate to the true time of what they measured (the capture clock is
+// the gateway's monotonic clock, the simulator's virtual time).
+struct ClockSpec {
+  double can_rx_latency_s = 80e-6;  // end of frame to kernel stamp
+  double can_rx_jitter_s = 20e-6;   // uniform 0..this on top
+  double ecu_drift_ppm = 100;       // each ECU's oscillator, uniform +-this
+  double accel_offset_s = 0;        // accelerometer stamps late against the capture clock
+  double accel_drift_ppm = 0;       // and drifting against it
+  double gnss_latency_s = 0.05;     // fix epoch to arrival at the logger
+  double weather_offset_s = 0;      // weather mast clock against the capture clock
+};
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -27,6 +39,7 @@ struct Scenario {
   std::int64_t start_utc_ns = 0;
   std::uint64_t road_seed = 1;  // the road is the same whatever the run's seed
   WeatherSpec weather;
+  ClockSpec clocks;
   EffectSet effects;
   UnsprungDefinition unsprung = UnsprungDefinition::physical;
   double accel_rate_hz = 1200;

@@ -75,13 +75,14 @@ struct GnssTruth {
 class GnssReceiver {
  public:
   // `elevation_bias_m` > 0 adds the slowly swinging height bias of the GNSS elevation effect.
-  GnssReceiver(double rate_hz, std::int64_t utc_start_ns, double elevation_bias_m, Rng rng);
+  GnssReceiver(double rate_hz, std::int64_t utc_start_ns, double latency_s, double elevation_bias_m, Rng rng);
   double next_true_s() const { return next_true_s_; }
   GnssFix fix(const GnssTruth& truth);
 
  private:
   double rate_hz_;
   std::int64_t utc_start_ns_;
+  double latency_s_;
   double elevation_bias_m_;
   Rng rng_;
   double next_true_s_ = 0;
@@ -93,7 +94,7 @@ class GnssReceiver {
 // every second. `warm_c` is the air-density effect: the station reads warm and low.
 class WeatherMast {
  public:
-  WeatherMast(double warm_c, Rng rng);
+  WeatherMast(double warm_c, double clock_offset_s, Rng rng);
   double next_true_s() const;
   // Called every physics step with the air at the mast; returns true when `out` holds a sample.
   void observe(const Environment& air, double dt_s);
@@ -101,6 +102,7 @@ class WeatherMast {
 
  private:
   double warm_c_;
+  double clock_offset_s_;
   Rng rng_;
   double next_station_s_ = 5.0;
   double next_anemometer_s_ = 1.0;

@@ -56,7 +56,7 @@ class TruthRecorder {
   recording::LineBuilder line_;
   std::vector<CellAcc> acc_;
   // Interval means for series.csv.
-  static constexpr std::size_t kSeriesFields = 16;
+  static constexpr std::size_t kSeriesFields = 17;
   std::array<double, kSeriesFields> sum_{};
   double sum_dt_ = 0;
   double next_series_s_ = 0.1;
