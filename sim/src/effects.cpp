@@ -8,7 +8,7 @@ namespace {
 
 constexpr std::array<EffectInfo, kEffectCount> kCatalog{{
     {Effect::wind_gusts, "wind-gusts", "m/s", 1.0, 0.3, 2.5,
-     "turbulence on the mean wind (first-order Gauss-Markov, 60 m length scale) along and across"},
+     "turbulence on the mean wind (first-order Gauss-Markov, 4 s correlation time) along and across"},
     {Effect::yaw_drag, "yaw-drag", "1/deg^2", 0.0023, 0.0015, 0.0035,
      "drag coefficient grows with the yaw angle of the relative wind: Cd0 (1 + a psi^2)"},
     {Effect::tire_warmup, "tire-warmup", "fraction", 0.3, 0.15, 0.5,

@@ -36,7 +36,8 @@ double torque_fraction(double pct) { return std::round(pct * 8.0) / 8.0 - torque
 
 const std::map<std::string, Getter>& getters() {
   static const std::map<std::string, Getter> g = {
-      {"EEC1.EngineTorqueMode", [](const BusView& v) { return v.engine_controlled ? 3.0 : 0.0; }},
+      // Torque mode 2 is cruise control, 0 low idle (SPN 899).
+      {"EEC1.EngineTorqueMode", [](const BusView& v) { return v.engine_controlled ? 2.0 : 0.0; }},
       {"EEC1.ActualEnginePercentTorque", [](const BusView& v) { return torque_whole(v.actual_torque_pct); }},
       {"EEC1.ActualEnginePercentTorqueFraction", [](const BusView& v) { return torque_fraction(v.actual_torque_pct); }},
       {"EEC1.DriversDemandEnginePercentTorque", [](const BusView& v) { return v.demand_torque_pct; }},
@@ -146,6 +147,7 @@ double frame_bits(std::size_t bytes) {
 
 J1939Bus::J1939Bus(const j1939::Database& db, BusOptions options, Rng rng)
     : db_(db), options_(std::move(options)), rng_(rng) {
+  std::map<std::uint8_t, double> ecu_rate;  // one oscillator per ECU, shared by its messages
   for (const Sender& s : kSenders) {
     const j1939::MessageDef* def = db_.find_name(s.message);
     if (def == nullptr || def->cycle_time_ms == 0) continue;
@@ -154,7 +156,8 @@ J1939Bus::J1939Bus(const j1939::Database& db, BusOptions options, Rng rng)
     sch.sa = s.sa;
     sch.priority = s.priority;
     sch.period_s = def->cycle_time_ms / 1000.0;
-    sch.rate = 1.0 + rng_.uniform(-1.0, 1.0) * options_.ecu_drift_ppm * 1e-6;
+    if (!ecu_rate.contains(s.sa)) ecu_rate[s.sa] = 1.0 + rng_.uniform(-1.0, 1.0) * options_.ecu_drift_ppm * 1e-6;
+    sch.rate = ecu_rate[s.sa];
     sch.next_ecu_s = rng_.uniform(0.0, sch.period_s);  // ECUs power up at different moments
     sch.getters = bind(*def);
     schedules_.push_back(std::move(sch));

@@ -217,6 +217,16 @@ void TruckPlant::step(double dt_s, const Environment& env) {
 
   const double v0 = state_.speed_mps;
   const double x0 = state_.x_m;
+  if (state_.clutch_engaged) {
+    // A clutch closing on a speed mismatch slips it away: the engine's kinetic energy jumps.
+    const double locked = engine_speed_radps(v0);
+    const double before = state_.engine_rpm * kRadps_per_rpm;
+    const double j_eng = e.inertia_kgm2 + truck_.driveline.inertia_kgm2;
+    const double slip_j = 0.5 * j_eng * (before * before - locked * locked);
+    ledger_.clutch_j += slip_j;
+    ledger_.kinetic_j -= slip_j;
+    state_.engine_rpm = locked / kRadps_per_rpm;
+  }
   const double omega0 = state_.engine_rpm * kRadps_per_rpm;
   const double radius = truck_.axles[1].tire_radius_m;
   const Route::Position pos = route_.at(x0);

@@ -23,6 +23,7 @@ double raw_elevation(const RouteDef& d, const std::vector<double>& cum, double s
 
 Cell read_cell(const detail::TomlFields& f, const toml::table& t, std::size_t index) {
   const std::string where = "cell[" + std::to_string(index) + "].";
+  f.only(t, {"id", "start_m", "length_m", "surface", "crr", "iri_m_per_km", "iso8608_class", "joint_spacing_m"}, where);
   Cell c;
   c.id = f.required_text(t, "id", where);
   c.start_m = f.required_number(t, "start_m", where);
@@ -52,6 +53,7 @@ Parsed<RouteDef> load_route(const std::string& path) {
   const toml::table& root = parsed.value();
   detail::TomlFields f(path);
   try {
+    f.only(root, {"name", "source", "default_crr", "default_iri_m_per_km", "point", "cell"}, "");
     RouteDef d;
     d.source_file = path;
     d.name = f.required_text(root, "name", "");
@@ -64,6 +66,7 @@ Parsed<RouteDef> load_route(const std::string& path) {
       const toml::table* t = (*points)[i].as_table();
       const std::string where = "point[" + std::to_string(i) + "].";
       if (t == nullptr) f.fail(&(*points)[i], where, "expected a table");
+      f.only(*t, {"lat_deg", "lon_deg", "elev_m"}, where);
       RoutePoint p;
       p.lat_deg = f.required_number(*t, "lat_deg", where);
       p.lon_deg = f.required_number(*t, "lon_deg", where);

@@ -30,6 +30,8 @@ std::string resolve_route(const std::string& name, const fs::path& scenario_path
 void read_weather(const detail::TomlFields& f, const toml::table& root, WeatherSpec& w) {
   const toml::table* t = root["weather"].as_table();
   if (t == nullptr) return;
+  f.only(*t, {"air_temp_c", "pressure_pa", "wind_speed_mps", "wind_from_deg", "wander_mps", "temp_drift_c_per_h"},
+         "weather.");
   w.air_temp_c = f.number(*t, "air_temp_c", "weather.", w.air_temp_c);
   w.pressure_pa = f.number(*t, "pressure_pa", "weather.", w.pressure_pa);
   w.wind_speed_mps = f.number(*t, "wind_speed_mps", "weather.", w.wind_speed_mps);
@@ -43,6 +45,9 @@ void read_weather(const detail::TomlFields& f, const toml::table& root, WeatherS
 void read_clocks(const detail::TomlFields& f, const toml::table& root, ClockSpec& c) {
   const toml::table* t = root["clocks"].as_table();
   if (t == nullptr) return;
+  f.only(*t, {"can_rx_latency_s", "can_rx_jitter_s", "ecu_drift_ppm", "accel_offset_s", "accel_drift_ppm", "gnss_latency_s",
+              "weather_offset_s"},
+         "clocks.");
   c.can_rx_latency_s = f.number(*t, "can_rx_latency_s", "clocks.", c.can_rx_latency_s);
   c.can_rx_jitter_s = f.number(*t, "can_rx_jitter_s", "clocks.", c.can_rx_jitter_s);
   c.ecu_drift_ppm = f.number(*t, "ecu_drift_ppm", "clocks.", c.ecu_drift_ppm);
@@ -74,18 +79,23 @@ void read_effects(const detail::TomlFields& f, const toml::table& root, EffectSe
 Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::path& path) {
   Scenario s;
   s.source = path.string();
+  f.only(root, {"name", "description", "route", "speed_mph", "speed_mps", "start_m", "end_m", "duration_s", "start_utc",
+                "road_seed", "accel_rate_hz", "accelerometers", "gnss_rate_hz", "physics_rate_hz", "unsprung", "mode",
+                "weather", "clocks", "effects"},
+         "");
   s.name = f.required_text(root, "name", "");
   s.description = f.text(root, "description", "").value_or("");
   const std::string route_name = f.required_text(root, "route", "");
   auto route = load_route(resolve_route(route_name, path));
   if (!route) throw detail::TomlFailure{route.error()};
   s.route = std::move(route.value());
+  const char* speed_key = root.contains("speed_mph") ? "speed_mph" : "speed_mps";
   if (auto mph = f.number(root, "speed_mph", "")) {
     s.speed_mps = *mph * kMps_per_mph;
   } else {
     s.speed_mps = f.required_number(root, "speed_mps", "");
   }
-  if (s.speed_mps <= 0 || s.speed_mps > 40) f.fail(root.get("speed_mph"), "speed", "outside 0-40 m/s");
+  if (s.speed_mps <= 0 || s.speed_mps > 40) f.fail(root.get(speed_key), speed_key, "outside 0-40 m/s (0-89 mph)");
   s.start_m = f.number(root, "start_m", "", 0.0);
   if (auto end = f.number(root, "end_m", "")) s.end_m = *end;
   s.duration_s = f.number(root, "duration_s", "");
@@ -94,14 +104,19 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
     if (dt == nullptr) f.fail(utc, "start_utc", "expected a TOML date-time such as 2014-10-20T10:00:00Z");
     s.start_utc_ns = utc_ns(dt->get());
   }
-  s.road_seed = static_cast<std::uint64_t>(f.number(root, "road_seed", "", 1.0));
+  if (const toml::node* seed = root.get("road_seed")) {
+    if (!seed->is_integer() || *seed->value<std::int64_t>() < 0) f.fail(seed, "road_seed", "expected a non-negative integer");
+    s.road_seed = static_cast<std::uint64_t>(*seed->value<std::int64_t>());
+  }
   s.accel_rate_hz = f.number(root, "accel_rate_hz", "", s.accel_rate_hz);
   if (s.accel_rate_hz < 1 || s.accel_rate_hz > 4000) f.fail(root.get("accel_rate_hz"), "accel_rate_hz", "outside 1-4000 Hz");
   const double count = f.number(root, "accelerometers", "", 8.0);
   if (count < 0 || count > 32) f.fail(root.get("accelerometers"), "accelerometers", "outside 0-32");
   s.accelerometers = static_cast<std::size_t>(count);
   s.gnss_rate_hz = f.number(root, "gnss_rate_hz", "", s.gnss_rate_hz);
+  if (s.gnss_rate_hz < 0.1 || s.gnss_rate_hz > 100) f.fail(root.get("gnss_rate_hz"), "gnss_rate_hz", "outside 0.1-100 Hz");
   s.physics_rate_hz = std::max(f.number(root, "physics_rate_hz", "", s.physics_rate_hz), 2.0 * s.accel_rate_hz);
+  if (s.physics_rate_hz > 20000) f.fail(root.get("physics_rate_hz"), "physics_rate_hz", "above 20 kHz");
   if (auto u = f.text(root, "unsprung", "")) {
     if (*u != "physical" && *u != "report") f.fail(root.get("unsprung"), "unsprung", "expected \"physical\" or \"report\"");
     s.unsprung = *u == "report" ? UnsprungDefinition::report : UnsprungDefinition::physical;

@@ -23,7 +23,7 @@ constexpr std::uint8_t kWeatherStationId = 100;
 constexpr std::uint8_t kGnssId = 200;
 
 // Independent random streams per consumer, so adding one does not shift another.
-enum Stream : std::uint64_t { kPlant = 1, kWind, kBus, kGnss, kMast, kVp1, kAccelBase = 100 };
+enum Stream : std::uint64_t { kWind = 2, kBus, kGnss, kMast, kVp1, kAccelBase = 100 };
 
 Route build_route(const Scenario& s) {
   auto r = Route::build(s.route);
@@ -191,7 +191,7 @@ recording::Metadata Simulation::metadata() const {
   }
   m.sensors.push_back({kGnssId, "GNSS", "gnss", "cab-rear-roof", "DGPS receiver", sc.gnss_rate_hz});
   m.sensors.push_back({kWeatherStationId, "WX", "weather", "roadside-mast", "weather station (5 s means)", 0.2});
-  m.sensors.push_back({kWeatherStationId + 1, "ANEMO", "anemometer", "roadside-mast", "cup anemometer", 1.0});
+  m.sensors.push_back({kWeatherStationId + 1, "ANEMO", "anemometer", "roadside-mast", "ultrasonic anemometer", 1.0});
   return m;
 }
 
@@ -209,7 +209,7 @@ std::string Simulation::truth_toml() const {
   o << "true_mass_kg = " << p_->truck.total_mass_kg() << "\n";
   o << "cda_m2 = " << p_->truck.cda_m2 << "\n";
   o << "driveline_efficiency = " << p_->truck.driveline.efficiency << "\n";
-  o << "effective_mass_top_gear_kg = " << p_->plant.effective_mass_kg() << "\n";
+  o << "effective_mass_at_end_kg = " << p_->plant.effective_mass_kg() << "  # in the gear driven at the end\n";
   o << "\n[effects]\n";
   for (const auto& e : effect_catalog()) {
     if (sc.effects.on(e.id)) o << e.name << " = " << sc.effects.magnitude(e.id) << "\n";

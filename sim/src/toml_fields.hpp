@@ -1,5 +1,7 @@
 #pragma once
 // Reading route and scenario TOML with errors that name file, line and field. Internal to sim/.
+#include <algorithm>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -46,6 +48,14 @@ class TomlFields {
   std::string required_text(const toml::table& t, std::string_view key, const std::string& where) const {
     if (auto v = text(t, key, where)) return *v;
     fail(&t, where + std::string(key), "required key missing");
+  }
+  // A key the reader does not know is a typo until proven otherwise: stop at it.
+  void only(const toml::table& t, std::initializer_list<std::string_view> known, const std::string& where) const {
+    for (const auto& [key, node] : t) {
+      if (std::find(known.begin(), known.end(), key.str()) == known.end()) {
+        fail(&node, where + std::string(key.str()), "unknown key");
+      }
+    }
   }
   const std::string& source() const { return source_; }
 

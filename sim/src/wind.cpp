@@ -9,7 +9,8 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kWanderTau_s = 300.0;
-constexpr double kGustTau_s = 4.0;  // ~60 m length scale at highway speed
+// Gusts evolve in time at a fixed point (not swept past the truck): 4 s is ~110 m at 64 mph.
+constexpr double kGustTau_s = 4.0;
 
 }  // namespace
 

@@ -73,3 +73,38 @@ TEST_F(EnergyBalance, ProfileWorkFeedsTheSuspensionsAndTires) {
 
 }  // namespace
 }  // namespace roadload::sim
+
+namespace roadload::sim {
+namespace {
+
+TEST(EnergyBalanceWithShifts, AcceleratingThroughAGearChangeStillCloses) {
+  const Scenario sc = test::builtin("coast-down-65mph");  // the flat track
+  auto route = Route::build(sc.route);
+  ASSERT_TRUE(route.ok());
+  const auto segs = route.value().profile_segments(0, 8000, 0, 0);
+  const RoadProfile profile = RoadProfile::generate(segs, 0, 8000, 1);
+  TruckPlant plant(mnroad_truck(), route.value(), profile, EffectSet{}, 1);
+  Environment air;
+  plant.start(50, 40 * 0.44704, air);
+  const int first_gear = plant.state().gear;
+  plant.set_cruise_speed(64 * 0.44704);
+  int shifts = 0, gear = first_gear;
+  for (int k = 0; k < 240 * 1000 && plant.state().x_m < 7900; ++k) {
+    plant.step(0.001, air);
+    if (plant.state().gear != 0 && plant.state().gear != gear) {
+      ++shifts;
+      gear = plant.state().gear;
+    }
+  }
+  EXPECT_GE(shifts, 1) << "from gear " << first_gear;
+  EXPECT_GT(plant.state().speed_mps, 60 * 0.44704);
+  const EnergyLedger& e = plant.ledger();
+  const double out = e.thermal_j + e.friction_j + e.accessories_j + e.fan_j + e.driveline_j + e.roll_j + e.aero_j +
+                     e.grade_j + e.profile_j + e.brake_j + e.kinetic_j + e.clutch_j;
+  std::printf("accelerating 40->64 mph: %d shifts, fuel %.6g J, works and losses %.6g J, clutch %.1f J\n", shifts,
+              e.fuel_j, out, e.clutch_j);
+  EXPECT_NEAR(out / e.fuel_j, 1.0, 1e-3);
+}
+
+}  // namespace
+}  // namespace roadload::sim

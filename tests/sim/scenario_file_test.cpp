@@ -50,7 +50,9 @@ TEST_F(ScenarioFile, UnknownEffectNamesFileLineAndField) {
 
 TEST_F(ScenarioFile, BadValuesAreRejected) {
   EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = \"fast\"\n").error().field, "speed_mph");
-  EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 300\n").error().field, "speed");
+  EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 300\n").error().field, "speed_mph");
+  EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\nspeed_limit = 3\n").error().field, "speed_limit");
+  EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\nroad_seed = 1.5\n").error().field, "road_seed");
   EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\naccel_rate_hz = 9000\n").error().field, "accel_rate_hz");
   EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\nstart_utc = \"today\"\n").error().field, "start_utc");
   EXPECT_EQ(load("name = \"s\"\nspeed_mph = 30\n").error().field, "route");

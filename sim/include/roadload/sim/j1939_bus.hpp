@@ -2,7 +2,8 @@
 // The truck's J1939 network as the gateway hears it: each ECU broadcasts its messages at the
 // DBC's repetition rate on its own drifting clock, quantised by the codec exactly as an ECU
 // does, with not-available patterns for what a real truck does not send; EC1 travels by BAM;
-// frames queue on a 250 kbit/s bus by priority and are stamped when the gateway receives them.
+// frames go onto a 250 kbit/s bus in order of their send time (the lower priority number wins
+// when two are due together) and are stamped when the gateway receives them.
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -61,7 +62,7 @@ struct BusOptions {
   std::string iface = "can0";
   double bitrate_bps = 250000;
   double ecu_drift_ppm = 100;       // each ECU's oscillator, uniform +- this
-  double task_jitter_s = 0.0002;    // ECU send task jitter, uniform +- this
+  double task_jitter_s = 0.0002;    // ECU send task jitter, uniform 0..this late
   double rx_latency_s = 0.00008;    // controller to kernel stamp
   double rx_jitter_s = 0.00002;
 };
