@@ -13,6 +13,7 @@
 #include "options.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/recording/writer.hpp"
+#include "roadload/sim/recording_sink.hpp"
 #include "roadload/sim/effects.hpp"
 #include "roadload/sim/scenario.hpp"
 #include "roadload/sim/simulation.hpp"
@@ -35,18 +36,6 @@ constexpr const char* kHelp =
     "  -q, --quiet         no progress on standard error\n"
     "  -h, --help          this text\n\n"
     "The same scenario and seed give byte-identical output.\n";
-
-class RecordingSink final : public sim::SampleSink {
- public:
-  explicit RecordingSink(recording::RecordingWriter& w) : w_(w) {}
-  void frame(const CanFrame& f) override { w_.write(f, "can0"); }
-  void accel(const AccelSample& s) override { w_.write(s); }
-  void gnss(const GnssFix& s) override { w_.write(s); }
-  void weather(const WeatherSample& s) override { w_.write(s); }
-
- private:
-  recording::RecordingWriter& w_;
-};
 
 int list_effects() {
   std::printf("%-22s %-9s %9s %9s %9s  %s\n", "effect", "unit", "typical", "min", "max", "model");
@@ -135,7 +124,7 @@ int run_simulate(Args args) {
       return kExitNoInput;
     }
   }
-  RecordingSink sink(writer.value());
+  sim::RecordingSink sink(writer.value());
   const auto wall0 = std::chrono::steady_clock::now();
   // A terminal gets one line redrawn every percent; a log file a line every tenth.
   const bool tty = isatty(STDERR_FILENO) == 1;

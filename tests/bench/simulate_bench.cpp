@@ -9,24 +9,13 @@
 
 #include "roadload/definitions.hpp"
 #include "roadload/recording/writer.hpp"
+#include "roadload/sim/recording_sink.hpp"
 #include "roadload/sim/scenario.hpp"
 #include "roadload/sim/simulation.hpp"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-class WriterSink final : public roadload::sim::SampleSink {
- public:
-  explicit WriterSink(roadload::recording::RecordingWriter& w) : w_(w) {}
-  void frame(const roadload::CanFrame& f) override { w_.write(f, "can0"); }
-  void accel(const roadload::AccelSample& s) override { w_.write(s); }
-  void gnss(const roadload::GnssFix& s) override { w_.write(s); }
-  void weather(const roadload::WeatherSample& s) override { w_.write(s); }
-
- private:
-  roadload::recording::RecordingWriter& w_;
-};
 
 class NullSink final : public roadload::sim::SampleSink {
  public:
@@ -51,7 +40,7 @@ Timing run(const roadload::sim::Scenario& sc, const roadload::j1939::Database& d
       std::fprintf(stderr, "bench: %s\n", w.error().to_string().c_str());
       std::exit(1);
     }
-    WriterSink sink(w.value());
+    roadload::sim::RecordingSink sink(w.value());
     sum = sim.run(sink, nullptr);
     if (auto e = w.value().close()) {
       std::fprintf(stderr, "bench: %s\n", e->to_string().c_str());

@@ -6,24 +6,13 @@
 #include <sstream>
 
 #include "roadload/recording/writer.hpp"
+#include "roadload/sim/recording_sink.hpp"
 #include "sim_fixture.hpp"
 
 namespace roadload::sim {
 namespace {
 
 namespace fs = std::filesystem;
-
-class WriterSink final : public SampleSink {
- public:
-  explicit WriterSink(recording::RecordingWriter& w) : w_(w) {}
-  void frame(const CanFrame& f) override { w_.write(f, "can0"); }
-  void accel(const AccelSample& s) override { w_.write(s); }
-  void gnss(const GnssFix& s) override { w_.write(s); }
-  void weather(const WeatherSample& s) override { w_.write(s); }
-
- private:
-  recording::RecordingWriter& w_;
-};
 
 fs::path simulate(const std::string& tag, std::uint64_t seed) {
   const fs::path dir = fs::temp_directory_path() / ("roadload-determinism-" + tag);
@@ -39,7 +28,7 @@ fs::path simulate(const std::string& tag, std::uint64_t seed) {
   fs::create_directories(dir / "truth");
   TruthRecorder truth(sim.route(), sim.plant().truck());
   EXPECT_FALSE(truth.open((dir / "truth").string()).has_value());
-  WriterSink sink(w.value());
+  RecordingSink sink(w.value());
   sim.run(sink, &truth);
   EXPECT_FALSE(w.value().close().has_value());
   EXPECT_FALSE(truth.finish(sim.truth_toml()).has_value());
