@@ -3,30 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cstdlib>
 #include <limits>
 #include <memory>
-#include <new>
 #include <random>
 #include <string_view>
 #include <vector>
 
-// The allocation test needs to see every heap allocation, so this file replaces the global
-// operator new/delete of the whole test binary. It only counts while g_counting is set.
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<std::size_t> g_allocations{0};
-}  // namespace
-
-// Not inlined: once inlined, GCC pairs `new T` with free() and warns of a mismatch.
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
-[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "allocation_counter.hpp"
 
 namespace {
 
@@ -646,26 +629,28 @@ TEST_F(J1939TransportTest, PushOf1785ByteBamDoesNotAllocate) {
   }
 
   // Sanity: the counter sees an allocation made while counting.
-  g_allocations = 0;
-  g_counting = true;
-  auto probe = std::make_unique<int>(1);
-  g_counting = false;
-  ASSERT_EQ(g_allocations.load(), 1u);
-  ASSERT_EQ(*probe, 1);
+  {
+    const roadload::test::CountAllocations count;
+    auto probe = std::make_unique<int>(1);
+    ASSERT_EQ(count.count(), 1u);
+    ASSERT_EQ(*probe, 1);
+  }
 
   std::size_t completed = 0;
   bool exact = false;
-  g_allocations = 0;
-  g_counting = true;
-  for (const CanFrame& frame : frames) {
-    if (auto m = tp_.push(frame)) {
-      ++completed;
-      exact = std::equal(m->data.begin(), m->data.end(), payload.begin(), payload.end());
+  std::size_t allocations = 0;
+  {
+    const roadload::test::CountAllocations count;
+    for (const CanFrame& frame : frames) {
+      if (auto m = tp_.push(frame)) {
+        ++completed;
+        exact = std::equal(m->data.begin(), m->data.end(), payload.begin(), payload.end());
+      }
     }
+    tp_.expire(f.t + 1h);
+    allocations = count.count();
   }
-  tp_.expire(f.t + 1h);
-  g_counting = false;
-  EXPECT_EQ(g_allocations.load(), 0u);
+  EXPECT_EQ(allocations, 0u);
   EXPECT_EQ(completed, 1u);
   EXPECT_TRUE(exact);
 }

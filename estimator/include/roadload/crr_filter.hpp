@@ -1,0 +1,75 @@
+#pragma once
+// The real-time CRR filter: a fixed-size EKF over [speed, CRR, CdA] driven by the force balance
+// (model/longitudinal.hpp) and corrected by measured speed. Push API in capture time; no I/O and
+// no heap after construction. CRR and CdA are confounded at one steady speed: CdA carries a prior
+// (config) and the filter reports CRR as identified only when its posterior is tight enough.
+#include <cstdint>
+
+#include "roadload/ekf/kalman.hpp"
+#include "roadload/ekf/rts.hpp"
+#include "roadload/model/longitudinal.hpp"
+#include "roadload/time.hpp"
+
+namespace roadload {
+
+// Named state indices; the size is fixed at compile time.
+struct CrrState {
+  enum Index : int { speed = 0, crr = 1, cda = 2, count = 3 };
+};
+static_assert(CrrState::count == 3, "CrrFilter matrices are sized by CrrState::count");
+
+struct CrrFilterConfig {
+  model::TruckModel truck;
+  double force_noise_n = 300.0;            // error of the force balance, white, N per sqrt(Hz)
+  double unusable_force_noise_n = 20000.0; // while braking or shifting: speed follows the measurements
+  double crr_walk_per_sqrt_s = 2e-5;       // CRR changes from pavement to pavement
+  double cda_walk_per_sqrt_s = 1e-4;
+  double gate_nis = 15.13;                 // chi-square(1) at 0.9999: beyond it a speed is an outlier
+  Nanoseconds max_step{100'000'000};
+  Nanoseconds late_window{500'000'000};    // older measurements are counted and dropped
+  double identified_crr_sigma = 0.0008;    // above this the CRR is reported as not identified
+};
+
+struct CrrCounters {
+  std::uint64_t predicts = 0, unusable_predicts = 0, updates = 0, outliers = 0, late_used = 0, late_dropped = 0;
+};
+
+class CrrFilter {
+ public:
+  using Core = ekf::KalmanCore<CrrState::count>;
+  using Vec = Core::Vec;
+  using Mat = Core::Mat;
+
+  explicit CrrFilter(const CrrFilterConfig& config) : config_(config) {}
+
+  void start(CaptureTime t, double speed_mps);
+  // Advances to inputs.t with the inputs held over the interval (sub-stepped at max_step).
+  void predict_to(const model::ForceInputs& inputs);
+  // A speed measurement (wheel-based or GNSS) with its standard deviation.
+  ekf::UpdateResult update_speed(CaptureTime t, double speed_mps, double sigma_mps);
+
+  // Offline: every prediction is recorded for a fixed-interval smoother.
+  void attach(ekf::RtsSmoother<CrrState::count>* smoother) { smoother_ = smoother; }
+
+  CaptureTime time() const { return t_; }
+  double speed_mps() const { return core_.x()(CrrState::speed); }
+  double crr() const { return core_.x()(CrrState::crr); }
+  double crr_sigma() const;
+  double cda_m2() const { return core_.x()(CrrState::cda); }
+  bool crr_identified() const { return crr_sigma() <= config_.identified_crr_sigma; }
+  const Core& core() const { return core_; }
+  const CrrCounters& counters() const { return counters_; }
+  const CrrFilterConfig& config() const { return config_; }
+
+ private:
+  void step(double dt_s, const model::ForceInputs& in);
+
+  CrrFilterConfig config_;
+  Core core_;
+  CaptureTime t_{};
+  bool started_ = false;
+  CrrCounters counters_;
+  ekf::RtsSmoother<CrrState::count>* smoother_ = nullptr;
+};
+
+}  // namespace roadload

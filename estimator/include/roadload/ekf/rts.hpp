@@ -1,0 +1,67 @@
+#pragma once
+// Fixed-interval Rauch-Tung-Striebel smoother over the steps a KalmanCore took: offline, each
+// step's estimate then uses the data on both sides of it. Storage is reserved up front.
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+namespace roadload::ekf {
+
+template <int N>
+class RtsSmoother {
+ public:
+  using Vec = Eigen::Matrix<double, N, 1>;
+  using Mat = Eigen::Matrix<double, N, N>;
+
+  explicit RtsSmoother(std::size_t capacity) { steps_.reserve(capacity); }
+
+  // One prediction: the filtered estimate before it, its Jacobian, and the predicted estimate.
+  void record_predict(const Vec& x_filtered, const Mat& p_filtered, const Mat& f, const Vec& x_pred, const Mat& p_pred) {
+    steps_.push_back({x_filtered, p_filtered, f, x_pred, p_pred, x_filtered, p_filtered});
+  }
+  // The filtered estimate at the end of the recorded interval (after the last update).
+  void finish(const Vec& x_last, const Mat& p_last) {
+    x_last_ = x_last;
+    p_last_ = p_last;
+  }
+
+  // Backward pass. After it, smoothed(k) is the estimate at the start of step k.
+  void smooth() {
+    Vec xs = x_last_;
+    Mat ps = p_last_;
+    for (std::size_t k = steps_.size(); k-- > 0;) {
+      Step& s = steps_[k];
+      // G = P_f F' P_pred^-1, from a factorisation of the (symmetric) predicted covariance.
+      const Eigen::LDLT<Mat> ldlt(s.p_pred);
+      const Mat g = ldlt.solve(s.f * s.p_filtered).transpose();
+      s.x_smoothed = s.x_filtered + g * (xs - s.x_pred);
+      s.p_smoothed = s.p_filtered + g * (ps - s.p_pred) * g.transpose();
+      s.p_smoothed = 0.5 * (s.p_smoothed + s.p_smoothed.transpose());
+      xs = s.x_smoothed;
+      ps = s.p_smoothed;
+    }
+  }
+
+  std::size_t size() const { return steps_.size(); }
+  const Vec& x(std::size_t k) const { return steps_[k].x_smoothed; }
+  const Mat& p(std::size_t k) const { return steps_[k].p_smoothed; }
+  void clear() { steps_.clear(); }
+
+ private:
+  struct Step {
+    Vec x_filtered;
+    Mat p_filtered;
+    Mat f;
+    Vec x_pred;
+    Mat p_pred;
+    Vec x_smoothed;
+    Mat p_smoothed;
+  };
+  std::vector<Step> steps_;
+  Vec x_last_ = Vec::Zero();
+  Mat p_last_ = Mat::Identity();
+};
+
+}  // namespace roadload::ekf

@@ -1,0 +1,218 @@
+// The CRR filter on drives generated from its own model with known truth: it converges, its
+// uncertainty is honest (NEES and NIS in their 95 % bands), it needs no heap per step, rejects
+// outliers, drops stale data, says when CRR is not identifiable, and its smoother beats it offline.
+#include "roadload/crr_filter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "allocation_counter.hpp"
+
+namespace roadload {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr double kDt = 0.1;
+constexpr double kSpeedSigma = 0.03;
+
+// A truck driven by the filter's own force balance with white force noise: the reference for
+// consistency. Speed alternates between two cruise speeds so CRR and CdA separate.
+struct Drive {
+  std::vector<model::ForceInputs> inputs;
+  std::vector<double> speed_meas;
+  std::vector<double> crr_true;
+};
+
+Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, const CrrFilterConfig& cfg,
+                 bool vary_speed = true, double crr_step_at_s = -1, double crr_after = 0) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  const model::TruckModel& tm = cfg.truck;
+  const double m_eff = model::effective_mass_kg(tm, 0.73);
+  const double weight = tm.mass_kg * model::kGravity_mps2;
+  Drive d;
+  double v = 20.0;
+  const auto steps = static_cast<std::size_t>(seconds / kDt);
+  for (std::size_t k = 0; k < steps; ++k) {
+    const double t = static_cast<double>(k) * kDt;
+    const double c = crr_step_at_s >= 0 && t >= crr_step_at_s ? crr_after : crr;
+    const double target = vary_speed ? (std::fmod(t, 240.0) < 120.0 ? 15.0 : 27.0) : 20.0;
+    const double rho = 1.18, wind = 2.0, grade = 0.01 * std::sin(t / 60.0);
+    const double resist = 0.5 * rho * cda * (v + wind) * std::abs(v + wind) + weight * std::sin(grade) +
+                          c * weight * std::cos(grade);
+    const double tractive = resist + m_eff * 0.3 * (target - v);
+    model::ForceInputs in;
+    in.t = capture_time_from_ns(static_cast<std::int64_t>(std::llround((t + kDt) * 1e9)));
+    in.tractive_n = tractive;
+    in.air_density_kgpm3 = rho;
+    in.headwind_mps = wind;
+    in.grade_rad = grade;
+    in.effective_mass_kg = m_eff;
+    in.usable = true;
+    const double w = cfg.force_noise_n * std::sqrt(1.0 / kDt) * n01(rng);
+    v += kDt * (tractive - resist + w) / m_eff;
+    d.inputs.push_back(in);
+    d.speed_meas.push_back(v + kSpeedSigma * n01(rng));
+    d.crr_true.push_back(c);
+  }
+  return d;
+}
+
+CrrFilterConfig config() {
+  CrrFilterConfig cfg;
+  cfg.crr_walk_per_sqrt_s = 1e-9;  // the truth here is constant
+  cfg.cda_walk_per_sqrt_s = 1e-9;
+  return cfg;
+}
+
+TEST(CrrFilter, ConvergesToTheTrueCrrAndCdaWhenSpeedVaries) {
+  const CrrFilterConfig cfg = config();
+  const Drive d = make_drive(1, 1200, 0.0061, 5.8, cfg);
+  CrrFilter f(cfg);
+  f.start(capture_time_from_ns(0), d.speed_meas[0]);
+  for (std::size_t k = 0; k < d.inputs.size(); ++k) {
+    f.predict_to(d.inputs[k]);
+    f.update_speed(d.inputs[k].t, d.speed_meas[k], kSpeedSigma);
+  }
+  EXPECT_NEAR(f.crr(), 0.0061, 3 * f.crr_sigma());
+  EXPECT_LT(f.crr_sigma(), 0.0002);
+  EXPECT_NEAR(f.cda_m2(), 5.8, 3 * std::sqrt(f.core().p()(CrrState::cda, CrrState::cda)));
+  EXPECT_TRUE(f.crr_identified());
+  EXPECT_EQ(f.counters().outliers, 0u);
+}
+
+TEST(CrrFilter, NeesAndNisLieInTheir95PercentBands) {
+  const CrrFilterConfig cfg = config();
+  constexpr int kRuns = 50;
+  double nees_sum = 0, nis_sum = 0;
+  std::size_t nis_n = 0;
+  for (int run = 0; run < kRuns; ++run) {
+    const Drive d = make_drive(100 + static_cast<std::uint64_t>(run), 600, 0.0055, 6.2 + 0.6 * std::sin(run), cfg);
+    CrrFilter f(cfg);
+    f.start(capture_time_from_ns(0), d.speed_meas[0]);
+    for (std::size_t k = 0; k < d.inputs.size(); ++k) {
+      f.predict_to(d.inputs[k]);
+      const auto r = f.update_speed(d.inputs[k].t, d.speed_meas[k], kSpeedSigma);
+      if (k > 50) {
+        nis_sum += r.nis;
+        ++nis_n;
+      }
+    }
+    // NEES of [CRR, CdA] at the end of the run.
+    Eigen::Vector2d e(f.crr() - 0.0055, f.cda_m2() - (6.2 + 0.6 * std::sin(run)));
+    Eigen::Matrix2d p = f.core().p().block<2, 2>(CrrState::crr, CrrState::crr);
+    nees_sum += e.dot(p.ldlt().solve(e));
+  }
+  // Sum of 50 chi-square(2) is chi-square(100): 95 % band [74.2, 129.6].
+  EXPECT_GT(nees_sum, 74.2);
+  EXPECT_LT(nees_sum, 129.6);
+  // Mean NIS of ~300,000 one-dimensional innovations: 1 within a few per mille; allow 3 %.
+  EXPECT_NEAR(nis_sum / static_cast<double>(nis_n), 1.0, 0.03);
+}
+
+TEST(CrrFilter, AStepIsFreeOfHeapAllocations) {
+  const CrrFilterConfig cfg = config();
+  const Drive d = make_drive(2, 60, 0.0055, 6.2, cfg);
+  CrrFilter f(cfg);
+  f.start(capture_time_from_ns(0), d.speed_meas[0]);
+  std::size_t allocations = 0;
+  {
+    const test::CountAllocations count;
+    for (std::size_t k = 0; k < d.inputs.size(); ++k) {
+      f.predict_to(d.inputs[k]);
+      f.update_speed(d.inputs[k].t, d.speed_meas[k], kSpeedSigma);
+    }
+    allocations = count.count();
+  }
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_EQ(f.counters().predicts, d.inputs.size());
+}
+
+TEST(CrrFilter, CovarianceStaysSymmetricPositiveDefiniteUnderTinyMeasurementNoise) {
+  CrrFilterConfig cfg = config();
+  const Drive d = make_drive(3, 3000, 0.0055, 6.2, cfg);
+  CrrFilter f(cfg);
+  f.start(capture_time_from_ns(0), d.speed_meas[0]);
+  for (std::size_t k = 0; k < d.inputs.size(); ++k) {
+    f.predict_to(d.inputs[k]);
+    f.update_speed(d.inputs[k].t, d.speed_meas[k], 1e-6);  // near-singular S, the Joseph form's case
+  }
+  const auto& p = f.core().p();
+  EXPECT_LT((p - p.transpose()).norm(), 1e-18);
+  EXPECT_GT(p.llt().info() == Eigen::Success ? 1 : 0, 0);
+}
+
+TEST(CrrFilter, OutliersAreGatedAndStaleSpeedsDropped) {
+  const CrrFilterConfig cfg = config();
+  const Drive d = make_drive(4, 120, 0.0055, 6.2, cfg);
+  CrrFilter f(cfg);
+  f.start(capture_time_from_ns(0), d.speed_meas[0]);
+  for (std::size_t k = 0; k < d.inputs.size(); ++k) {
+    f.predict_to(d.inputs[k]);
+    const double z = k == 500 ? d.speed_meas[k] + 5.0 : d.speed_meas[k];
+    const auto r = f.update_speed(d.inputs[k].t, z, kSpeedSigma);
+    if (k == 500) {
+      EXPECT_FALSE(r.accepted);
+    }
+  }
+  EXPECT_EQ(f.counters().outliers, 1u);
+  // 200 ms late: used with its lag in the uncertainty; 2 s late: dropped and counted.
+  EXPECT_TRUE(f.update_speed(f.time() - 200ms, f.speed_mps(), kSpeedSigma).accepted);
+  EXPECT_FALSE(f.update_speed(f.time() - 2s, f.speed_mps(), kSpeedSigma).accepted);
+  EXPECT_EQ(f.counters().late_used, 1u);
+  EXPECT_EQ(f.counters().late_dropped, 1u);
+}
+
+TEST(CrrFilter, SaysCrrIsNotIdentifiedAtOneSpeedWithoutAnAeroPrior) {
+  CrrFilterConfig cfg = config();
+  cfg.truck.cda_sigma_m2 = 5.0;  // no useful prior on the aero drag
+  const Drive steady = make_drive(5, 600, 0.0055, 6.2, cfg, false);
+  CrrFilter f(cfg);
+  f.start(capture_time_from_ns(0), steady.speed_meas[0]);
+  for (std::size_t k = 0; k < steady.inputs.size(); ++k) {
+    f.predict_to(steady.inputs[k]);
+    f.update_speed(steady.inputs[k].t, steady.speed_meas[k], kSpeedSigma);
+  }
+  EXPECT_FALSE(f.crr_identified()) << "CRR sigma " << f.crr_sigma();
+
+  const Drive varied = make_drive(5, 1200, 0.0055, 6.2, cfg, true);
+  CrrFilter g(cfg);
+  g.start(capture_time_from_ns(0), varied.speed_meas[0]);
+  for (std::size_t k = 0; k < varied.inputs.size(); ++k) {
+    g.predict_to(varied.inputs[k]);
+    g.update_speed(varied.inputs[k].t, varied.speed_meas[k], kSpeedSigma);
+  }
+  EXPECT_TRUE(g.crr_identified()) << "CRR sigma " << g.crr_sigma();
+}
+
+TEST(CrrFilter, SmootherTracksAPavementChangeBetterThanTheFilter) {
+  CrrFilterConfig cfg = config();
+  cfg.crr_walk_per_sqrt_s = 1e-4;  // pavements change
+  const Drive d = make_drive(6, 900, 0.0050, 6.2, cfg, true, 450.0, 0.0065);
+  CrrFilter f(cfg);
+  ekf::RtsSmoother<CrrState::count> smoother(d.inputs.size() + 1);
+  f.attach(&smoother);
+  f.start(capture_time_from_ns(0), d.speed_meas[0]);
+  std::vector<double> filtered;
+  for (std::size_t k = 0; k < d.inputs.size(); ++k) {
+    f.predict_to(d.inputs[k]);
+    f.update_speed(d.inputs[k].t, d.speed_meas[k], kSpeedSigma);
+    filtered.push_back(f.crr());
+  }
+  smoother.finish(f.core().x(), f.core().p());
+  smoother.smooth();
+  ASSERT_EQ(smoother.size(), d.inputs.size());
+  double se_f = 0, se_s = 0;
+  for (std::size_t k = 1; k < d.inputs.size(); ++k) {
+    se_f += std::pow(filtered[k - 1] - d.crr_true[k - 1], 2);
+    se_s += std::pow(smoother.x(k)(CrrState::crr) - d.crr_true[k - 1], 2);
+  }
+  EXPECT_LT(se_s, 0.7 * se_f) << "filtered RMSE " << std::sqrt(se_f / 9000) << ", smoothed " << std::sqrt(se_s / 9000);
+}
+
+}  // namespace
+}  // namespace roadload
