@@ -1,0 +1,122 @@
+#include "roadload/drive_signals.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace roadload {
+namespace {
+
+struct Wanted {
+  const char* message;
+  const char* signal;
+  Quantity quantity;
+  double scale;
+  bool fraction;
+};
+
+constexpr Wanted kWanted[] = {
+    {"EEC1", "EngineSpeed", Quantity::engine_speed_rpm, 1.0, false},
+    {"EEC1", "ActualEnginePercentTorque", Quantity::actual_torque_pct, 1.0, false},
+    {"EEC1", "ActualEnginePercentTorqueFraction", Quantity::actual_torque_pct, 1.0, true},
+    {"EEC3", "NominalFrictionPercentTorque", Quantity::friction_torque_pct, 1.0, false},
+    {"EEC3", "EstimatedEngineParasiticLossesPercentTorque", Quantity::parasitic_torque_pct, 1.0, false},
+    {"EC1", "EngineReferenceTorque", Quantity::reference_torque_nm, 1.0, false},
+    {"CCVS1", "WheelBasedVehicleSpeed", Quantity::wheel_speed_mps, 1.0 / 3.6, false},
+    {"ETC2", "ActualGearRatio", Quantity::gear_ratio, 1.0, false},
+    {"ETC2", "CurrentGear", Quantity::current_gear, 1.0, false},
+    {"CCVS1", "BrakeSwitch", Quantity::brake_switch, 1.0, false},
+    {"CCVS1", "ClutchSwitch", Quantity::clutch_switch, 1.0, false},
+    {"ETC1", "TransmissionDrivelineEngaged", Quantity::driveline_engaged, 1.0, false},
+    {"ETC1", "TransmissionShiftInProcess", Quantity::shift_in_process, 1.0, false},
+    {"AMB", "AmbientAirTemperature", Quantity::ambient_temp_c, 1.0, false},
+    {"AMB", "BarometricPressure", Quantity::pressure_pa, 1000.0, false},
+    {"LFE1", "EngineFuelRate", Quantity::fuel_rate_lph, 1.0, false},
+};
+static_assert(std::size(kWanted) <= kQuantityCount + 1);
+
+}  // namespace
+
+DriveSignals::DriveSignals(const j1939::Database& db) {
+  for (const Wanted& w : kWanted) {
+    const j1939::MessageDef* m = db.find_name(w.message);
+    if (m == nullptr) continue;
+    for (const auto& sig : m->signals) {
+      if (sig.name == w.signal) bindings_[bound_++] = {m->pgn, &sig, w.quantity, w.scale, w.fraction};
+    }
+  }
+}
+
+void DriveSignals::push(const j1939::Message& m) {
+  bool torque = false;
+  for (std::size_t i = 0; i < bound_; ++i) {
+    const Binding& b = bindings_[i];
+    if (b.pgn != m.pgn) continue;
+    const auto v = j1939::decode(*b.signal, m.data).get();
+    if (!v) continue;
+    if (b.quantity == Quantity::actual_torque_pct) {
+      (b.add ? torque_fraction_ : torque_whole_) = *v;
+      torque = true;
+      continue;
+    }
+    readings_[static_cast<std::size_t>(b.quantity)] = {*v * b.scale, m.t, true};
+  }
+  if (torque) readings_[static_cast<std::size_t>(Quantity::actual_torque_pct)] = {torque_whole_ + torque_fraction_, m.t, true};
+}
+
+const char* to_string(Unusable u) {
+  switch (u) {
+    case Unusable::none: return "usable";
+    case Unusable::no_reference_torque: return "no reference torque (EC1 SPN 544 never received)";
+    case Unusable::no_torque: return "no engine torque (EEC1)";
+    case Unusable::no_gear: return "no gear information (ETC2, or engine and wheel speed)";
+    case Unusable::braking: return "braking";
+    case Unusable::declutched: return "shifting or declutched";
+    case Unusable::stale: return "inputs are stale";
+  }
+  return "?";
+}
+
+TractionEstimate traction(const DriveSignals& s, const model::TruckModel& truck, CaptureTime t, Nanoseconds stale_after) {
+  TractionEstimate out;
+  const Reading& ref = s.get(Quantity::reference_torque_nm);
+  const Reading& act = s.get(Quantity::actual_torque_pct);
+  if (!ref.seen) {
+    out.reason = Unusable::no_reference_torque;
+    return out;
+  }
+  if (!act.seen) {
+    out.reason = Unusable::no_torque;
+    return out;
+  }
+  const Reading& ratio = s.get(Quantity::gear_ratio);
+  const Reading& rpm = s.get(Quantity::engine_speed_rpm);
+  const Reading& wheel = s.get(Quantity::wheel_speed_mps);
+  if (ratio.seen && t - ratio.t <= stale_after) {
+    out.gear_ratio = ratio.value;
+  } else if (rpm.seen && wheel.seen && wheel.value > 1.0) {
+    // Engine speed over wheel speed gives the overall ratio; divide out the final drive.
+    const double wheel_radps = wheel.value / truck.tire_radius_m;
+    out.gear_ratio = rpm.value * 2.0 * std::numbers::pi / 60.0 / wheel_radps / truck.final_drive;
+  } else {
+    out.reason = Unusable::no_gear;
+    return out;
+  }
+  if (t - act.t > stale_after || (wheel.seen && t - wheel.t > stale_after)) {
+    out.reason = Unusable::stale;
+    return out;
+  }
+  const double friction = s.get(Quantity::friction_torque_pct).seen ? s.get(Quantity::friction_torque_pct).value : 0.0;
+  const double parasitic = s.get(Quantity::parasitic_torque_pct).seen ? s.get(Quantity::parasitic_torque_pct).value : 0.0;
+  const double flywheel = model::flywheel_torque_nm(act.value, friction, parasitic, ref.value);
+  out.tractive_n = model::tractive_force_n(truck, flywheel, out.gear_ratio);
+  out.effective_mass_kg = model::effective_mass_kg(truck, out.gear_ratio);
+  if (s.get(Quantity::brake_switch).seen && s.get(Quantity::brake_switch).value > 0.5) {
+    out.reason = Unusable::braking;
+  } else if ((s.get(Quantity::shift_in_process).seen && s.get(Quantity::shift_in_process).value > 0.5) ||
+             (s.get(Quantity::driveline_engaged).seen && s.get(Quantity::driveline_engaged).value < 0.5)) {
+    out.reason = Unusable::declutched;
+  }
+  return out;
+}
+
+}  // namespace roadload
