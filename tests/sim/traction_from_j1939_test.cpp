@@ -49,14 +49,25 @@ class TractionSink final : public SampleSink {
   bool drop_ec1_;
 };
 
-TEST(TractionFromJ1939, MatchesThePlantsTractiveForceWithinJ1939Resolution) {
+struct Outcome {
+  double sum = 0, sum2 = 0, truth_sum = 0;
+  std::size_t n = 0;
+  Unusable last_reason = Unusable::none;
+};
+
+Outcome drive(const char* scenario, double seconds, bool drop_ec1) {
   const j1939::Database db = test::core_database();
-  Scenario sc = test::builtin("mnroad-mainline-30mph");
-  sc.duration_s = 90;
+  Scenario sc = test::builtin(scenario);
+  sc.duration_s = seconds;
   sc.accelerometers = 0;
   Simulation sim(sc, 2, db);
-  TractionSink sink(db, sim, false);
+  TractionSink sink(db, sim, drop_ec1);
   sim.run(sink, nullptr);
+  return {sink.sum, sink.sum2, sink.truth_sum, sink.n, sink.last_reason};
+}
+
+TEST(TractionFromJ1939, MatchesThePlantsTractiveForceWithinJ1939Resolution) {
+  const Outcome sink = drive("mnroad-mainline-30mph", 90, false);
   ASSERT_GT(sink.n, 3000u);
   const double mean = sink.sum / static_cast<double>(sink.n);
   const double rms = std::sqrt(sink.sum2 / static_cast<double>(sink.n));
@@ -69,13 +80,7 @@ TEST(TractionFromJ1939, MatchesThePlantsTractiveForceWithinJ1939Resolution) {
 }
 
 TEST(TractionFromJ1939, WithoutEc1TheTorqueHasNoScaleAndSaysSo) {
-  const j1939::Database db = test::core_database();
-  Scenario sc = test::builtin("th66-55mph");
-  sc.duration_s = 10;
-  sc.accelerometers = 0;
-  Simulation sim(sc, 2, db);
-  TractionSink sink(db, sim, true);
-  sim.run(sink, nullptr);
+  const Outcome sink = drive("th66-55mph", 10, true);
   EXPECT_EQ(sink.n, 0u);
   EXPECT_EQ(sink.last_reason, Unusable::no_reference_torque);
   EXPECT_STREQ(to_string(sink.last_reason), "no reference torque (EC1 SPN 544 never received)");

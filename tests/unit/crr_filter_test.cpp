@@ -62,6 +62,17 @@ Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, con
   return d;
 }
 
+// Runs a fresh filter over a drive; returns it at the end.
+CrrFilter run(const CrrFilterConfig& cfg, const Drive& d) {
+  CrrFilter f(cfg);
+  f.start(capture_time_from_ns(0), d.speed_meas[0]);
+  for (std::size_t k = 0; k < d.inputs.size(); ++k) {
+    f.predict_to(d.inputs[k]);
+    f.update_speed(d.inputs[k].t, d.speed_meas[k], kSpeedSigma);
+  }
+  return f;
+}
+
 CrrFilterConfig config() {
   CrrFilterConfig cfg;
   cfg.crr_walk_per_sqrt_s = 1e-9;  // the truth here is constant
@@ -71,13 +82,7 @@ CrrFilterConfig config() {
 
 TEST(CrrFilter, ConvergesToTheTrueCrrAndCdaWhenSpeedVaries) {
   const CrrFilterConfig cfg = config();
-  const Drive d = make_drive(1, 1200, 0.0061, 5.8, cfg);
-  CrrFilter f(cfg);
-  f.start(capture_time_from_ns(0), d.speed_meas[0]);
-  for (std::size_t k = 0; k < d.inputs.size(); ++k) {
-    f.predict_to(d.inputs[k]);
-    f.update_speed(d.inputs[k].t, d.speed_meas[k], kSpeedSigma);
-  }
+  const CrrFilter f = run(cfg, make_drive(1, 1200, 0.0061, 5.8, cfg));
   EXPECT_NEAR(f.crr(), 0.0061, 3 * f.crr_sigma());
   EXPECT_LT(f.crr_sigma(), 0.0002);
   EXPECT_NEAR(f.cda_m2(), 5.8, 3 * std::sqrt(f.core().p()(CrrState::cda, CrrState::cda)));
@@ -139,7 +144,7 @@ TEST(CrrFilter, CovarianceStaysSymmetricPositiveDefiniteUnderTinyMeasurementNois
   f.start(capture_time_from_ns(0), d.speed_meas[0]);
   for (std::size_t k = 0; k < d.inputs.size(); ++k) {
     f.predict_to(d.inputs[k]);
-    f.update_speed(d.inputs[k].t, d.speed_meas[k], 1e-6);  // near-singular S, the Joseph form's case
+    f.update_speed(d.inputs[k].t, d.speed_meas[k], 1e-6);  // near-singular S: the Joseph form's case
   }
   const auto& p = f.core().p();
   EXPECT_LT((p - p.transpose()).norm(), 1e-18);
@@ -170,23 +175,10 @@ TEST(CrrFilter, OutliersAreGatedAndStaleSpeedsDropped) {
 TEST(CrrFilter, SaysCrrIsNotIdentifiedAtOneSpeedWithoutAnAeroPrior) {
   CrrFilterConfig cfg = config();
   cfg.truck.cda_sigma_m2 = 5.0;  // no useful prior on the aero drag
-  const Drive steady = make_drive(5, 600, 0.0055, 6.2, cfg, false);
-  CrrFilter f(cfg);
-  f.start(capture_time_from_ns(0), steady.speed_meas[0]);
-  for (std::size_t k = 0; k < steady.inputs.size(); ++k) {
-    f.predict_to(steady.inputs[k]);
-    f.update_speed(steady.inputs[k].t, steady.speed_meas[k], kSpeedSigma);
-  }
-  EXPECT_FALSE(f.crr_identified()) << "CRR sigma " << f.crr_sigma();
-
-  const Drive varied = make_drive(5, 1200, 0.0055, 6.2, cfg, true);
-  CrrFilter g(cfg);
-  g.start(capture_time_from_ns(0), varied.speed_meas[0]);
-  for (std::size_t k = 0; k < varied.inputs.size(); ++k) {
-    g.predict_to(varied.inputs[k]);
-    g.update_speed(varied.inputs[k].t, varied.speed_meas[k], kSpeedSigma);
-  }
-  EXPECT_TRUE(g.crr_identified()) << "CRR sigma " << g.crr_sigma();
+  const CrrFilter steady = run(cfg, make_drive(5, 600, 0.0055, 6.2, cfg, false));
+  EXPECT_FALSE(steady.crr_identified()) << "CRR sigma " << steady.crr_sigma();
+  const CrrFilter varied = run(cfg, make_drive(5, 1200, 0.0055, 6.2, cfg, true));
+  EXPECT_TRUE(varied.crr_identified()) << "CRR sigma " << varied.crr_sigma();
 }
 
 TEST(CrrFilter, SmootherTracksAPavementChangeBetterThanTheFilter) {
