@@ -15,6 +15,7 @@ struct Command {
 
 int run_decode(Args args);
 int run_simulate(Args args);
+int run_analyze(Args args);
 
 // Exit codes, as sysexits.h names them.
 inline constexpr int kExitOk = 0;

@@ -10,6 +10,8 @@ using roadload::cli::Command;
 constexpr Command kCommands[] = {
     {"decode", "print decoded J1939 signals, transport messages or per-PGN statistics of a recording",
      roadload::cli::run_decode},
+    {"analyze", "estimate CRR along a recorded drive and per pavement cell (cells.csv, trip.json)",
+     roadload::cli::run_analyze},
     {"simulate", "drive the simulated truck over a simulated road; write a recording and its ground truth",
      roadload::cli::run_simulate},
 };

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "toml_fields.hpp"
 
 namespace roadload::sim {
 namespace {
@@ -21,76 +20,30 @@ double raw_elevation(const RouteDef& d, const std::vector<double>& cum, double s
   return d.points[i].elev_m + w * (d.points[i + 1].elev_m - d.points[i].elev_m);
 }
 
-Cell read_cell(const detail::TomlFields& f, const toml::table& t, std::size_t index) {
-  const std::string where = "cell[" + std::to_string(index) + "].";
-  f.only(t, {"id", "start_m", "length_m", "surface", "crr", "iri_m_per_km", "iso8608_class", "joint_spacing_m"}, where);
-  Cell c;
-  c.id = f.required_text(t, "id", where);
-  c.start_m = f.required_number(t, "start_m", where);
-  c.end_m = c.start_m + f.required_number(t, "length_m", where);
-  c.surface = f.required_text(t, "surface", where);
-  if (c.surface != "concrete" && c.surface != "bituminous") {
-    f.fail(t.get("surface"), where + "surface", "expected \"concrete\" or \"bituminous\"");
-  }
-  c.crr = f.required_number(t, "crr", where);
-  if (c.crr <= 0 || c.crr > 0.05) f.fail(t.get("crr"), where + "crr", "outside 0..0.05");
-  if (auto iri = f.number(t, "iri_m_per_km", where)) {
-    c.gd_n0_m3 = gd_from_iri_m3(*iri);
-  } else if (auto cls = f.text(t, "iso8608_class", where)) {
-    c.gd_n0_m3 = cls->size() == 1 ? iso8608_class_gd_m3((*cls)[0]) : std::nan("");
-    if (std::isnan(c.gd_n0_m3)) f.fail(t.get("iso8608_class"), where + "iso8608_class", "expected A..H");
-  }
-  c.joint_spacing_m = f.number(t, "joint_spacing_m", where, 0.0);
-  if (c.joint_spacing_m < 0) f.fail(t.get("joint_spacing_m"), where + "joint_spacing_m", "negative");
-  return c;
-}
-
 }  // namespace
 
 Parsed<RouteDef> load_route(const std::string& path) {
-  auto parsed = detail::parse_toml_file(path);
-  if (!parsed) return parsed.error();
-  const toml::table& root = parsed.value();
-  detail::TomlFields f(path);
-  try {
-    f.only(root, {"name", "source", "default_crr", "default_iri_m_per_km", "point", "cell"}, "");
-    RouteDef d;
-    d.source_file = path;
-    d.name = f.required_text(root, "name", "");
-    d.source = f.text(root, "source", "").value_or("");
-    d.default_crr = f.number(root, "default_crr", "", d.default_crr);
-    if (auto iri = f.number(root, "default_iri_m_per_km", "")) d.default_gd_n0_m3 = gd_from_iri_m3(*iri);
-    const toml::array* points = root["point"].as_array();
-    if (points == nullptr || points->size() < 2) f.fail(&root, "point", "at least two [[point]] tables required");
-    for (std::size_t i = 0; i < points->size(); ++i) {
-      const toml::table* t = (*points)[i].as_table();
-      const std::string where = "point[" + std::to_string(i) + "].";
-      if (t == nullptr) f.fail(&(*points)[i], where, "expected a table");
-      f.only(*t, {"lat_deg", "lon_deg", "elev_m"}, where);
-      RoutePoint p;
-      p.lat_deg = f.required_number(*t, "lat_deg", where);
-      p.lon_deg = f.required_number(*t, "lon_deg", where);
-      p.elev_m = f.required_number(*t, "elev_m", where);
-      if (std::abs(p.lat_deg) > 90) f.fail(t->get("lat_deg"), where + "lat_deg", "outside -90..90");
-      if (std::abs(p.lon_deg) > 180) f.fail(t->get("lon_deg"), where + "lon_deg", "outside -180..180");
-      d.points.push_back(p);
+  auto file = load_route_file(path);
+  if (!file) return file.error();
+  const RouteFile& rf = file.value();
+  RouteDef d;
+  d.name = rf.name;
+  d.source = rf.source;
+  d.source_file = rf.source_file;
+  d.points = rf.points;
+  d.default_crr = rf.default_crr;
+  d.default_gd_n0_m3 = gd_from_iri_m3(rf.default_iri_m_per_km);
+  for (const CellDef& c : rf.cells) {
+    // A cell's roughness: its IRI, else its ISO 8608 class, else the route's default.
+    double gd = d.default_gd_n0_m3;
+    if (c.iri_m_per_km) {
+      gd = gd_from_iri_m3(*c.iri_m_per_km);
+    } else if (c.iso8608_class) {
+      gd = iso8608_class_gd_m3(*c.iso8608_class);
     }
-    if (const toml::array* cells = root["cell"].as_array()) {
-      for (std::size_t i = 0; i < cells->size(); ++i) {
-        const toml::table* t = (*cells)[i].as_table();
-        if (t == nullptr) f.fail(&(*cells)[i], "cell[" + std::to_string(i) + "]", "expected a table");
-        Cell c = read_cell(f, *t, i);
-        if (c.gd_n0_m3 == 0) c.gd_n0_m3 = d.default_gd_n0_m3;
-        if (!d.cells.empty() && c.start_m < d.cells.back().end_m - 1e-6) {
-          f.fail(t, "cell[" + std::to_string(i) + "].start_m", "overlaps the previous cell");
-        }
-        d.cells.push_back(std::move(c));
-      }
-    }
-    return d;
-  } catch (const detail::TomlFailure& e) {
-    return e.error;
+    d.cells.push_back({c.id, c.start_m, c.end_m, c.surface, c.crr, gd, c.joint_spacing_m});
   }
+  return d;
 }
 
 Parsed<Route> Route::build(RouteDef def) {

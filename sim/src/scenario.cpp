@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "roadload/sim/units.hpp"
-#include "toml_fields.hpp"
+#include "roadload/toml_fields.hpp"
 
 namespace roadload::sim {
 namespace {

@@ -22,7 +22,7 @@ struct CrrFilterConfig {
   model::TruckModel truck;
   double force_noise_n = 300.0;            // error of the force balance, white, N per sqrt(Hz)
   double unusable_force_noise_n = 20000.0; // while braking or shifting: speed follows the measurements
-  double crr_walk_per_sqrt_s = 2e-5;       // CRR changes from pavement to pavement
+  double crr_walk_per_sqrt_s = 3e-4;       // CRR changes from pavement to pavement
   double cda_walk_per_sqrt_s = 1e-4;
   double gate_nis = 15.13;                 // chi-square(1) at 0.9999: beyond it a speed is an outlier
   Nanoseconds max_step{100'000'000};

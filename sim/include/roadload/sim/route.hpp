@@ -8,15 +8,10 @@
 #include <vector>
 
 #include "roadload/parse_error.hpp"
+#include "roadload/route_file.hpp"
 #include "roadload/sim/road_profile.hpp"
 
 namespace roadload::sim {
-
-struct RoutePoint {
-  double lat_deg = 0;
-  double lon_deg = 0;
-  double elev_m = 0;  // height above the WGS84 ellipsoid
-};
 
 struct Cell {
   std::string id;
@@ -38,7 +33,7 @@ struct RouteDef {
   double default_gd_n0_m3 = 8e-6;
 };
 
-// Reads a route TOML file (docs/simulator.md, "Route files").
+// Reads a route file (roadload/route_file.hpp) and turns roughness into ISO 8608 G_d(n0).
 Parsed<RouteDef> load_route(const std::string& path);
 
 class Route {

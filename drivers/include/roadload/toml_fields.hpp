@@ -1,5 +1,5 @@
 #pragma once
-// Reading route and scenario TOML with errors that name file, line and field. Internal to sim/.
+// Reading TOML configuration (routes, scenarios) with errors that name file, line and field.
 #include <algorithm>
 #include <initializer_list>
 #include <optional>
@@ -9,7 +9,7 @@
 
 #include "roadload/parse_error.hpp"
 
-namespace roadload::sim::detail {
+namespace roadload::detail {
 
 // Thrown inside a parse, caught at its entry point and returned as a value.
 struct TomlFailure {
@@ -75,4 +75,4 @@ inline Parsed<toml::table> parse_toml_file(const std::string& path) {
   return std::move(r).table();
 }
 
-}  // namespace roadload::sim::detail
+}  // namespace roadload::detail

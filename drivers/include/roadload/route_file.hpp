@@ -1,0 +1,39 @@
+#pragma once
+// A route file: a surveyed geodetic polyline with elevation, and the pavement cells along it
+// (docs/simulator.md, "Route files"). The simulator drives it; the estimator takes its geometry,
+// grade and cell boundaries from it. Plain data: each side draws what it needs.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadload/geo_point.hpp"
+#include "roadload/parse_error.hpp"
+
+namespace roadload {
+
+using RoutePoint = GeoPoint;
+
+struct CellDef {
+  std::string id;
+  double start_m = 0;  // along the polyline from its first point
+  double end_m = 0;
+  std::string surface;  // "concrete" or "bituminous"
+  double crr = 0;       // the pavement's CRR as the file states it (the simulator's truth)
+  std::optional<double> iri_m_per_km;
+  std::optional<char> iso8608_class;
+  double joint_spacing_m = 0;
+};
+
+struct RouteFile {
+  std::string name;
+  std::string source;       // where the geometry and cells come from
+  std::string source_file;  // the file it was read from, for errors
+  std::vector<RoutePoint> points;
+  std::vector<CellDef> cells;  // ordered, not overlapping
+  double default_crr = 0.0055;
+  double default_iri_m_per_km = 1.5;
+};
+
+Parsed<RouteFile> load_route_file(const std::string& path);
+
+}  // namespace roadload

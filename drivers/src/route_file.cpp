@@ -1,0 +1,84 @@
+#include "roadload/route_file.hpp"
+
+#include <cmath>
+
+#include "roadload/toml_fields.hpp"
+
+namespace roadload {
+namespace {
+
+CellDef read_cell(const detail::TomlFields& f, const toml::table& t, std::size_t index) {
+  const std::string where = "cell[" + std::to_string(index) + "].";
+  f.only(t, {"id", "start_m", "length_m", "surface", "crr", "iri_m_per_km", "iso8608_class", "joint_spacing_m"}, where);
+  CellDef c;
+  c.id = f.required_text(t, "id", where);
+  c.start_m = f.required_number(t, "start_m", where);
+  c.end_m = c.start_m + f.required_number(t, "length_m", where);
+  if (!(c.end_m > c.start_m)) f.fail(t.get("length_m"), where + "length_m", "must be positive");
+  c.surface = f.required_text(t, "surface", where);
+  if (c.surface != "concrete" && c.surface != "bituminous") {
+    f.fail(t.get("surface"), where + "surface", "expected \"concrete\" or \"bituminous\"");
+  }
+  c.crr = f.required_number(t, "crr", where);
+  if (c.crr <= 0 || c.crr > 0.05) f.fail(t.get("crr"), where + "crr", "outside 0..0.05");
+  c.iri_m_per_km = f.number(t, "iri_m_per_km", where);
+  if (c.iri_m_per_km && *c.iri_m_per_km <= 0) f.fail(t.get("iri_m_per_km"), where + "iri_m_per_km", "must be positive");
+  if (auto cls = f.text(t, "iso8608_class", where)) {
+    if (cls->size() != 1 || (*cls)[0] < 'A' || (*cls)[0] > 'H') {
+      f.fail(t.get("iso8608_class"), where + "iso8608_class", "expected A..H");
+    }
+    c.iso8608_class = (*cls)[0];
+  }
+  c.joint_spacing_m = f.number(t, "joint_spacing_m", where, 0.0);
+  if (c.joint_spacing_m < 0) f.fail(t.get("joint_spacing_m"), where + "joint_spacing_m", "negative");
+  return c;
+}
+
+}  // namespace
+
+Parsed<RouteFile> load_route_file(const std::string& path) {
+  auto parsed = detail::parse_toml_file(path);
+  if (!parsed) return parsed.error();
+  const toml::table& root = parsed.value();
+  detail::TomlFields f(path);
+  try {
+    f.only(root, {"name", "source", "default_crr", "default_iri_m_per_km", "point", "cell"}, "");
+    RouteFile d;
+    d.source_file = path;
+    d.name = f.required_text(root, "name", "");
+    d.source = f.text(root, "source", "").value_or("");
+    d.default_crr = f.number(root, "default_crr", "", d.default_crr);
+    d.default_iri_m_per_km = f.number(root, "default_iri_m_per_km", "", d.default_iri_m_per_km);
+    const toml::array* points = root["point"].as_array();
+    if (points == nullptr || points->size() < 2) f.fail(&root, "point", "at least two [[point]] tables required");
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      const toml::table* t = (*points)[i].as_table();
+      const std::string where = "point[" + std::to_string(i) + "].";
+      if (t == nullptr) f.fail(&(*points)[i], where, "expected a table");
+      f.only(*t, {"lat_deg", "lon_deg", "elev_m"}, where);
+      RoutePoint p;
+      p.lat_deg = f.required_number(*t, "lat_deg", where);
+      p.lon_deg = f.required_number(*t, "lon_deg", where);
+      p.elev_m = f.required_number(*t, "elev_m", where);
+      if (std::abs(p.lat_deg) > 90) f.fail(t->get("lat_deg"), where + "lat_deg", "outside -90..90");
+      if (std::abs(p.lon_deg) > 180) f.fail(t->get("lon_deg"), where + "lon_deg", "outside -180..180");
+      d.points.push_back(p);
+    }
+    if (const toml::array* cells = root["cell"].as_array()) {
+      for (std::size_t i = 0; i < cells->size(); ++i) {
+        const toml::table* t = (*cells)[i].as_table();
+        if (t == nullptr) f.fail(&(*cells)[i], "cell[" + std::to_string(i) + "]", "expected a table");
+        CellDef c = read_cell(f, *t, i);
+        if (!d.cells.empty() && c.start_m < d.cells.back().end_m - 1e-6) {
+          f.fail(t, "cell[" + std::to_string(i) + "].start_m", "overlaps the previous cell");
+        }
+        d.cells.push_back(std::move(c));
+      }
+    }
+    return d;
+  } catch (const detail::TomlFailure& e) {
+    return e.error;
+  }
+}
+
+}  // namespace roadload

@@ -1,0 +1,37 @@
+#pragma once
+// Where on the route the truck is, and the road's grade there: a surveyed polyline with
+// elevation, distances along it on the WGS84 ellipsoid (GeographicLib), GNSS fixes projected
+// onto it, grade from the survey elevations over a +-30 m base (shorter bases amplify survey noise).
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "roadload/geo_point.hpp"
+
+namespace roadload {
+
+class RouteGeometry {
+ public:
+  // Needs at least two distinct points.
+  static std::optional<RouteGeometry> build(std::span<const GeoPoint> points);
+
+  struct Projection {
+    double s_m;       // along the polyline from its first point (negative before it)
+    double offset_m;  // perpendicular distance from it
+  };
+  Projection project(double lat_deg, double lon_deg) const;
+
+  double length_m() const { return cumulative_m_.back(); }
+  double elevation_m(double s_m) const;
+  double grade_rad(double s_m) const;
+  double heading_deg(double s_m) const;
+
+ private:
+  std::size_t segment(double s_m) const;
+
+  std::vector<GeoPoint> points_;
+  std::vector<double> cumulative_m_;
+  std::vector<double> azimuth_deg_;
+};
+
+}  // namespace roadload

@@ -1,0 +1,164 @@
+#include "roadload/drive_analyzer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace roadload {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+}  // namespace
+
+DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std::vector<CellSpan> cells,
+                             AnalyzerConfig config)
+    : db_(db),
+      route_(std::move(route)),
+      cells_(std::move(cells)),
+      config_(config),
+      signals_(db),
+      filter_(config.filter),
+      smoother_(36000) {
+  if (const auto* m = db_.find_name("CCVS1")) ccvs1_pgn_ = m->pgn;
+  filter_.attach(&smoother_);
+}
+
+void DriveAnalyzer::push(const CanFrame& frame) {
+  const auto m = assembler_.push(frame);
+  if (!m) return;
+  signals_.push(*m);
+  if (m->pgn != ccvs1_pgn_) return;
+  const Reading& wheel = signals_.get(Quantity::wheel_speed_mps);
+  if (wheel.seen && wheel.t == m->t) tick(m->t, wheel.value);
+}
+
+void DriveAnalyzer::push(const GnssFix& fix) {
+  if (fix.mode == GnssFixMode::none || !started_) return;
+  const RouteGeometry::Projection p = route_.project(fix.lat_deg, fix.lon_deg);
+  if (p.offset_m > config_.max_gnss_offset_m) {
+    ++trip_.gnss_off_route;
+    return;
+  }
+  // The fix is late by its receiver latency at most a tick; odometry carries position between.
+  offset_sum_m_ += p.s_m + config_.antenna_behind_front_m - odometer_m_;
+  ++gnss_n_;
+  ++trip_.gnss_used;
+}
+
+void DriveAnalyzer::push(const WeatherSample& w) {
+  if (!std::isnan(w.air_temp_c) && !std::isnan(w.pressure_pa)) {
+    air_temp_c_ = w.air_temp_c;
+    pressure_pa_ = w.pressure_pa;
+    station_air_ = true;
+  }
+  if (!std::isnan(w.wind_speed_mps) && !std::isnan(w.wind_from_deg)) {
+    wind_mps_ = w.wind_speed_mps;
+    wind_from_deg_ = w.wind_from_deg;
+  }
+}
+
+void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
+  if (!started_) {
+    filter_.start(t, wheel_speed_mps);
+    started_ = true;
+    last_tick_ = t;
+  }
+  odometer_m_ += wheel_speed_mps * to_seconds(t - last_tick_);
+  last_tick_ = t;
+  if (!station_air_) {
+    const Reading& temp = signals_.get(Quantity::ambient_temp_c);
+    const Reading& press = signals_.get(Quantity::pressure_pa);
+    if (temp.seen) air_temp_c_ = temp.value;
+    if (press.seen) pressure_pa_ = press.value;
+  }
+  const double s_cg = position_front_m() - config_.cg_behind_front_m;
+  const TractionEstimate tr = traction(signals_, config_.filter.truck, t);
+  model::ForceInputs in;
+  in.t = t;
+  in.tractive_n = tr.tractive_n;
+  in.effective_mass_kg = tr.effective_mass_kg;
+  in.air_density_kgpm3 = model::air_density_kgpm3(pressure_pa_, air_temp_c_);
+  in.grade_rad = route_.grade_rad(s_cg);
+  in.headwind_mps = wind_mps_ * std::cos((wind_from_deg_ - route_.heading_deg(s_cg)) * kDeg);
+  in.usable = tr.reason == Unusable::none;
+  filter_.predict_to(in);
+  filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
+  ticks_.push_back({t, s_cg, wheel_speed_mps, in.usable, smoother_.size()});
+  ++trip_.ticks;
+  if (in.usable) {
+    ++trip_.usable_ticks;
+  } else {
+    ++trip_.unusable[static_cast<std::size_t>(tr.reason)];
+  }
+}
+
+void DriveAnalyzer::finish() {
+  if (finished_) return;
+  finished_ = true;
+  smoother_.finish(filter_.core().x(), filter_.core().p());
+  smoother_.smooth();
+  // The trip's CRR is the smoothed CRR averaged over every usable tick (a distance average at
+  // steady speed); its sigma, like a cell's, the mean per-tick sigma.
+  double crr = 0, sigma = 0;
+  std::size_t n = 0;
+  for (const Tick& k : ticks_) {
+    if (!k.usable) continue;
+    const bool last = k.step >= smoother_.size();
+    crr += last ? filter_.crr() : smoother_.x(k.step)(CrrState::crr);
+    sigma += std::sqrt(last ? filter_.core().p()(CrrState::crr, CrrState::crr) : smoother_.p(k.step)(CrrState::crr, CrrState::crr));
+    ++n;
+  }
+  trip_.crr = n > 0 ? crr / static_cast<double>(n) : filter_.crr();
+  trip_.crr_sigma = n > 0 ? sigma / static_cast<double>(n) : filter_.crr_sigma();
+  trip_.cda_m2 = filter_.cda_m2();
+  trip_.identified = n > 0 && trip_.crr_sigma <= config_.filter.identified_crr_sigma;
+  trip_.filter = filter_.counters();
+}
+
+std::vector<CellResult> DriveAnalyzer::cells() const {
+  std::vector<CellResult> out;
+  const double weight = config_.filter.truck.mass_kg * model::kGravity_mps2;
+  for (const CellSpan& c : cells_) {
+    CellResult r;
+    r.id = c.id;
+    r.start_m = c.start_m;
+    r.end_m = c.end_m;
+    double crr = 0, sigma = 0, speed = 0;
+    std::size_t seen = 0;
+    for (const Tick& k : ticks_) {
+      if (k.s_cg_m < c.start_m || k.s_cg_m >= c.end_m) continue;
+      ++seen;
+      if (!k.usable) continue;
+      const bool final = k.step >= smoother_.size();
+      const auto& x = final ? filter_.core().x() : smoother_.x(k.step);
+      const auto& p = final ? filter_.core().p() : smoother_.p(k.step);
+      crr += x(CrrState::crr);
+      sigma += std::sqrt(p(CrrState::crr, CrrState::crr));
+      speed += k.speed_mps;
+      ++r.samples;
+    }
+    if (r.samples == 0) {
+      r.reason = seen == 0 ? "not driven" : "no usable force balance (braking, shifting or missing signals)";
+      out.push_back(r);
+      continue;
+    }
+    const auto n = static_cast<double>(r.samples);
+    // Errors within a cell are strongly correlated (the smoother spreads each over ~100 m): the
+    // cell's uncertainty is the mean per-sample sigma, not that over sqrt(n).
+    r.crr = crr / n;
+    r.crr_sigma = sigma / n;
+    r.crr_lo = r.crr - config_.interval_z * r.crr_sigma;
+    r.crr_hi = r.crr + config_.interval_z * r.crr_sigma;
+    r.speed_mps = speed / n;
+    r.roll_force_n = r.crr * weight;
+    r.identified = r.crr_sigma <= config_.filter.identified_crr_sigma;
+    if (!r.identified) r.reason = "CRR not identified: its uncertainty exceeds the configured limit";
+    out.push_back(r);
+  }
+  return out;
+}
+
+TripResult DriveAnalyzer::trip() const { return trip_; }
+
+}  // namespace roadload

@@ -1,0 +1,70 @@
+#include "roadload/route_geometry.hpp"
+
+#include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/LocalCartesian.hpp>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace roadload {
+namespace {
+
+constexpr double kGradeBase_m = 30.0;
+
+}  // namespace
+
+std::optional<RouteGeometry> RouteGeometry::build(std::span<const GeoPoint> points) {
+  if (points.size() < 2) return std::nullopt;
+  const auto& geod = GeographicLib::Geodesic::WGS84();
+  RouteGeometry g;
+  g.points_.assign(points.begin(), points.end());
+  g.cumulative_m_.push_back(0.0);
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    double s12 = 0, azi1 = 0, azi2 = 0;
+    geod.Inverse(points[i].lat_deg, points[i].lon_deg, points[i + 1].lat_deg, points[i + 1].lon_deg, s12, azi1, azi2);
+    if (s12 < 1e-3) return std::nullopt;
+    g.cumulative_m_.push_back(g.cumulative_m_.back() + s12);
+    g.azimuth_deg_.push_back(azi1);
+  }
+  return g;
+}
+
+std::size_t RouteGeometry::segment(double s_m) const {
+  if (s_m <= 0) return 0;
+  if (s_m >= cumulative_m_.back()) return azimuth_deg_.size() - 1;
+  return static_cast<std::size_t>(std::upper_bound(cumulative_m_.begin(), cumulative_m_.end(), s_m) - cumulative_m_.begin()) - 1;
+}
+
+RouteGeometry::Projection RouteGeometry::project(double lat_deg, double lon_deg) const {
+  // Each segment in the tangent plane at its start: exact enough for survey spacing of < 1 km.
+  Projection best{0.0, std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i + 1 < points_.size(); ++i) {
+    const GeographicLib::LocalCartesian plane(points_[i].lat_deg, points_[i].lon_deg, 0.0);
+    double ex = 0, ey = 0, ez = 0, px = 0, py = 0, pz = 0;
+    plane.Forward(points_[i + 1].lat_deg, points_[i + 1].lon_deg, 0.0, ex, ey, ez);
+    plane.Forward(lat_deg, lon_deg, 0.0, px, py, pz);
+    const double len2 = ex * ex + ey * ey;
+    double t = (px * ex + py * ey) / len2;
+    // The first and last segments extend beyond the ends, so a truck running in is placed.
+    if (i > 0) t = std::max(t, 0.0);
+    if (i + 2 < points_.size()) t = std::min(t, 1.0);
+    const double off = std::hypot(px - t * ex, py - t * ey);
+    if (off < best.offset_m) best = {cumulative_m_[i] + t * (cumulative_m_[i + 1] - cumulative_m_[i]), off};
+  }
+  return best;
+}
+
+double RouteGeometry::elevation_m(double s_m) const {
+  const std::size_t i = segment(s_m);
+  const double len = cumulative_m_[i + 1] - cumulative_m_[i];
+  const double w = std::clamp((s_m - cumulative_m_[i]) / len, 0.0, 1.0);
+  return points_[i].elev_m + w * (points_[i + 1].elev_m - points_[i].elev_m);
+}
+
+double RouteGeometry::grade_rad(double s_m) const {
+  return std::atan((elevation_m(s_m + kGradeBase_m) - elevation_m(s_m - kGradeBase_m)) / (2 * kGradeBase_m));
+}
+
+double RouteGeometry::heading_deg(double s_m) const { return azimuth_deg_[segment(s_m)]; }
+
+}  // namespace roadload

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# roadload analyze as a user runs it: help, errors with their exit codes, and a simulated drive
+# analysed into cells.csv and trip.json whose cells are the simulator's.
+set -euo pipefail
+roadload=${1:?usage: analyze-cli.sh ROADLOAD_BIN}
+work=$(mktemp -d "${TMPDIR:-/tmp}/analyze-cli.XXXXXX")
+trap 'rm -rf -- "$work"' EXIT
+fail() { echo "analyze-cli: FAIL: $*" >&2; exit 1; }
+expect_status() {
+  local want=$1; shift
+  local got=0
+  "$@" >"$work/out" 2>"$work/err" || got=$?
+  ((got == want)) || fail "'$*' exited $got, expected $want; stderr: $(cat "$work/err")"
+}
+
+expect_status 0 "$roadload" analyze --help
+grep -q -- "--route" "$work/out" || fail "--help does not describe --route"
+expect_status 64 "$roadload" analyze --out "$work/res"
+expect_status 64 "$roadload" analyze "$work/none" --out "$work/res"
+printf 'name = "bad"\n[[point]]\nlat_deg = 95\nlon_deg = 0\nelev_m = 0\n' >"$work/bad.toml"
+expect_status 66 "$roadload" analyze "$work/none" --route "$work/bad.toml" --out "$work/res"
+grep -q "bad.toml" "$work/err" || fail "route error does not name the file: $(cat "$work/err")"
+
+"$roadload" simulate --scenario th66-55mph --seed 5 --out "$work/rec" --truth "$work/truth" -q ||
+  fail "simulate failed"
+expect_status 0 "$roadload" analyze "$work/rec" --route th66-good-thunder --out "$work/res" --truth "$work/truth"
+head -1 "$work/res/cells.csv" | grep -q "^cell,start_m,end_m,samples,crr,crr_lo,crr_hi" || fail "cells.csv header"
+cmp -s <(cut -d, -f1 "$work/res/cells.csv") <(cut -d, -f1 "$work/truth/cells.csv") ||
+  fail "analysed cells are not the simulator's cells"
+grep -q '"crr":' "$work/res/trip.json" || fail "trip.json has no crr"
+grep -q "RMSE" "$work/err" || fail "no comparison with the truth printed"
+echo "analyze-cli: PASS"

@@ -1,0 +1,96 @@
+// The estimator on the simulator's drives, blind: the plant's per-cell CRR (Table 6.3) against
+// the analyzer's smoothed per-cell CRR from J1939, GNSS and weather only.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "roadload/drive_analyzer.hpp"
+#include "roadload/route_file.hpp"
+#include "sim_fixture.hpp"
+
+namespace roadload::sim {
+namespace {
+
+struct Score {
+  double rmse = 0, bias = 0, trip_error = 0;
+  double coverage = 0;
+  std::size_t cells = 0;
+};
+
+Score estimate(const char* scenario, std::uint64_t seed) {
+  const j1939::Database db = test::core_database();
+  Scenario sc = test::builtin(scenario);
+  sc.accelerometers = 0;
+  Simulation sim(sc, seed, db);
+  test::MemorySink sink;
+  TruthRecorder truth(sim.route(), sim.plant().truck());
+  sim.run(sink, &truth);
+
+  auto route = RouteGeometry::build(sc.route.points);
+  EXPECT_TRUE(route.has_value());
+  std::vector<CellSpan> cells;
+  for (const Cell& c : sc.route.cells) cells.push_back({c.id, c.start_m, c.end_m});
+  DriveAnalyzer analyzer(db, *route, cells, AnalyzerConfig{});
+  // Streams in capture-time order, as a recording reader would hand them over.
+  std::size_t f = 0, g = 0, w = 0;
+  while (f < sink.frames.size()) {
+    const CaptureTime t = sink.frames[f].t;
+    while (g < sink.fixes.size() && sink.fixes[g].t <= t) analyzer.push(sink.fixes[g++]);
+    while (w < sink.weather_samples.size() && sink.weather_samples[w].t <= t) analyzer.push(sink.weather_samples[w++]);
+    analyzer.push(sink.frames[f++]);
+  }
+  analyzer.finish();
+
+  Score s;
+  const auto truths = truth.cells();
+  double sum_true = 0;
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < truths.size(); ++i) {
+    const CellResult r = analyzer.cells()[i];
+    if (r.samples == 0 || !truths[i].complete) continue;
+    const double e = r.crr - truths[i].crr;
+    s.rmse += e * e;
+    s.bias += e;
+    sum_true += truths[i].crr;
+    inside += truths[i].crr >= r.crr_lo && truths[i].crr <= r.crr_hi ? 1 : 0;
+    ++s.cells;
+  }
+  const auto n = static_cast<double>(s.cells);
+  s.rmse = std::sqrt(s.rmse / n);
+  s.bias /= n;
+  s.coverage = static_cast<double>(inside) / n;
+  s.trip_error = analyzer.trip().crr - sum_true / n;
+  std::printf("%s seed %llu: %zu cells, RMSE %.5f, bias %+.5f, 90 %% coverage %.0f %%, trip CRR error %+.5f\n", scenario,
+              static_cast<unsigned long long>(seed), s.cells, s.rmse, s.bias, 100 * s.coverage, s.trip_error);
+  return s;
+}
+
+// Figures of today's estimator; issue 4's goals (RMSE <= 0.00025, coverage 80-97 %) are tighter.
+// The floor is J1939's whole-percent friction and parasitic torque in EEC3 (about -130 N at the
+// wheels here, tests/sim/traction_from_j1939_test.cpp), a bias the force balance cannot see.
+TEST(CrrEstimation, MainlineAt30MphFindsEachCellsCrr) {
+  const Score s = estimate("mnroad-mainline-30mph", 1);
+  EXPECT_EQ(s.cells, 29u);
+  EXPECT_LT(s.rmse, 0.0005);
+  EXPECT_GT(s.coverage, 0.8);
+  EXPECT_LT(std::abs(s.trip_error), 0.0005);
+}
+
+}  // namespace
+}  // namespace roadload::sim
+
+namespace roadload::sim {
+namespace {
+
+// Issue 4's goal for the highways: the trip's CRR within 0.0003 of the truth at 55 mph.
+TEST(CrrEstimation, Th10At55MphTripCrrWithin0p0003) {
+  EXPECT_LT(std::abs(estimate("th10-55mph", 1).trip_error), 0.0003);
+}
+
+TEST(CrrEstimation, Th66At55MphTripCrrWithin0p0003) {
+  EXPECT_LT(std::abs(estimate("th66-55mph", 1).trip_error), 0.0003);
+}
+
+}  // namespace
+}  // namespace roadload::sim
