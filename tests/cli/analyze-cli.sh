@@ -3,15 +3,8 @@
 # analysed into cells.csv and trip.json whose cells are the simulator's.
 set -euo pipefail
 roadload=${1:?usage: analyze-cli.sh ROADLOAD_BIN}
-work=$(mktemp -d "${TMPDIR:-/tmp}/analyze-cli.XXXXXX")
-trap 'rm -rf -- "$work"' EXIT
-fail() { echo "analyze-cli: FAIL: $*" >&2; exit 1; }
-expect_status() {
-  local want=$1; shift
-  local got=0
-  "$@" >"$work/out" 2>"$work/err" || got=$?
-  ((got == want)) || fail "'$*' exited $got, expected $want; stderr: $(cat "$work/err")"
-}
+# shellcheck source=cli-lib.sh source-path=SCRIPTDIR
+. "$(dirname "${BASH_SOURCE[0]}")/cli-lib.sh" analyze-cli
 
 expect_status 0 "$roadload" analyze --help
 grep -q -- "--route" "$work/out" || fail "--help does not describe --route"

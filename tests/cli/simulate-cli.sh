@@ -3,15 +3,8 @@
 # recording that `roadload decode` reads back.
 set -euo pipefail
 roadload=${1:?usage: simulate-cli.sh ROADLOAD_BIN}
-work=$(mktemp -d "${TMPDIR:-/tmp}/simulate-cli.XXXXXX")
-trap 'rm -rf -- "$work"' EXIT
-fail() { echo "simulate-cli: FAIL: $*" >&2; exit 1; }
-expect_status() {
-  local want=$1; shift
-  local got=0
-  "$@" >"$work/out" 2>"$work/err" || got=$?
-  ((got == want)) || fail "'$*' exited $got, expected $want; stderr: $(cat "$work/err")"
-}
+# shellcheck source=cli-lib.sh source-path=SCRIPTDIR
+. "$(dirname "${BASH_SOURCE[0]}")/cli-lib.sh" simulate-cli
 
 expect_status 0 "$roadload" simulate --help
 grep -q -- "--effect NAME" "$work/out" || fail "--help does not describe --effect"
