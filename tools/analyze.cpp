@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,6 +13,7 @@
 #include "options.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/drive_analyzer.hpp"
+#include "roadload/recording/csv.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/writer.hpp"
 #include "roadload/route_file.hpp"
@@ -40,19 +40,21 @@ std::string resolve_route(const std::string& r) {
   return data_dir() + "/routes/" + r + ".toml";
 }
 
-std::map<std::string, double> read_truth(const std::string& dir) {
+// The true CRR per cell of a simulation's truth/cells.csv. A bad row makes the comparison
+// meaningless, so it stops the read with its file, line and field.
+Parsed<std::map<std::string, double>> read_truth(const std::string& dir) {
+  constexpr std::string_view kColumns[] = {"cell", "crr"};
+  auto csv = recording::CsvReader::open(dir + "/cells.csv", kColumns);
+  if (!csv) return csv.error();
   std::map<std::string, double> crr;
-  std::ifstream in(dir + "/cells.csv");
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  for (std::stringstream h(line); std::getline(h, line, ',');) header.push_back(line);
-  const auto col = std::find(header.begin(), header.end(), "crr") - header.begin();
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    for (std::stringstream s(line); std::getline(s, line, ',');) f.push_back(line);
-    if (static_cast<std::size_t>(col) < f.size()) crr[f[0]] = std::stod(f[static_cast<std::size_t>(col)]);
+  std::span<const std::string_view> row;
+  for (recording::CsvReader::Status st; (st = csv.value().next(row)) != recording::CsvReader::Status::end;) {
+    if (st == recording::CsvReader::Status::bad_row) return *csv.value().error();
+    const auto value = recording::parse_f64(row[1]);
+    if (!value) return csv.value().field_error(1, "expected a number");
+    crr[std::string(row[0])] = *value;
   }
+  if (csv.value().error()) return *csv.value().error();
   return crr;
 }
 
@@ -93,11 +95,8 @@ int run_analyze(Args args) {
   if (out.empty()) return opt.fail("--out is required");
 
   j1939::Database db;
-  for (const std::string& path : [&] {
-         std::vector<std::string> all{core_dbc_path()};
-         all.insert(all.end(), dbcs.begin(), dbcs.end());
-         return all;
-       }()) {
+  dbcs.insert(dbcs.begin(), core_dbc_path());
+  for (const std::string& path : dbcs) {
     if (auto err = load_dbc_file(db, path)) {
       std::fprintf(stderr, "roadload analyze: %s\n", err->to_string().c_str());
       return kExitNoInput;
@@ -185,7 +184,15 @@ int run_analyze(Args args) {
   json << "},\n  \"gnss_used\": " << trip.gnss_used << ",\n  \"gnss_off_route\": " << trip.gnss_off_route
        << ",\n  \"speed_outliers\": " << trip.filter.outliers << "\n}\n";
 
-  const auto truth = truth_dir.empty() ? std::map<std::string, double>{} : read_truth(truth_dir);
+  std::map<std::string, double> truth;
+  if (!truth_dir.empty()) {
+    auto t = read_truth(truth_dir);
+    if (!t) {
+      std::fprintf(stderr, "roadload analyze: %s\n", t.error().to_string().c_str());
+      return t.error().line > 0 ? kExitDataErr : kExitNoInput;
+    }
+    truth = std::move(t.value());
+  }
   double se = 0;
   std::size_t n = 0, covered = 0;
   if (!quiet) std::printf("%-6s %9s %9s %9s %7s%s\n", "cell", "crr", "crr_lo", "crr_hi", "samples", truth.empty() ? "" : "     truth  inside");

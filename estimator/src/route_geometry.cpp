@@ -25,6 +25,10 @@ std::optional<RouteGeometry> RouteGeometry::build(std::span<const GeoPoint> poin
     if (s12 < 1e-3) return std::nullopt;
     g.cumulative_m_.push_back(g.cumulative_m_.back() + s12);
     g.azimuth_deg_.push_back(azi1);
+    const GeographicLib::LocalCartesian plane(points[i].lat_deg, points[i].lon_deg, 0.0);
+    double ex = 0, ey = 0, ez = 0;
+    plane.Forward(points[i + 1].lat_deg, points[i + 1].lon_deg, 0.0, ex, ey, ez);
+    g.planes_.push_back({points[i].lat_deg, points[i].lon_deg, ex, ey});
   }
   return g;
 }
@@ -38,11 +42,11 @@ std::size_t RouteGeometry::segment(double s_m) const {
 RouteGeometry::Projection RouteGeometry::project(double lat_deg, double lon_deg) const {
   // Each segment in the tangent plane at its start: exact enough for survey spacing of < 1 km.
   Projection best{0.0, std::numeric_limits<double>::infinity()};
-  for (std::size_t i = 0; i + 1 < points_.size(); ++i) {
-    const GeographicLib::LocalCartesian plane(points_[i].lat_deg, points_[i].lon_deg, 0.0);
-    double ex = 0, ey = 0, ez = 0, px = 0, py = 0, pz = 0;
-    plane.Forward(points_[i + 1].lat_deg, points_[i + 1].lon_deg, 0.0, ex, ey, ez);
-    plane.Forward(lat_deg, lon_deg, 0.0, px, py, pz);
+  for (std::size_t i = 0; i < planes_.size(); ++i) {
+    const Plane& pl = planes_[i];
+    const double ex = pl.end_x_m, ey = pl.end_y_m;
+    double px = 0, py = 0, pz = 0;
+    GeographicLib::LocalCartesian(pl.lat0_deg, pl.lon0_deg, 0.0).Forward(lat_deg, lon_deg, 0.0, px, py, pz);
     const double len2 = ex * ex + ey * ey;
     double t = (px * ex + py * ey) / len2;
     // The first and last segments extend beyond the ends, so a truck running in is placed.

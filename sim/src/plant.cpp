@@ -124,8 +124,8 @@ void TruckPlant::update_fan(double dt_s) {
   fan_left_s_ = -mean * std::log(rng_.uniform());
 }
 
-double TruckPlant::drafting_factor(double dt_s) {
-  if (!effects_.on(Effect::drafting)) return 0.0;
+void TruckPlant::update_drafting(double dt_s) {
+  if (!effects_.on(Effect::drafting)) return;
   // Episodes of following traffic (40 s on average, 120 s apart) at a gap of 15-60 m.
   draft_left_s_ -= dt_s;
   if (draft_left_s_ <= 0) {
@@ -133,7 +133,6 @@ double TruckPlant::drafting_factor(double dt_s) {
     draft_left_s_ = -(following ? 40.0 : 120.0) * std::log(rng_.uniform());
     draft_reduction_ = following ? effects_.magnitude(Effect::drafting) * std::exp(-rng_.uniform(15.0, 60.0) / 40.0) : 0.0;
   }
-  return draft_reduction_;
 }
 
 void TruckPlant::update_gear(double dt_s) {
@@ -213,7 +212,7 @@ void TruckPlant::step(double dt_s, const Environment& env) {
   const auto& acc = truck_.accessories;
   update_gear(dt_s);
   update_fan(dt_s);
-  drafting_factor(dt_s);
+  update_drafting(dt_s);
 
   const double v0 = state_.speed_mps;
   const double x0 = state_.x_m;

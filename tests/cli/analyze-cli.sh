@@ -22,4 +22,8 @@ cmp -s <(cut -d, -f1 "$work/res/cells.csv") <(cut -d, -f1 "$work/truth/cells.csv
   fail "analysed cells are not the simulator's cells"
 grep -q '"crr":' "$work/res/trip.json" || fail "trip.json has no crr"
 grep -q "RMSE" "$work/err" || fail "no comparison with the truth printed"
+mkdir -p "$work/badtruth"
+printf 'cell,crr\nTH66-01,abc\n' >"$work/badtruth/cells.csv"
+expect_status 65 "$roadload" analyze "$work/rec" --route th66-good-thunder --out "$work/res2" --truth "$work/badtruth"
+grep -q "badtruth/cells.csv:2: crr: expected a number" "$work/err" || fail "bad truth row not named: $(cat "$work/err")"
 echo "analyze-cli: PASS"

@@ -29,6 +29,11 @@ class RouteGeometry {
  private:
   std::size_t segment(double s_m) const;
 
+  // Each segment in the tangent plane at its start: its end there, and the plane's origin.
+  struct Plane {
+    double lat0_deg, lon0_deg, end_x_m, end_y_m;
+  };
+  std::vector<Plane> planes_;
   std::vector<GeoPoint> points_;
   std::vector<double> cumulative_m_;
   std::vector<double> azimuth_deg_;

@@ -89,7 +89,7 @@ class TruckPlant {
   double aero_force_n(const Environment& env);
   void update_gear(double dt_s);
   void update_fan(double dt_s);
-  double drafting_factor(double dt_s);
+  void update_drafting(double dt_s);
   double road_height(std::size_t axle, double x_front_m) const;
 
   TruckParams truck_;
