@@ -126,15 +126,20 @@ int run_analyze(Args args) {
   }
   // Place the centre of gravity and the GNSS antenna from the recorded axle layout when given.
   double moment = 0, load = 0;
+  std::vector<AxleLoad> axles;
   for (const char* axle : {"front", "drive1", "drive2", "trailer1", "trailer2"}) {
     const auto l = vehicle.find(std::string(axle) + "_load_kg");
     const auto x = vehicle.find(std::string(axle) + "_position_m");
     if (l != vehicle.end() && x != vehicle.end()) {
       moment += l->second * x->second;
       load += l->second;
+      axles.push_back({x->second, l->second});
     }
   }
-  if (load > 0) cfg.cg_behind_front_m = moment / load;
+  if (load > 0) {
+    cfg.cg_behind_front_m = moment / load;
+    cfg.axles = axles;
+  }
   if (auto it = vehicle.find("gnss_antenna_behind_front_axle_m"); it != vehicle.end()) cfg.antenna_behind_front_m = it->second;
 
   std::vector<CellSpan> cells;
@@ -182,7 +187,9 @@ int run_analyze(Args args) {
     json << (i > 1 ? ", " : "") << "\"" << to_string(static_cast<Unusable>(i)) << "\": " << trip.unusable[i];
   }
   json << "},\n  \"gnss_used\": " << trip.gnss_used << ",\n  \"gnss_off_route\": " << trip.gnss_off_route
-       << ",\n  \"speed_outliers\": " << trip.filter.outliers << "\n}\n";
+       << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << trip.filter.mean_nis()
+       << ",\n  \"torque_bias_nm\": " << trip.torque_bias_nm << ",\n  \"torque_bias_sigma_nm\": " << trip.torque_bias_sigma_nm
+       << "\n}\n";
 
   std::map<std::string, double> truth;
   if (!truth_dir.empty()) {

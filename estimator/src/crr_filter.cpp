@@ -5,21 +5,29 @@
 
 namespace roadload {
 
-void CrrFilter::start(CaptureTime t, double speed_mps) {
+double eec3_quantization_sigma_nm(double reference_torque_nm) {
+  return reference_torque_nm * 0.01 * std::sqrt(2.0 / 12.0);
+}
+
+void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> torque_bias_sigma_nm) {
   Vec x;
-  x << speed_mps, config_.truck.crr_prior, config_.truck.cda_prior_m2;
+  x << speed_mps, config_.truck.crr_prior, config_.truck.cda_prior_m2, 0.0;
   Mat p = Mat::Zero();
   p(CrrState::speed, CrrState::speed) = 0.25;
   p(CrrState::crr, CrrState::crr) = config_.truck.crr_sigma * config_.truck.crr_sigma;
   p(CrrState::cda, CrrState::cda) = config_.truck.cda_sigma_m2 * config_.truck.cda_sigma_m2;
+  const double bias_sigma = torque_bias_sigma_nm.value_or(config_.torque_bias_sigma_nm);
+  p(CrrState::torque_bias, CrrState::torque_bias) = bias_sigma * bias_sigma;
   core_.reset(x, p);
+  core_.set_consider(CrrState::cda, !config_.estimate_cda);
+  core_.set_consider(CrrState::torque_bias, true);
   t_ = t;
   started_ = true;
 }
 
 double CrrFilter::crr_sigma() const { return std::sqrt(core_.p()(CrrState::crr, CrrState::crr)); }
 
-void CrrFilter::step(double dt, const model::ForceInputs& in) {
+void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_variance) {
   const Vec& x = core_.x();
   const double m = config_.truck.mass_kg;
   const double m_eff = in.effective_mass_kg > 0 ? in.effective_mass_kg : m;
@@ -29,7 +37,8 @@ void CrrFilter::step(double dt, const model::ForceInputs& in) {
   const double half_rho = 0.5 * in.air_density_kgpm3;
   const double aero = half_rho * x(CrrState::cda) * v_air * std::abs(v_air);
   const double rolling = x(CrrState::crr) * weight * std::cos(in.grade_rad);
-  const double accel = (in.tractive_n - aero - weight * std::sin(in.grade_rad) - rolling) / m_eff;
+  const double bias_n = in.wheel_force_per_flywheel_nm * x(CrrState::torque_bias);
+  const double accel = (in.tractive_n + bias_n - aero - weight * std::sin(in.grade_rad) - rolling) / m_eff;
 
   Vec next = x;
   Mat f = Mat::Identity();
@@ -39,17 +48,20 @@ void CrrFilter::step(double dt, const model::ForceInputs& in) {
     f(CrrState::speed, CrrState::speed) += dt * (-2.0 * half_rho * x(CrrState::cda) * std::abs(v_air) / m_eff);
     f(CrrState::speed, CrrState::crr) = -dt * weight * std::cos(in.grade_rad) / m_eff;
     f(CrrState::speed, CrrState::cda) = -dt * half_rho * v_air * std::abs(v_air) / m_eff;
+    f(CrrState::speed, CrrState::torque_bias) = dt * in.wheel_force_per_flywheel_nm / m_eff;
     const double sf = config_.force_noise_n / m_eff;
     q(CrrState::speed, CrrState::speed) = sf * sf * dt;
   } else {
     // The force balance cannot be trusted (brakes, clutch open): carry the speed by its
-    // measurements alone and leave CRR and CdA untouched.
+    // measurements alone and leave the parameters untouched.
     ++counters_.unusable_predicts;
     const double sf = config_.unusable_force_noise_n / m_eff;
     q(CrrState::speed, CrrState::speed) = sf * sf * dt;
   }
-  q(CrrState::crr, CrrState::crr) = config_.crr_walk_per_sqrt_s * config_.crr_walk_per_sqrt_s * dt;
+  q(CrrState::crr, CrrState::crr) = config_.crr_walk_per_sqrt_s * config_.crr_walk_per_sqrt_s * dt + crr_jump_variance;
   q(CrrState::cda, CrrState::cda) = config_.cda_walk_per_sqrt_s * config_.cda_walk_per_sqrt_s * dt;
+  const double bias_walk = config_.torque_bias_walk_nm_per_sqrt_s;
+  q(CrrState::torque_bias, CrrState::torque_bias) = bias_walk * bias_walk * dt;
   const Vec x_before = core_.x();
   const Mat p_before = core_.p();
   core_.predict(next, f, q);
@@ -59,9 +71,12 @@ void CrrFilter::step(double dt, const model::ForceInputs& in) {
 
 void CrrFilter::predict_to(const model::ForceInputs& in) {
   if (!started_ || in.t <= t_) return;
+  // A pavement change enters once over the interval, not once per sub-step.
+  double jump = in.crr_jump_variance;
   while (t_ < in.t) {
     const Nanoseconds dt = std::min(config_.max_step, in.t - t_);
-    step(to_seconds(dt), in);
+    step(to_seconds(dt), in, jump);
+    jump = 0;
     t_ += dt;
   }
 }
@@ -89,6 +104,7 @@ ekf::UpdateResult CrrFilter::update_speed(CaptureTime t, double speed_mps, doubl
   const ekf::UpdateResult res = core_.update<1>(z, zhat, h, r, config_.gate_nis);
   if (res.accepted) {
     ++counters_.updates;
+    counters_.nis_sum += res.nis;
   } else {
     ++counters_.outliers;
   }

@@ -18,10 +18,42 @@ DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std
       cells_(std::move(cells)),
       config_(config),
       signals_(db),
-      filter_(config.filter),
+      filter_(filter_config(config, !cells_.empty())),
       smoother_(36000) {
   if (const auto* m = db_.find_name("CCVS1")) ccvs1_pgn_ = m->pgn;
   filter_.attach(&smoother_);
+  for (const CellSpan& c : cells_) {
+    boundaries_m_.push_back(c.start_m);
+    boundaries_m_.push_back(c.end_m);
+  }
+  std::sort(boundaries_m_.begin(), boundaries_m_.end());
+  boundaries_m_.erase(std::unique(boundaries_m_.begin(), boundaries_m_.end()), boundaries_m_.end());
+}
+
+CrrFilterConfig DriveAnalyzer::filter_config(const AnalyzerConfig& c, bool cells) {
+  CrrFilterConfig f = c.filter;
+  if (cells) f.crr_walk_per_sqrt_s = c.in_cell_crr_walk_per_sqrt_s;
+  f.estimate_cda = c.estimate_cda;
+  return f;
+}
+
+double DriveAnalyzer::truck_length_m() const {
+  double len = 0;
+  for (const AxleLoad& a : config_.axles) len = std::max(len, a.behind_front_m);
+  return len;
+}
+
+double DriveAnalyzer::crr_jump_variance(double from_front_m, double to_front_m) const {
+  double total = 0;
+  for (const AxleLoad& a : config_.axles) total += a.load_kg;
+  if (total <= 0 || to_front_m <= from_front_m) return 0;
+  double sum_w2 = 0;
+  for (const AxleLoad& a : config_.axles) {
+    const double lo = from_front_m - a.behind_front_m, hi = to_front_m - a.behind_front_m;
+    const auto first = std::upper_bound(boundaries_m_.begin(), boundaries_m_.end(), lo);
+    if (first != boundaries_m_.end() && *first <= hi) sum_w2 += (a.load_kg / total) * (a.load_kg / total);
+  }
+  return config_.cell_crr_jump_sigma * config_.cell_crr_jump_sigma * sum_w2;
 }
 
 void DriveAnalyzer::push(const CanFrame& frame) {
@@ -60,31 +92,37 @@ void DriveAnalyzer::push(const WeatherSample& w) {
 
 void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   if (!started_) {
-    filter_.start(t, wheel_speed_mps);
+    const Reading& ref = signals_.get(Quantity::reference_torque_nm);
+    filter_.start(t, wheel_speed_mps, ref.seen ? std::optional(eec3_quantization_sigma_nm(ref.value)) : std::nullopt);
     started_ = true;
     last_tick_ = t;
+    last_front_m_ = position_front_m();
   }
   odometer_m_ += wheel_speed_mps * to_seconds(t - last_tick_);
   last_tick_ = t;
+  const double s_front = position_front_m();
   if (!station_air_) {
     const Reading& temp = signals_.get(Quantity::ambient_temp_c);
     const Reading& press = signals_.get(Quantity::pressure_pa);
     if (temp.seen) air_temp_c_ = temp.value;
     if (press.seen) pressure_pa_ = press.value;
   }
-  const double s_cg = position_front_m() - config_.cg_behind_front_m;
+  const double s_cg = s_front - config_.cg_behind_front_m;
   const TractionEstimate tr = traction(signals_, config_.filter.truck, t);
   model::ForceInputs in;
   in.t = t;
   in.tractive_n = tr.tractive_n;
   in.effective_mass_kg = tr.effective_mass_kg;
+  in.wheel_force_per_flywheel_nm = tr.wheel_force_per_flywheel_nm;
+  in.crr_jump_variance = crr_jump_variance(last_front_m_, s_front);
+  last_front_m_ = s_front;
   in.air_density_kgpm3 = model::air_density_kgpm3(pressure_pa_, air_temp_c_);
   in.grade_rad = route_.grade_rad(s_cg);
   in.headwind_mps = wind_mps_ * std::cos((wind_from_deg_ - route_.heading_deg(s_cg)) * kDeg);
   in.usable = tr.reason == Unusable::none;
   filter_.predict_to(in);
   filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
-  ticks_.push_back({t, s_cg, wheel_speed_mps, in.usable, smoother_.size()});
+  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, smoother_.size()});
   ++trip_.ticks;
   if (in.usable) {
     ++trip_.usable_ticks;
@@ -112,6 +150,8 @@ void DriveAnalyzer::finish() {
   trip_.crr = n > 0 ? crr / static_cast<double>(n) : filter_.crr();
   trip_.crr_sigma = n > 0 ? sigma / static_cast<double>(n) : filter_.crr_sigma();
   trip_.cda_m2 = filter_.cda_m2();
+  trip_.torque_bias_nm = filter_.torque_bias_nm();
+  trip_.torque_bias_sigma_nm = std::sqrt(filter_.core().p()(CrrState::torque_bias, CrrState::torque_bias));
   trip_.identified = n > 0 && trip_.crr_sigma <= config_.filter.identified_crr_sigma;
   trip_.filter = filter_.counters();
 }
@@ -126,8 +166,15 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
     r.end_m = c.end_m;
     double crr = 0, sigma = 0, speed = 0;
     std::size_t seen = 0;
+    // A cell longer than the truck is read while the whole truck is on it; a shorter one while its
+    // centre of gravity is.
+    const bool whole = c.end_m - c.start_m > truck_length_m();
+    auto inside = [&](const Tick& k) {
+      return whole ? k.s_front_m - truck_length_m() >= c.start_m && k.s_front_m < c.end_m
+                   : k.s_cg_m >= c.start_m && k.s_cg_m < c.end_m;
+    };
     for (const Tick& k : ticks_) {
-      if (k.s_cg_m < c.start_m || k.s_cg_m >= c.end_m) continue;
+      if (!inside(k)) continue;
       ++seen;
       if (!k.usable) continue;
       const bool final = k.step >= smoother_.size();
@@ -144,8 +191,8 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
       continue;
     }
     const auto n = static_cast<double>(r.samples);
-    // Errors within a cell are strongly correlated (the smoother spreads each over ~100 m): the
-    // cell's uncertainty is the mean per-sample sigma, not that over sqrt(n).
+    // CRR is nearly constant within a cell, so its smoothed estimates there are one estimate:
+    // the cell's uncertainty is their mean sigma, not that over sqrt(n).
     r.crr = crr / n;
     r.crr_sigma = sigma / n;
     r.crr_lo = r.crr - config_.interval_z * r.crr_sigma;

@@ -107,9 +107,13 @@ TractionEstimate traction(const DriveSignals& s, const model::TruckModel& truck,
   }
   const double friction = s.get(Quantity::friction_torque_pct).seen ? s.get(Quantity::friction_torque_pct).value : 0.0;
   const double parasitic = s.get(Quantity::parasitic_torque_pct).seen ? s.get(Quantity::parasitic_torque_pct).value : 0.0;
-  const double flywheel = model::flywheel_torque_nm(act.value, friction, parasitic, ref.value);
-  out.tractive_n = model::tractive_force_n(truck, flywheel, out.gear_ratio);
+  out.indicated_nm = act.value / 100.0 * ref.value;
+  out.friction_nm = friction / 100.0 * ref.value;
+  out.parasitic_nm = parasitic / 100.0 * ref.value;
+  out.flywheel_nm = model::flywheel_torque_nm(act.value, friction, parasitic, ref.value);
+  out.tractive_n = model::tractive_force_n(truck, out.flywheel_nm, out.gear_ratio);
   out.effective_mass_kg = model::effective_mass_kg(truck, out.gear_ratio);
+  out.wheel_force_per_flywheel_nm = model::wheel_force_per_flywheel_nm(truck, out.gear_ratio);
   if (s.get(Quantity::brake_switch).seen && s.get(Quantity::brake_switch).value > 0.5) {
     out.reason = Unusable::braking;
   } else if ((s.get(Quantity::shift_in_process).seen && s.get(Quantity::shift_in_process).value > 0.5) ||

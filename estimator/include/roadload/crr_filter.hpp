@@ -1,9 +1,11 @@
 #pragma once
-// The real-time CRR filter: a fixed-size EKF over [speed, CRR, CdA] driven by the force balance
-// (model/longitudinal.hpp) and corrected by measured speed. Push API in capture time; no I/O and
-// no heap after construction. CRR and CdA are confounded at one steady speed: CdA carries a prior
-// (config) and the filter reports CRR as identified only when its posterior is tight enough.
+// The real-time CRR filter: a fixed-size EKF over [speed, CRR, CdA, torque bias] driven by the
+// force balance (model/longitudinal.hpp) and corrected by measured speed. Push API in capture time;
+// no I/O and no heap after construction. CRR, CdA and a flywheel torque bias are confounded at one
+// steady speed in one gear: CdA and the bias carry priors (config), and the filter reports CRR as
+// identified only when its posterior is tight enough.
 #include <cstdint>
+#include <optional>
 
 #include "roadload/ekf/kalman.hpp"
 #include "roadload/ekf/rts.hpp"
@@ -14,16 +16,26 @@ namespace roadload {
 
 // Named state indices; the size is fixed at compile time.
 struct CrrState {
-  enum Index : int { speed = 0, crr = 1, cda = 2, count = 3 };
+  enum Index : int { speed = 0, crr = 1, cda = 2, torque_bias = 3, count = 4 };
 };
-static_assert(CrrState::count == 3, "CrrFilter matrices are sized by CrrState::count");
+static_assert(CrrState::count == 4, "CrrFilter matrices are sized by CrrState::count");
+
+// One whole-percent step of EEC3's friction (SPN 514) and parasitic (SPN 2978) torque each, as
+// uniform rounding errors: the flywheel torque the J1939 signals cannot resolve.
+double eec3_quantization_sigma_nm(double reference_torque_nm);
 
 struct CrrFilterConfig {
   model::TruckModel truck;
-  double force_noise_n = 300.0;            // error of the force balance, white, N per sqrt(Hz)
+  double force_noise_n = 40.0;             // error of the force balance, white, N per sqrt(Hz): mean NIS near 1 on simulated drives
   double unusable_force_noise_n = 20000.0; // while braking or shifting: speed follows the measurements
-  double crr_walk_per_sqrt_s = 3e-4;       // CRR changes from pavement to pavement
+  double crr_walk_per_sqrt_s = 3e-4;       // CRR changes from pavement to pavement (no cells known)
   double cda_walk_per_sqrt_s = 1e-4;
+  double torque_bias_sigma_nm = 9.74;      // prior: EEC3 rounding at the MnROAD engine's 2,386 N m
+  double torque_bias_walk_nm_per_sqrt_s = 0.01;
+  // Estimate CdA from the data (drives across speeds) or only consider its prior's uncertainty
+  // (one steady speed, where speed ripples would pull it onto any speed-correlated model error).
+  // The torque bias is always only considered: one gear cannot tell it from CRR.
+  bool estimate_cda = true;
   double gate_nis = 15.13;                 // chi-square(1) at 0.9999: beyond it a speed is an outlier
   Nanoseconds max_step{100'000'000};
   Nanoseconds late_window{500'000'000};    // older measurements are counted and dropped
@@ -32,6 +44,8 @@ struct CrrFilterConfig {
 
 struct CrrCounters {
   std::uint64_t predicts = 0, unusable_predicts = 0, updates = 0, outliers = 0, late_used = 0, late_dropped = 0;
+  double nis_sum = 0;  // over accepted updates: its mean is 1 when the noise model is right
+  double mean_nis() const { return updates > 0 ? nis_sum / static_cast<double>(updates) : 0.0; }
 };
 
 class CrrFilter {
@@ -42,7 +56,8 @@ class CrrFilter {
 
   explicit CrrFilter(const CrrFilterConfig& config) : config_(config) {}
 
-  void start(CaptureTime t, double speed_mps);
+  // The torque-bias prior defaults to the config's; the caller may know the engine's better.
+  void start(CaptureTime t, double speed_mps, std::optional<double> torque_bias_sigma_nm = std::nullopt);
   // Advances to inputs.t with the inputs held over the interval (sub-stepped at max_step).
   void predict_to(const model::ForceInputs& inputs);
   // A speed measurement (wheel-based or GNSS) with its standard deviation.
@@ -56,13 +71,14 @@ class CrrFilter {
   double crr() const { return core_.x()(CrrState::crr); }
   double crr_sigma() const;
   double cda_m2() const { return core_.x()(CrrState::cda); }
+  double torque_bias_nm() const { return core_.x()(CrrState::torque_bias); }
   bool crr_identified() const { return crr_sigma() <= config_.identified_crr_sigma; }
   const Core& core() const { return core_; }
   const CrrCounters& counters() const { return counters_; }
   const CrrFilterConfig& config() const { return config_; }
 
  private:
-  void step(double dt_s, const model::ForceInputs& in);
+  void step(double dt_s, const model::ForceInputs& in, double crr_jump_variance);
 
   CrrFilterConfig config_;
   Core core_;

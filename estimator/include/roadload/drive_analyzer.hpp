@@ -20,9 +20,24 @@ struct CellSpan {
   double start_m = 0, end_m = 0;
 };
 
+// An axle: where it sits behind the front axle and the share of the weight it carries.
+struct AxleLoad {
+  double behind_front_m = 0;
+  double load_kg = 0;
+};
+
 struct AnalyzerConfig {
   CrrFilterConfig filter;
-  double wheel_speed_sigma_mps = 0.02;
+  // The MnROAD truck (report Table 6.2); a recording's metadata replaces it.
+  std::vector<AxleLoad> axles = {{0.0, 5307}, {5.14, 7734}, {6.46, 7734}, {16.45, 7688.5}, {17.69, 7688.5}};
+  // With cells known, CRR is a pavement's: nearly constant within a cell (this walk replaces the
+  // filter's), free to jump as each axle rolls onto the next pavement by this much (one sigma,
+  // the spread of Table 6.3).
+  double in_cell_crr_walk_per_sqrt_s = 2e-5;
+  // The report's runs hold one speed: CdA then keeps its prior (crr_filter.hpp, estimate_cda).
+  bool estimate_cda = false;
+  double cell_crr_jump_sigma = 0.003;
+  double wheel_speed_sigma_mps = 0.0005;  // CCVS1 rounds to 1/256 km/h; with NIS near 1 on simulated drives
   double antenna_behind_front_m = 2.5;  // GNSS antenna behind the front axle
   double cg_behind_front_m = 9.74;      // from the axle loads of Table 6.2
   double max_gnss_offset_m = 30.0;      // fixes farther from the route are not on it
@@ -32,7 +47,7 @@ struct AnalyzerConfig {
 struct CellResult {
   std::string id;
   double start_m = 0, end_m = 0;
-  std::size_t samples = 0;  // usable filter ticks with the centre of gravity in the cell
+  std::size_t samples = 0;  // usable filter ticks with every axle in the cell (the centre of gravity if it is shorter than the truck)
   double crr = 0, crr_sigma = 0, crr_lo = 0, crr_hi = 0;
   bool identified = false;
   std::string reason;       // why not, when not
@@ -43,7 +58,7 @@ struct CellResult {
 struct TripResult {
   std::size_t ticks = 0, usable_ticks = 0;
   std::array<std::size_t, 7> unusable{};  // by Unusable
-  double crr = 0, crr_sigma = 0, cda_m2 = 0;
+  double crr = 0, crr_sigma = 0, cda_m2 = 0, torque_bias_nm = 0, torque_bias_sigma_nm = 0;
   bool identified = false;
   std::size_t gnss_used = 0, gnss_off_route = 0;
   CrrCounters filter;
@@ -63,14 +78,19 @@ class DriveAnalyzer {
   TripResult trip() const;
 
  private:
+  static CrrFilterConfig filter_config(const AnalyzerConfig& c, bool cells);
   struct Tick {
     CaptureTime t;
+    double s_front_m;
     double s_cg_m;
     double speed_mps;
     bool usable;
     std::size_t step;  // smoother index of the estimate after this tick's update
   };
   void tick(CaptureTime t, double wheel_speed_mps);
+  // Variance of the CRR change as axles cross cell boundaries between two front-axle positions.
+  double crr_jump_variance(double from_front_m, double to_front_m) const;
+  double truck_length_m() const;
   double position_front_m() const { return odometer_m_ + (gnss_n_ > 0 ? offset_sum_m_ / static_cast<double>(gnss_n_) : 0.0); }
 
   const j1939::Database& db_;
@@ -87,6 +107,8 @@ class DriveAnalyzer {
   bool started_ = false;
   CaptureTime last_tick_{};
   double odometer_m_ = 0;
+  double last_front_m_ = 0;
+  std::vector<double> boundaries_m_;  // every cell start and end, sorted
   double offset_sum_m_ = 0;
   std::size_t gnss_n_ = 0;
   // Air: from the weather station when it reports, else from the truck's AMB.

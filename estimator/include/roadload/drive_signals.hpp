@@ -75,6 +75,10 @@ struct TractionEstimate {
   double tractive_n = 0;
   double gear_ratio = 0;
   double effective_mass_kg = 0;
+  double wheel_force_per_flywheel_nm = 0;
+  // The engine's torques as J1939 states them, in N m: indicated (EEC1), friction and the
+  // parasitic loads it knows (EEC3), and what is left at the flywheel.
+  double indicated_nm = 0, friction_nm = 0, parasitic_nm = 0, flywheel_nm = 0;
   Unusable reason = Unusable::none;
 };
 

@@ -11,6 +11,10 @@ double tractive_force_n(const TruckModel& m, double flywheel_torque_nm, double g
   return ideal >= 0 ? ideal * m.driveline_efficiency : ideal / m.driveline_efficiency;
 }
 
+double wheel_force_per_flywheel_nm(const TruckModel& m, double gear_ratio) {
+  return gear_ratio * m.final_drive / m.tire_radius_m * m.driveline_efficiency;
+}
+
 double effective_mass_kg(const TruckModel& m, double gear_ratio) {
   const double k = gear_ratio * m.final_drive / m.tire_radius_m;
   return m.mass_kg + m.wheel_inertia_mass_kg + (m.engine_inertia_kgm2 + m.driveline_inertia_kgm2) * k * k;

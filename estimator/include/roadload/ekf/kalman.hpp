@@ -24,6 +24,11 @@ class KalmanCore {
     p_ = p;
   }
 
+  // Consider states (Schmidt-Kalman): their uncertainty enters every other state's covariance,
+  // but measurements never move them. For parameters the data cannot separate (aero drag and a
+  // torque bias at one steady speed), so that model errors are not absorbed into them.
+  void set_consider(int index, bool consider) { consider_(index) = consider ? 0.0 : 1.0; }
+
   // x <- x_next (the caller integrated the nonlinear model), P <- F P F' + Q.
   void predict(const Vec& x_next, const Mat& f, const Mat& q) {
     x_ = x_next;
@@ -33,7 +38,8 @@ class KalmanCore {
 
   // Measurement z of dimension M with prediction h(x) = zhat and Jacobian H. The innovation is
   // rejected when its NIS exceeds `gate` (a chi-square quantile); S is factored, never inverted,
-  // and P is updated in Joseph form so it stays symmetric positive definite.
+  // and P is updated in Joseph form, which holds for any gain (the consider states' rows are zero),
+  // so it stays symmetric positive definite.
   template <int M>
   UpdateResult update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& zhat,
                       const Eigen::Matrix<double, M, N>& h, const Eigen::Matrix<double, M, M>& r, double gate) {
@@ -47,7 +53,7 @@ class KalmanCore {
     // K = P H' S^-1, computed as (S^-1 H P)' since S and P are symmetric.
     const Eigen::Matrix<double, M, N> hp = h * p_;
     const Eigen::Matrix<double, M, N> s_inv_hp = ldlt.solve(hp);
-    const Eigen::Matrix<double, N, M> k = s_inv_hp.transpose();
+    const Eigen::Matrix<double, N, M> k = consider_.asDiagonal() * s_inv_hp.transpose();
     x_ += k * y;
     const Mat a = Mat::Identity() - k * h;
     p_ = a * p_ * a.transpose() + k * r * k.transpose();
@@ -63,6 +69,7 @@ class KalmanCore {
  private:
   Vec x_ = Vec::Zero();
   Mat p_ = Mat::Identity();
+  Vec consider_ = Vec::Ones();  // 1: updated, 0: considered only
 };
 
 }  // namespace roadload::ekf

@@ -30,6 +30,9 @@ double flywheel_torque_nm(double actual_pct, double friction_pct, double parasit
 // Tractive force at the wheels through gear and final drive; losses oppose the power flow.
 double tractive_force_n(const TruckModel& m, double flywheel_torque_nm, double gear_ratio);
 
+// How much wheel force one more N m at the flywheel makes in this gear (driving direction).
+double wheel_force_per_flywheel_nm(const TruckModel& m, double gear_ratio);
+
 // Mass the longitudinal motion sees: truck, wheels, and the engine side through the gear.
 double effective_mass_kg(const TruckModel& m, double gear_ratio);
 
@@ -43,6 +46,8 @@ struct ForceInputs {
   double headwind_mps = 0;       // wind component blowing against the direction of travel
   double grade_rad = 0;
   double effective_mass_kg = 0;
+  double wheel_force_per_flywheel_nm = 0;  // d(tractive force)/d(flywheel torque) in this gear, N per N m
+  double crr_jump_variance = 0;  // CRR change allowed over this interval: axles crossing into a new cell
   bool usable = false;           // false while braking, shifting or declutched
 };
 
