@@ -1,21 +1,16 @@
 // roadload analyze: CRR per pavement cell from a recording (the force balance in an EKF, then a
 // fixed-interval smoother), written as RESULTS/cells.csv and RESULTS/trip.json.
-#include <cinttypes>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <string>
 #include <vector>
 
+#include "analyze_results.hpp"
 #include "command.hpp"
 #include "options.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/drive_analyzer.hpp"
-#include "roadload/recording/csv.hpp"
 #include "roadload/recording/reader.hpp"
-#include "roadload/recording/writer.hpp"
 #include "roadload/route_file.hpp"
 
 namespace roadload::cli {
@@ -28,8 +23,11 @@ constexpr const char* kHelp =
     "grade from the route's survey, air from the weather station, position from GNSS and odometry,\n"
     "then a fixed-interval smoother so each cell uses data on both sides of it.\n\n"
     "  --route R       route file or built-in route name (config/routes): geometry, grade and cells\n"
-    "  --out DIR       write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval) and DIR/trip.json\n"
-    "  --truth DIR     a simulation's ground truth: print the true CRR beside each cell, RMSE and coverage\n"
+    "  --out DIR       write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval; fuel breakdown per cell\n"
+    "                  in litres) and DIR/trip.json\n"
+    "  --truth DIR     a simulation's ground truth: the true CRR beside each cell, RMSE and coverage, and\n"
+    "                  the true fuel breakdown beside the estimate\n"
+    "  --estimate-cda  fit CdA from the drive (drives across speeds); otherwise CdA keeps its prior\n"
     "  --mass KG       vehicle mass (default: meta.toml vehicle.mass_kg, else 36152)\n"
     "  --dbc FILE      load FILE after the built-in definitions; repeatable\n"
     "  -q, --quiet     no table on standard output\n"
@@ -40,24 +38,6 @@ std::string resolve_route(const std::string& r) {
   return data_dir() + "/routes/" + r + ".toml";
 }
 
-// The true CRR per cell of a simulation's truth/cells.csv. A bad row makes the comparison
-// meaningless, so it stops the read with its file, line and field.
-Parsed<std::map<std::string, double>> read_truth(const std::string& dir) {
-  constexpr std::string_view kColumns[] = {"cell", "crr"};
-  auto csv = recording::CsvReader::open(dir + "/cells.csv", kColumns);
-  if (!csv) return csv.error();
-  std::map<std::string, double> crr;
-  std::span<const std::string_view> row;
-  for (recording::CsvReader::Status st; (st = csv.value().next(row)) != recording::CsvReader::Status::end;) {
-    if (st == recording::CsvReader::Status::bad_row) return *csv.value().error();
-    const auto value = recording::parse_f64(row[1]);
-    if (!value) return csv.value().field_error(1, "expected a number");
-    crr[std::string(row[0])] = *value;
-  }
-  if (csv.value().error()) return *csv.value().error();
-  return crr;
-}
-
 }  // namespace
 
 int run_analyze(Args args) {
@@ -65,7 +45,7 @@ int run_analyze(Args args) {
   std::string recording, route_name, out, truth_dir;
   std::optional<double> mass;
   std::vector<std::string> dbcs;
-  bool quiet = false;
+  bool quiet = false, estimate_cda = false;
   while (opt.more()) {
     if (opt.flag("-h", "--help")) {
       std::fputs(kHelp, stdout);
@@ -73,6 +53,8 @@ int run_analyze(Args args) {
     }
     if (opt.flag("-q", "--quiet")) {
       quiet = true;
+    } else if (opt.flag("--estimate-cda")) {
+      estimate_cda = true;
     } else if (auto r = opt.value("--route")) {
       route_name = *r;
     } else if (auto o = opt.value("--out")) {
@@ -118,6 +100,7 @@ int run_analyze(Args args) {
     return kExitNoInput;
   }
   AnalyzerConfig cfg;
+  cfg.estimate_cda = estimate_cda;
   const auto& vehicle = reader.value().metadata().vehicle;
   if (mass) {
     cfg.filter.truck.mass_kg = *mass;
@@ -158,40 +141,13 @@ int run_analyze(Args args) {
 
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
-  auto csv = recording::OutputFile::create(out + "/cells.csv");
-  if (!csv) {
-    std::fprintf(stderr, "roadload analyze: %s\n", csv.error().to_string().c_str());
-    return kExitNoInput;
+  for (auto err : {write_cells_csv(out + "/cells.csv", results), write_trip_json(out + "/trip.json", trip)}) {
+    if (err) {
+      std::fprintf(stderr, "roadload analyze: %s\n", err->to_string().c_str());
+      return kExitCantCreate;
+    }
   }
-  csv.value().write("cell,start_m,end_m,samples,crr,crr_lo,crr_hi,crr_sigma,identified,speed_mps,roll_force_n,reason\n");
-  recording::LineBuilder line;
-  for (const CellResult& c : results) {
-    line.clear();
-    line.text(c.id).sep().num(c.start_m, 1).sep().num(c.end_m, 1).sep().num(static_cast<std::int64_t>(c.samples)).sep();
-    const double nan = std::nan("");
-    const bool have = c.samples > 0;
-    line.num(have ? c.crr : nan, 6).sep().num(have ? c.crr_lo : nan, 6).sep().num(have ? c.crr_hi : nan, 6).sep();
-    line.num(have ? c.crr_sigma : nan, 6).sep().num(std::int64_t{c.identified ? 1 : 0}).sep();
-    line.num(have ? c.speed_mps : nan, 3).sep().num(have ? c.roll_force_n : nan, 1).sep().text(c.reason);
-    csv.value().write(line.finish());
-  }
-  if (auto e = csv.value().close()) {
-    std::fprintf(stderr, "roadload analyze: %s\n", e->to_string().c_str());
-    return kExitDataErr;
-  }
-  std::ofstream json(out + "/trip.json");
-  json << "{\n  \"crr\": " << trip.crr << ",\n  \"crr_sigma\": " << trip.crr_sigma << ",\n  \"crr_identified\": "
-       << (trip.identified ? "true" : "false") << ",\n  \"cda_m2\": " << trip.cda_m2 << ",\n  \"ticks\": " << trip.ticks
-       << ",\n  \"usable_ticks\": " << trip.usable_ticks << ",\n  \"unusable\": {";
-  for (std::size_t i = 1; i < trip.unusable.size(); ++i) {
-    json << (i > 1 ? ", " : "") << "\"" << to_string(static_cast<Unusable>(i)) << "\": " << trip.unusable[i];
-  }
-  json << "},\n  \"gnss_used\": " << trip.gnss_used << ",\n  \"gnss_off_route\": " << trip.gnss_off_route
-       << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << trip.filter.mean_nis()
-       << ",\n  \"torque_bias_nm\": " << trip.torque_bias_nm << ",\n  \"torque_bias_sigma_nm\": " << trip.torque_bias_sigma_nm
-       << "\n}\n";
-
-  std::map<std::string, double> truth;
+  std::optional<Truth> truth;
   if (!truth_dir.empty()) {
     auto t = read_truth(truth_dir);
     if (!t) {
@@ -200,32 +156,8 @@ int run_analyze(Args args) {
     }
     truth = std::move(t.value());
   }
-  double se = 0;
-  std::size_t n = 0, covered = 0;
-  if (!quiet) std::printf("%-6s %9s %9s %9s %7s%s\n", "cell", "crr", "crr_lo", "crr_hi", "samples", truth.empty() ? "" : "     truth  inside");
-  for (const CellResult& c : results) {
-    const auto t = truth.find(c.id);
-    if (!quiet) {
-      if (c.samples == 0) {
-        std::printf("%-6s %9s %9s %9s %7zu  %s\n", c.id.c_str(), "-", "-", "-", c.samples, c.reason.c_str());
-        continue;
-      }
-      std::printf("%-6s %9.5f %9.5f %9.5f %7zu", c.id.c_str(), c.crr, c.crr_lo, c.crr_hi, c.samples);
-      if (t != truth.end()) std::printf("   %7.5f  %s", t->second, t->second >= c.crr_lo && t->second <= c.crr_hi ? "yes" : "no");
-      std::printf("\n");
-    }
-    if (t != truth.end() && c.samples > 0) {
-      se += (c.crr - t->second) * (c.crr - t->second);
-      covered += t->second >= c.crr_lo && t->second <= c.crr_hi ? 1 : 0;
-      ++n;
-    }
-  }
-  std::fprintf(stderr, "analyze: trip CRR %.5f +- %.5f (%s), CdA %.2f m^2, %zu of %zu ticks usable\n", trip.crr,
-               trip.crr_sigma, trip.identified ? "identified" : "NOT identified", trip.cda_m2, trip.usable_ticks, trip.ticks);
-  if (n > 0) {
-    std::fprintf(stderr, "analyze: against the truth: RMSE %.5f over %zu cells, 90 %% intervals cover %zu (%.0f %%)\n",
-                 std::sqrt(se / static_cast<double>(n)), n, covered, 100.0 * static_cast<double>(covered) / static_cast<double>(n));
-  }
+  if (!quiet) print_cells(results, truth ? &*truth : nullptr);
+  print_trip(trip, results, truth ? &*truth : nullptr);
   return kExitOk;
 }
 

@@ -16,11 +16,13 @@ struct Command {
 int run_decode(Args args);
 int run_simulate(Args args);
 int run_analyze(Args args);
+int run_grade(Args args);
 
 // Exit codes, as sysexits.h names them.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitDataErr = 65;  // input was read but some of it was malformed
 inline constexpr int kExitUsage = 64;
 inline constexpr int kExitNoInput = 66;
+inline constexpr int kExitCantCreate = 73;  // an output file could not be written
 
 }  // namespace roadload::cli

@@ -12,6 +12,7 @@ constexpr Command kCommands[] = {
      roadload::cli::run_decode},
     {"analyze", "estimate CRR along a recorded drive and per pavement cell (cells.csv, trip.json)",
      roadload::cli::run_analyze},
+    {"grade", "build a route's grade profile with its uncertainty from its survey or GNSS passes", roadload::cli::run_grade},
     {"simulate", "drive the simulated truck over a simulated road; write a recording and its ground truth",
      roadload::cli::run_simulate},
 };

@@ -97,8 +97,10 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
     started_ = true;
     last_tick_ = t;
     last_front_m_ = position_front_m();
+    last_speed_mps_ = wheel_speed_mps;
   }
-  odometer_m_ += wheel_speed_mps * to_seconds(t - last_tick_);
+  const double dt_s = to_seconds(t - last_tick_);
+  odometer_m_ += wheel_speed_mps * dt_s;
   last_tick_ = t;
   const double s_front = position_front_m();
   if (!station_air_) {
@@ -122,7 +124,24 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   in.usable = tr.reason == Unusable::none;
   filter_.predict_to(in);
   filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
-  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, smoother_.size()});
+  PowerInterval power;
+  power.dt_s = dt_s;
+  const Reading& fuel = signals_.get(Quantity::fuel_rate_lph);
+  power.fuel_rate_lph = fuel.seen ? fuel.value : 0.0;
+  if (!fuel.seen) ++trip_.no_fuel_rate;
+  power.engine_speed_rpm = signals_.get(Quantity::engine_speed_rpm).value;
+  power.indicated_nm = tr.indicated_nm;
+  power.friction_nm = tr.friction_nm;
+  power.parasitic_nm = tr.parasitic_nm;
+  power.engaged = tr.reason != Unusable::declutched;
+  power.braking = tr.reason == Unusable::braking;
+  power.tractive_n = tr.tractive_n;
+  power.speed_from_mps = last_speed_mps_;
+  power.speed_to_mps = wheel_speed_mps;
+  power.effective_mass_kg = tr.effective_mass_kg > 0 ? tr.effective_mass_kg : config_.filter.truck.mass_kg;
+  last_speed_mps_ = wheel_speed_mps;
+  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, smoother_.size(), power, in.air_density_kgpm3,
+                    in.headwind_mps, in.grade_rad});
   ++trip_.ticks;
   if (in.usable) {
     ++trip_.usable_ticks;
@@ -131,20 +150,47 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   }
 }
 
+CrrFilter::Vec DriveAnalyzer::state_at(const Tick& k) const {
+  return k.step >= smoother_.size() ? filter_.core().x() : smoother_.x(k.step);
+}
+
+CrrFilter::Mat DriveAnalyzer::covariance_at(const Tick& k) const {
+  return k.step >= smoother_.size() ? filter_.core().p() : smoother_.p(k.step);
+}
+
+// The resistances over the interval before a tick, from the smoothed CRR and CdA.
+void DriveAnalyzer::fill_resistances(Tick& k) const {
+  const CrrFilter::Vec x = state_at(k);
+  PowerInterval& p = k.power;
+  const double v = 0.5 * (p.speed_from_mps + p.speed_to_mps);
+  const double v_air = v + k.headwind_mps;
+  const double weight = config_.filter.truck.mass_kg * model::kGravity_mps2;
+  p.aero_n = 0.5 * k.air_density_kgpm3 * x(CrrState::cda) * v_air * std::abs(v_air);
+  p.rolling_n = x(CrrState::crr) * weight * std::cos(k.grade_rad);
+  p.grade_n = weight * std::sin(k.grade_rad);
+}
+
 void DriveAnalyzer::finish() {
   if (finished_) return;
   finished_ = true;
   smoother_.finish(filter_.core().x(), filter_.core().p());
   smoother_.smooth();
+  cell_fuel_.assign(cells_.size(), FuelBreakdown{});
+  for (Tick& k : ticks_) {
+    fill_resistances(k);
+    trip_.fuel.add(k.power);
+    for (std::size_t i = 0; i < cells_.size(); ++i) {
+      if (k.s_cg_m >= cells_[i].start_m && k.s_cg_m < cells_[i].end_m) cell_fuel_[i].add(k.power);
+    }
+  }
   // The trip's CRR is the smoothed CRR averaged over every usable tick (a distance average at
   // steady speed); its sigma, like a cell's, the mean per-tick sigma.
   double crr = 0, sigma = 0;
   std::size_t n = 0;
   for (const Tick& k : ticks_) {
     if (!k.usable) continue;
-    const bool last = k.step >= smoother_.size();
-    crr += last ? filter_.crr() : smoother_.x(k.step)(CrrState::crr);
-    sigma += std::sqrt(last ? filter_.core().p()(CrrState::crr, CrrState::crr) : smoother_.p(k.step)(CrrState::crr, CrrState::crr));
+    crr += state_at(k)(CrrState::crr);
+    sigma += std::sqrt(covariance_at(k)(CrrState::crr, CrrState::crr));
     ++n;
   }
   trip_.crr = n > 0 ? crr / static_cast<double>(n) : filter_.crr();
@@ -159,8 +205,10 @@ void DriveAnalyzer::finish() {
 std::vector<CellResult> DriveAnalyzer::cells() const {
   std::vector<CellResult> out;
   const double weight = config_.filter.truck.mass_kg * model::kGravity_mps2;
-  for (const CellSpan& c : cells_) {
+  for (std::size_t i = 0; i < cells_.size(); ++i) {
+    const CellSpan& c = cells_[i];
     CellResult r;
+    if (i < cell_fuel_.size()) r.fuel = cell_fuel_[i];
     r.id = c.id;
     r.start_m = c.start_m;
     r.end_m = c.end_m;
@@ -177,11 +225,8 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
       if (!inside(k)) continue;
       ++seen;
       if (!k.usable) continue;
-      const bool final = k.step >= smoother_.size();
-      const auto& x = final ? filter_.core().x() : smoother_.x(k.step);
-      const auto& p = final ? filter_.core().p() : smoother_.p(k.step);
-      crr += x(CrrState::crr);
-      sigma += std::sqrt(p(CrrState::crr, CrrState::crr));
+      crr += state_at(k)(CrrState::crr);
+      sigma += std::sqrt(covariance_at(k)(CrrState::crr, CrrState::crr));
       speed += k.speed_mps;
       ++r.samples;
     }

@@ -176,6 +176,8 @@ recording::Metadata Simulation::metadata() const {
   for (const auto& a : t.axles) {
     m.vehicle[a.name + "_load_kg"] = a.load_kg * scale;
     m.vehicle[a.name + "_position_m"] = a.position_m;
+    // Eq. 2.1's M_w. Not scaled by the mass-error effect: that is cargo, the axles weigh the same.
+    m.vehicle[a.name + "_unsprung_kg"] = a.vertical.unsprung_kg;
   }
   m.vehicle["gnss_antenna_behind_front_axle_m"] = kAntennaBehind_m;
   m.vehicle["gnss_antenna_height_m"] = kAntennaHeight_m;
@@ -210,6 +212,12 @@ std::string Simulation::truth_toml() const {
   o << "cda_m2 = " << p_->truck.cda_m2 << "\n";
   o << "driveline_efficiency = " << p_->truck.driveline.efficiency << "\n";
   o << "effective_mass_at_end_kg = " << p_->plant.effective_mass_kg() << "  # in the gear driven at the end\n";
+  // Where the fuel went over the run, in J: the truth of the estimator's fuel breakdown.
+  const EnergyLedger& led = p_->plant.ledger();
+  o << "\n[fuel_breakdown]\n";
+  o << "fuel_l = " << led.fuel_j / (p_->truck.fuel.lhv_jpkg * p_->truck.fuel.density_kgpl) << "\n";
+  o << "fuel_j = " << led.fuel_j << "\n";
+  for (const BreakdownTruth& row : breakdown_truth(led)) o << row.name << "_j = " << row.energy_j << "\n";
   o << "\n[effects]\n";
   for (const auto& e : effect_catalog()) {
     if (sc.effects.on(e.id)) o << e.name << " = " << sc.effects.magnitude(e.id) << "\n";

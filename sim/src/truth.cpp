@@ -153,4 +153,15 @@ std::optional<ParseError> TruthRecorder::finish(const std::string& truth_toml) {
   return m.value().close();
 }
 
+std::array<BreakdownTruth, 8> breakdown_truth(const EnergyLedger& e) {
+  return {{{"engine", e.thermal_j + e.friction_j},
+           {"driveline", e.driveline_j + e.clutch_j},
+           {"accessories", e.accessories_j + e.fan_j},
+           {"aero", e.aero_j},
+           {"rolling", e.roll_j + e.profile_j},
+           {"grade", e.grade_j},
+           {"acceleration", e.kinetic_j},
+           {"braking", e.brake_j}}};
+}
+
 }  // namespace roadload::sim

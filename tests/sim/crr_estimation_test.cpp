@@ -29,18 +29,8 @@ Score estimate(const char* scenario, std::uint64_t seed) {
 
   auto route = RouteGeometry::build(sc.route.points);
   EXPECT_TRUE(route.has_value());
-  std::vector<CellSpan> cells;
-  for (const Cell& c : sc.route.cells) cells.push_back({c.id, c.start_m, c.end_m});
-  DriveAnalyzer analyzer(db, *route, cells, AnalyzerConfig{});
-  // Streams in capture-time order, as a recording reader would hand them over.
-  std::size_t f = 0, g = 0, w = 0;
-  while (f < sink.frames.size()) {
-    const CaptureTime t = sink.frames[f].t;
-    while (g < sink.fixes.size() && sink.fixes[g].t <= t) analyzer.push(sink.fixes[g++]);
-    while (w < sink.weather_samples.size() && sink.weather_samples[w].t <= t) analyzer.push(sink.weather_samples[w++]);
-    analyzer.push(sink.frames[f++]);
-  }
-  analyzer.finish();
+  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), AnalyzerConfig{});
+  test::analyze(analyzer, sink);
 
   Score s;
   const auto truths = truth.cells();

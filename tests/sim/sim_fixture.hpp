@@ -1,6 +1,6 @@
 #pragma once
-// Shared by the simulator's tests: built-in scenarios from the source tree and a sink that keeps
-// everything in memory.
+// Shared by the simulator's tests: built-in scenarios from the source tree and the in-memory drive
+// of simulated_drive.hpp.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -9,21 +9,9 @@
 #include "roadload/definitions.hpp"
 #include "roadload/sim/scenario.hpp"
 #include "roadload/sim/simulation.hpp"
+#include "simulated_drive.hpp"
 
 namespace roadload::sim::test {
-
-class MemorySink final : public SampleSink {
- public:
-  void frame(const CanFrame& f) override { frames.push_back(f); }
-  void accel(const AccelSample& s) override { accels.push_back(s); }
-  void gnss(const GnssFix& s) override { fixes.push_back(s); }
-  void weather(const WeatherSample& s) override { weather_samples.push_back(s); }
-
-  std::vector<CanFrame> frames;
-  std::vector<AccelSample> accels;
-  std::vector<GnssFix> fixes;
-  std::vector<WeatherSample> weather_samples;
-};
 
 inline Scenario builtin(const std::string& name) {
   auto s = load_scenario(name, ROADLOAD_CONFIG_DIR);

@@ -9,6 +9,7 @@
 #include "roadload/can_frame.hpp"
 #include "roadload/crr_filter.hpp"
 #include "roadload/drive_signals.hpp"
+#include "roadload/fuel_breakdown.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "roadload/route_geometry.hpp"
 #include "roadload/samples.hpp"
@@ -53,6 +54,7 @@ struct CellResult {
   std::string reason;       // why not, when not
   double speed_mps = 0;
   double roll_force_n = 0;  // CRR x weight
+  FuelBreakdown fuel;       // over the time the centre of gravity was in the cell
 };
 
 struct TripResult {
@@ -61,7 +63,9 @@ struct TripResult {
   double crr = 0, crr_sigma = 0, cda_m2 = 0, torque_bias_nm = 0, torque_bias_sigma_nm = 0;
   bool identified = false;
   std::size_t gnss_used = 0, gnss_off_route = 0;
+  std::size_t no_fuel_rate = 0;  // ticks without LFE1: the breakdown's measured fuel misses them
   CrrCounters filter;
+  FuelBreakdown fuel;
 };
 
 class DriveAnalyzer {
@@ -86,7 +90,13 @@ class DriveAnalyzer {
     double speed_mps;
     bool usable;
     std::size_t step;  // smoother index of the estimate after this tick's update
+    PowerInterval power;  // since the previous tick; its resistances are filled in after smoothing
+    double air_density_kgpm3, headwind_mps, grade_rad;
   };
+  // The smoothed state at a tick (the filter's own after the last prediction).
+  CrrFilter::Vec state_at(const Tick& k) const;
+  CrrFilter::Mat covariance_at(const Tick& k) const;
+  void fill_resistances(Tick& k) const;
   void tick(CaptureTime t, double wheel_speed_mps);
   // Variance of the CRR change as axles cross cell boundaries between two front-axle positions.
   double crr_jump_variance(double from_front_m, double to_front_m) const;
@@ -103,11 +113,13 @@ class DriveAnalyzer {
   CrrFilter filter_;
   ekf::RtsSmoother<CrrState::count> smoother_;
   std::vector<Tick> ticks_;
+  std::vector<FuelBreakdown> cell_fuel_;
   TripResult trip_;
   bool started_ = false;
   CaptureTime last_tick_{};
   double odometer_m_ = 0;
   double last_front_m_ = 0;
+  double last_speed_mps_ = 0;
   std::vector<double> boundaries_m_;  // every cell start and end, sorted
   double offset_sum_m_ = 0;
   std::size_t gnss_n_ = 0;

@@ -31,6 +31,15 @@ struct CellTruth {
   bool complete = false;      // the whole truck crossed the whole cell
 };
 
+// The energy ledger in the rows of a fuel breakdown (seed report Figures 2.2, 6.4), in J:
+// engine = thermal + friction, driveline = gear losses + clutch slip, accessories with the fan,
+// rolling = static + dynamic (profile) rolling resistance, acceleration = kinetic energy gained.
+struct BreakdownTruth {
+  const char* name;
+  double energy_j;
+};
+std::array<BreakdownTruth, 8> breakdown_truth(const EnergyLedger& e);
+
 class TruthRecorder {
  public:
   TruthRecorder(const Route& route, const TruckParams& truck);

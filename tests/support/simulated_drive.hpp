@@ -1,0 +1,43 @@
+#pragma once
+// A simulated drive kept in memory and handed to the estimator as a recording reader would hand it
+// over: shared by the simulator's tests and the accuracy benchmark.
+#include <vector>
+
+#include "roadload/drive_analyzer.hpp"
+#include "roadload/sim/simulation.hpp"
+
+namespace roadload::sim::test {
+
+class MemorySink final : public SampleSink {
+ public:
+  void frame(const CanFrame& f) override { frames.push_back(f); }
+  void accel(const AccelSample& s) override { accels.push_back(s); }
+  void gnss(const GnssFix& s) override { fixes.push_back(s); }
+  void weather(const WeatherSample& s) override { weather_samples.push_back(s); }
+
+  std::vector<CanFrame> frames;
+  std::vector<AccelSample> accels;
+  std::vector<GnssFix> fixes;
+  std::vector<WeatherSample> weather_samples;
+};
+
+// The cells of a scenario's route, as the estimator takes them.
+inline std::vector<CellSpan> cell_spans(const Scenario& sc) {
+  std::vector<CellSpan> cells;
+  for (const Cell& c : sc.route.cells) cells.push_back({c.id, c.start_m, c.end_m});
+  return cells;
+}
+
+// CAN, GNSS and weather in capture-time order, then the smoother.
+inline void analyze(DriveAnalyzer& analyzer, const MemorySink& sink) {
+  std::size_t f = 0, g = 0, w = 0;
+  while (f < sink.frames.size()) {
+    const CaptureTime t = sink.frames[f].t;
+    while (g < sink.fixes.size() && sink.fixes[g].t <= t) analyzer.push(sink.fixes[g++]);
+    while (w < sink.weather_samples.size() && sink.weather_samples[w].t <= t) analyzer.push(sink.weather_samples[w++]);
+    analyzer.push(sink.frames[f++]);
+  }
+  analyzer.finish();
+}
+
+}  // namespace roadload::sim::test

@@ -1,0 +1,252 @@
+// roadload grade: a route's grade profile per distance bin with its standard error, from the
+// route's survey or from the GNSS heights of several recorded passes (seed report, Chapter 5),
+// written as a CSV the force balance can take its grade and grade uncertainty from.
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "options.hpp"
+#include "roadload/definitions.hpp"
+#include "roadload/grade_profile.hpp"
+#include "roadload/recording/reader.hpp"
+#include "roadload/recording/writer.hpp"
+#include "roadload/route_file.hpp"
+
+namespace roadload::cli {
+namespace {
+
+constexpr double kDefaultSurveySigma_m = 0.02;  // a levelled or RTK survey: about 2 cm in height
+
+constexpr const char* kHelp =
+    "usage: roadload grade --route ROUTE [RECORDING...] --out FILE [options]\n\n"
+    "Builds the route's grade profile per distance bin, with its standard error. Grade is the force\n"
+    "balance's largest error: 0.1 % of grade is 356 N on the 36 t truck, 0.001 in CRR.\n\n"
+    "Without recordings: from the route's survey elevations, a central difference over +-BASE, with\n"
+    "the survey's height error (--survey-sigma) at both ends.\n"
+    "With recordings: from their GNSS heights (seed report, Chapter 5). Each fix is placed on the\n"
+    "route; fixes off it, beyond its ends or without a 3-D fix are counted and dropped. A recording\n"
+    "is cut into passes where the travel along the route reverses. Each pass is averaged per bin,\n"
+    "then the passes; grade is the least-squares slope over +-BASE and its standard error the\n"
+    "scatter of the passes' slopes over sqrt(passes). A bin with fewer than --min-passes passes has\n"
+    "no grade (an empty field), never a guess. At 30 mph a code-DGPS pass gives about 0.25 % per bin:\n"
+    "six to ten passes, in both directions, reach 0.1 %. Each bin is compared with the survey on\n"
+    "standard output, and summarised on standard error.\n\n"
+    "  --route R            route file or built-in route name (config/routes): polyline and survey\n"
+    "  --out FILE           write FILE: s_m,elevation_m,elevation_sigma_m,grade_pct,grade_sigma_pct,passes\n"
+    "                       one line per bin; passes is 0 for the survey\n"
+    "  --bin M              bin length along the route (default 10)\n"
+    "  --base M             slope over +-M, at least one bin (default 30, as analyze's survey grade)\n"
+    "  --min-passes N       passes a bin needs for a grade (default 2: one pass has no scatter)\n"
+    "  --survey-sigma M     the survey's height standard error (default 0.02)\n"
+    "  --max-offset M       fixes farther than M from the route are on another road (default 15)\n"
+    "  --antenna-height M   GNSS antenna above the road (default: each recording's meta.toml\n"
+    "                       vehicle.gnss_antenna_height_m, else 0: heights are then the antenna's)\n"
+    "  -q, --quiet          no per-bin comparison on standard output\n"
+    "  -h, --help           this text\n";
+
+struct Options {
+  std::string route_name, out;
+  std::vector<std::string> recordings;
+  GradeConfig cfg;
+  double survey_sigma_m = kDefaultSurveySigma_m;
+  std::optional<double> antenna_height_m;
+  bool quiet = false;
+};
+
+// One recording's GNSS fixes, with the antenna height that turns them into road heights.
+struct Track {
+  std::string path;
+  std::vector<GnssFix> fixes;
+  double antenna_height_m = 0;
+};
+
+std::string resolve_route(const std::string& r) {
+  if (std::filesystem::exists(r)) return r;
+  return data_dir() + "/routes/" + r + ".toml";
+}
+
+// Returns an exit code when the options are unusable, else nullopt.
+std::optional<int> parse(OptionParser& opt, Options& o) {
+  while (opt.more()) {
+    if (opt.flag("-h", "--help")) {
+      std::fputs(kHelp, stdout);
+      return kExitOk;
+    }
+    if (opt.flag("-q", "--quiet")) {
+      o.quiet = true;
+    } else if (auto r = opt.value("--route")) {
+      o.route_name = *r;
+    } else if (auto f = opt.value("--out")) {
+      o.out = *f;
+    } else if (auto b = opt.real("--bin", 0.5, 1000)) {
+      o.cfg.bin_m = *b;
+    } else if (auto base = opt.real("--base", 0.5, 5000)) {
+      o.cfg.base_m = *base;
+    } else if (auto n = opt.number("--min-passes", 1, 1000)) {
+      o.cfg.min_passes = static_cast<std::size_t>(*n);
+    } else if (auto s = opt.real("--survey-sigma", 0, 10)) {
+      o.survey_sigma_m = *s;
+    } else if (auto m = opt.real("--max-offset", 0.1, 1000)) {
+      o.cfg.max_offset_m = *m;
+    } else if (auto a = opt.real("--antenna-height", -10, 20)) {
+      o.antenna_height_m = *a;
+    } else if (auto p = opt.positional()) {
+      o.recordings.emplace_back(*p);
+    } else if (!opt.failed()) {
+      return opt.fail_unknown();
+    }
+  }
+  if (opt.failed()) return kExitUsage;
+  if (o.route_name.empty()) return opt.fail("--route is required");
+  if (o.out.empty()) return opt.fail("--out is required");
+  if (o.cfg.base_m < o.cfg.bin_m) return opt.fail("--base must be at least --bin: a slope needs three bins");
+  return std::nullopt;
+}
+
+// Reads the GnssFix records of a recording; malformed lines are printed and counted in `bad`.
+std::optional<int> read_track(const std::string& path, const Options& o, Track& t, std::uint64_t& bad) {
+  auto reader = recording::RecordingReader::open(path);
+  if (!reader) {
+    std::fprintf(stderr, "roadload grade: %s\n", reader.error().to_string().c_str());
+    return kExitNoInput;
+  }
+  t.path = path;
+  const auto& vehicle = reader.value().metadata().vehicle;
+  const auto it = vehicle.find("gnss_antenna_height_m");
+  if (o.antenna_height_m) {
+    t.antenna_height_m = *o.antenna_height_m;
+  } else if (it != vehicle.end()) {
+    t.antenna_height_m = it->second;
+  } else {
+    std::fprintf(stderr,
+                 "roadload grade: %s: meta.toml: vehicle.gnss_antenna_height_m: not given; heights are the antenna's\n",
+                 path.c_str());
+  }
+  while (const recording::Record* r = reader.value().next()) {
+    if (const auto* f = std::get_if<GnssFix>(r)) t.fixes.push_back(*f);
+  }
+  const recording::ErrorLog& errors = reader.value().errors();
+  for (const ParseError& e : errors.kept()) std::fprintf(stderr, "roadload grade: %s\n", e.to_string().c_str());
+  if (errors.count() > errors.kept().size()) {
+    std::fprintf(stderr, "roadload grade: %s: ... and %" PRIu64 " more malformed lines\n", path.c_str(),
+                 errors.count() - errors.kept().size());
+  }
+  bad += errors.count();
+  if (t.fixes.empty()) std::fprintf(stderr, "roadload grade: %s: no GNSS fixes (gnss.csv)\n", path.c_str());
+  return std::nullopt;
+}
+
+std::optional<int> write_csv(const std::string& path, const GradeProfile& g) {
+  auto csv = recording::OutputFile::create(path);
+  if (!csv) {
+    std::fprintf(stderr, "roadload grade: %s\n", csv.error().to_string().c_str());
+    return kExitCantCreate;
+  }
+  csv.value().write("s_m,elevation_m,elevation_sigma_m,grade_pct,grade_sigma_pct,passes\n");
+  recording::LineBuilder line;
+  for (const GradeBin& b : g.bins()) {
+    line.clear();
+    line.num(b.s_m, 1).sep().num(b.elevation_m, 3).sep().num(b.elevation_sigma_m, 3).sep();
+    line.num(100 * std::tan(b.grade_rad), 4).sep().num(100 * b.grade_sigma_rad, 4).sep();
+    line.num(static_cast<std::int64_t>(b.passes));
+    csv.value().write(line.finish());
+  }
+  if (auto e = csv.value().close()) {
+    std::fprintf(stderr, "roadload grade: %s\n", e->to_string().c_str());
+    return kExitCantCreate;
+  }
+  return std::nullopt;
+}
+
+double pct(double rad) { return 100 * std::tan(rad); }
+
+// A line per bin on standard output, and the summary on standard error.
+void compare(const GradeProfile& gnss, const GradeProfile& survey, bool quiet) {
+  if (!quiet) std::printf("%8s %9s %9s %9s %9s %6s\n", "s_m", "gnss_%", "sigma_%", "survey_%", "diff_%", "passes");
+  double diff2 = 0, sigma = 0;
+  std::size_t n = 0, with_sigma = 0;
+  for (std::size_t k = 0; k < gnss.bins().size(); ++k) {
+    const GradeBin& b = gnss.bins()[k];
+    const double survey_pct = pct(survey.bins()[k].grade_rad);
+    if (!std::isfinite(b.grade_rad)) {
+      if (!quiet) std::printf("%8.1f %9s %9s %9.4f %9s %6zu\n", b.s_m, "-", "-", survey_pct, "-", b.passes);
+      continue;
+    }
+    const double diff = pct(b.grade_rad) - survey_pct;
+    if (!quiet) {
+      std::printf("%8.1f %9.4f %9.4f %9.4f %9.4f %6zu\n", b.s_m, pct(b.grade_rad), 100 * b.grade_sigma_rad, survey_pct,
+                  diff, b.passes);
+    }
+    diff2 += diff * diff;
+    ++n;
+    if (!std::isfinite(b.grade_sigma_rad)) continue;  // --min-passes 1: a lone pass has no scatter
+    sigma += 100 * b.grade_sigma_rad;
+    ++with_sigma;
+  }
+  const GnssFixCounts& f = gnss.fixes();
+  std::fprintf(stderr,
+               "grade: passes %zu; GNSS fixes: %zu used, %zu off the route, %zu beyond its ends, %zu without a 3-D "
+               "fix, %zu with poor hdop\n",
+               gnss.passes(), f.used, f.off_route, f.beyond_ends, f.no_3d_fix, f.poor_hdop);
+  std::fprintf(stderr, "grade: %zu of %zu bins with a grade (--min-passes %zu)\n", n, gnss.bins().size(),
+               gnss.config().min_passes);
+  if (n == 0) return;
+  const double rms_pct = std::sqrt(diff2 / static_cast<double>(n));
+  std::fprintf(stderr, "grade: against the survey: RMS difference %.4f %% of grade; ", rms_pct);
+  if (with_sigma == 0) {
+    std::fprintf(stderr, "no grade sigma (one pass has no scatter)\n");
+  } else {
+    std::fprintf(stderr, "mean grade sigma %.4f %%\n", sigma / static_cast<double>(with_sigma));
+  }
+}
+
+}  // namespace
+
+int run_grade(Args args) {
+  OptionParser opt("grade", args);
+  Options o;
+  if (auto code = parse(opt, o)) return *code;
+
+  auto route = load_route_file(resolve_route(o.route_name));
+  if (!route) {
+    std::fprintf(stderr, "roadload grade: %s\n", route.error().to_string().c_str());
+    return kExitNoInput;
+  }
+  const auto geometry = RouteGeometry::build(route.value().points);
+  if (!geometry) {
+    std::fprintf(stderr, "roadload grade: %s: point: fewer than two distinct points\n",
+                 route.value().source_file.c_str());
+    return kExitDataErr;
+  }
+  const GradeProfile survey = GradeProfile::from_survey(*geometry, o.survey_sigma_m, o.cfg);
+  if (o.recordings.empty()) {
+    if (auto code = write_csv(o.out, survey)) return *code;
+    std::fprintf(stderr, "grade: survey profile of %s: %zu bins of %.1f m, grade sigma %.4f %% (survey sigma %.3f m)\n",
+                 route.value().source_file.c_str(), survey.bins().size(), o.cfg.bin_m,
+                 100 * std::sqrt(2.0) * o.survey_sigma_m / (2 * o.cfg.base_m), o.survey_sigma_m);
+    return kExitOk;
+  }
+
+  std::vector<Track> tracks(o.recordings.size());
+  std::uint64_t malformed = 0;
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    if (auto code = read_track(o.recordings[i], o, tracks[i], malformed)) return *code;
+  }
+  std::vector<GnssTrack> gnss_tracks;
+  for (const Track& t : tracks) gnss_tracks.push_back({t.fixes, t.antenna_height_m});
+  const GradeProfile gnss = GradeProfile::from_gnss(*geometry, gnss_tracks, o.cfg);
+  if (auto code = write_csv(o.out, gnss)) return *code;
+  compare(gnss, survey, o.quiet);
+  if (gnss.bins_with_grade() == 0) {
+    std::fprintf(stderr, "roadload grade: no bin has a grade: passes %zu, recordings %zu, --min-passes %zu (drive the "
+                 "route again, in either direction)\n", gnss.passes(), tracks.size(), o.cfg.min_passes);
+    return kExitDataErr;
+  }
+  return malformed > 0 ? kExitDataErr : kExitOk;
+}
+
+}  // namespace roadload::cli
