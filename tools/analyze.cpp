@@ -8,6 +8,7 @@
 #include "analyze_results.hpp"
 #include "command.hpp"
 #include "options.hpp"
+#include "roadload/contact_forces.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/recording/reader.hpp"
@@ -19,9 +20,12 @@ namespace {
 constexpr const char* kHelp =
     "usage: roadload analyze <recording> --route ROUTE --out RESULTS [options]\n\n"
     "Estimates the coefficient of rolling resistance (CRR) along the drive and per pavement cell:\n"
-    "the J1939 force balance (EEC1, EEC3, EC1, ETC2, CCVS1) in an EKF over speed, CRR and CdA, with\n"
-    "grade from the route's survey, air from the weather station, position from GNSS and odometry,\n"
-    "then a fixed-interval smoother so each cell uses data on both sides of it.\n\n"
+    "the J1939 force balance (EEC1, EEC3, EC1, ETC2, CCVS1) in an EKF over speed, CRR, CdA and a\n"
+    "torque bias, with grade from the route's survey, air from the weather station, position from\n"
+    "GNSS and odometry, then a fixed-interval smoother so each cell uses data on both sides of it.\n"
+    "Per cell also: the fuel breakdown (engine, driveline, accessories, aero, rolling, grade,\n"
+    "acceleration, braking; litres at 35.8 MJ/L) and, from the accelerometers, the contact force\n"
+    "per axle (report Eq. 2.1).\n\n"
     "  --route R       route file or built-in route name (config/routes): geometry, grade and cells\n"
     "  --out DIR       write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval; fuel breakdown per cell\n"
     "                  in litres) and DIR/trip.json\n"
@@ -128,12 +132,24 @@ int run_analyze(Args args) {
   std::vector<CellSpan> cells;
   for (const CellDef& c : route.value().cells) cells.push_back({c.id, c.start_m, c.end_m});
   DriveAnalyzer analyzer(db, std::move(*geometry), cells, cfg);
-  while (const recording::Record* r = reader.value().next()) {
-    std::visit([&](const auto& s) {
-      using T = std::decay_t<decltype(s)>;
-      if constexpr (!std::is_same_v<T, AccelSample>) analyzer.push(s);
-    }, *r);
+  std::optional<ContactForces> contact;
+  std::vector<std::string> axle_names;
+  {
+    std::vector<SensorPlacement> placements;
+    for (const auto& s : reader.value().metadata().sensors) placements.push_back({s.id, s.kind, s.position});
+    LayoutOptions lenient;
+    lenient.skip_axles_without_sensors = true;
+    auto layout = build_axle_layout(placements, vehicle, recording + "/meta.toml", lenient);
+    if (layout) {
+      for (const std::string& why : layout.value().skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
+      for (const AxleContact& a : layout.value().axles) axle_names.push_back(a.name);
+      contact.emplace(std::move(layout.value()), cells.size());
+      analyzer.attach(&*contact);
+    } else {
+      std::fprintf(stderr, "roadload analyze: contact forces not estimated: %s\n", layout.error().to_string().c_str());
+    }
   }
+  while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { analyzer.push(s); }, *r);
   for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
   analyzer.finish();
   const std::vector<CellResult> results = analyzer.cells();
@@ -141,7 +157,7 @@ int run_analyze(Args args) {
 
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
-  for (auto err : {write_cells_csv(out + "/cells.csv", results), write_trip_json(out + "/trip.json", trip)}) {
+  for (auto err : {write_cells_csv(out + "/cells.csv", results, axle_names), write_trip_json(out + "/trip.json", trip)}) {
     if (err) {
       std::fprintf(stderr, "roadload analyze: %s\n", err->to_string().c_str());
       return kExitCantCreate;

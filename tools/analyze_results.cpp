@@ -56,11 +56,13 @@ Parsed<std::map<std::string, double>> read_truth_energy(const std::string& path)
 
 }  // namespace
 
-std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells) {
+std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells,
+                                          const std::vector<std::string>& axle_names) {
   auto csv = recording::OutputFile::create(path);
   if (!csv) return csv.error();
   std::string header = "cell,start_m,end_m,samples,crr,crr_lo,crr_hi,crr_sigma,identified,speed_mps,roll_force_n,fuel_l";
   for (std::size_t i = 0; i < kUses; ++i) header += std::string(",") + to_string(use(i)) + "_l";
+  for (const std::string& a : axle_names) header += ",fz_" + a + "_mean_n,fz_" + a + "_std_n,fz_" + a + "_dynamic_std_n";
   csv.value().write(header + ",reason\n");
   recording::LineBuilder line;
   const double nan = std::nan("");
@@ -74,6 +76,11 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
     const bool driven = c.fuel.distance_m > 0;
     line.num(driven ? c.fuel.fuel_l : nan, 5).sep();
     for (std::size_t i = 0; i < kUses; ++i) line.num(driven ? c.fuel.liters(use(i)) : nan, 5).sep();
+    for (std::size_t a = 0; a < axle_names.size(); ++a) {
+      const bool have_fz = a < c.contact.size() && c.contact[a].fz.count > 1;
+      line.num(have_fz ? c.contact[a].fz.mean_n : nan, 1).sep().num(have_fz ? c.contact[a].fz.std_n : nan, 1).sep();
+      line.num(have_fz ? c.contact[a].dynamic.std_n : nan, 1).sep();
+    }
     line.text(c.reason);
     csv.value().write(line.finish());
   }

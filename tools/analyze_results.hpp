@@ -11,7 +11,10 @@
 
 namespace roadload::cli {
 
-std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells);
+// One row per cell; per axle (named as the contact-force layout names them) the mean and standard
+// deviation of the contact force and the standard deviation of its dynamic part.
+std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells,
+                                          const std::vector<std::string>& axle_names);
 std::optional<ParseError> write_trip_json(const std::string& path, const TripResult& trip);
 
 // A simulation's truth folder: the true CRR per cell (cells.csv) and where the fuel went (truth.toml [fuel_breakdown]).

@@ -1,6 +1,7 @@
 #include "roadload/route_file.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "roadload/toml_fields.hpp"
 
@@ -59,7 +60,8 @@ Parsed<RouteFile> load_route_file(const std::string& path) {
       RoutePoint p;
       p.lat_deg = f.required_number(*t, "lat_deg", where);
       p.lon_deg = f.required_number(*t, "lon_deg", where);
-      p.elev_m = f.required_number(*t, "elev_m", where);
+      // A route without a survey still has geometry and cells; the estimator says where grade is missing.
+      p.elev_m = f.number(*t, "elev_m", where).value_or(std::numeric_limits<double>::quiet_NaN());
       if (std::abs(p.lat_deg) > 90) f.fail(t->get("lat_deg"), where + "lat_deg", "outside -90..90");
       if (std::abs(p.lon_deg) > 180) f.fail(t->get("lon_deg"), where + "lon_deg", "outside -180..180");
       d.points.push_back(p);

@@ -90,6 +90,17 @@ void DriveAnalyzer::push(const WeatherSample& w) {
   }
 }
 
+void DriveAnalyzer::push(const AccelSample& sample) {
+  if (contact_ != nullptr) contact_->push(sample);
+}
+
+int DriveAnalyzer::cell_at(double s_m) const {
+  for (std::size_t i = 0; i < cells_.size(); ++i) {
+    if (s_m >= cells_[i].start_m && s_m < cells_[i].end_m) return static_cast<int>(i);
+  }
+  return -1;
+}
+
 void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   if (!started_) {
     const Reading& ref = signals_.get(Quantity::reference_torque_nm);
@@ -111,6 +122,8 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   }
   const double s_cg = s_front - config_.cg_behind_front_m;
   const TractionEstimate tr = traction(signals_, config_.filter.truck, t);
+  const double grade = route_.grade_rad(s_cg);
+  const Unusable why = tr.reason == Unusable::none && std::isnan(grade) ? Unusable::no_elevation : tr.reason;
   model::ForceInputs in;
   in.t = t;
   in.tractive_n = tr.tractive_n;
@@ -119,9 +132,15 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   in.crr_jump_variance = crr_jump_variance(last_front_m_, s_front);
   last_front_m_ = s_front;
   in.air_density_kgpm3 = model::air_density_kgpm3(pressure_pa_, air_temp_c_);
-  in.grade_rad = route_.grade_rad(s_cg);
+  in.grade_rad = std::isnan(grade) ? 0.0 : grade;
   in.headwind_mps = wind_mps_ * std::cos((wind_from_deg_ - route_.heading_deg(s_cg)) * kDeg);
-  in.usable = tr.reason == Unusable::none;
+  in.usable = why == Unusable::none;
+  if (contact_ != nullptr) {
+    std::array<int, kMaxContactAxles> under{};
+    const auto& axles = contact_->layout().axles;
+    for (std::size_t i = 0; i < axles.size() && i < under.size(); ++i) under[i] = cell_at(s_front - axles[i].position_m);
+    contact_->set_axle_cells(t, std::span(under.data(), std::min(axles.size(), under.size())), in.grade_rad, wheel_speed_mps);
+  }
   filter_.predict_to(in);
   filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
   PowerInterval power;
@@ -140,13 +159,13 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   power.speed_to_mps = wheel_speed_mps;
   power.effective_mass_kg = tr.effective_mass_kg > 0 ? tr.effective_mass_kg : config_.filter.truck.mass_kg;
   last_speed_mps_ = wheel_speed_mps;
-  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, smoother_.size(), power, in.air_density_kgpm3,
+  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, why, smoother_.size(), power, in.air_density_kgpm3,
                     in.headwind_mps, in.grade_rad});
   ++trip_.ticks;
   if (in.usable) {
     ++trip_.usable_ticks;
   } else {
-    ++trip_.unusable[static_cast<std::size_t>(tr.reason)];
+    ++trip_.unusable[static_cast<std::size_t>(why)];
   }
 }
 
@@ -209,11 +228,13 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
     const CellSpan& c = cells_[i];
     CellResult r;
     if (i < cell_fuel_.size()) r.fuel = cell_fuel_[i];
+    for (std::size_t a = 0; contact_ != nullptr && a < contact_->axle_count(); ++a) r.contact.push_back(contact_->cell(i, a));
     r.id = c.id;
     r.start_m = c.start_m;
     r.end_m = c.end_m;
     double crr = 0, sigma = 0, speed = 0;
     std::size_t seen = 0;
+    std::array<std::size_t, kUnusableCount> why{};
     // A cell longer than the truck is read while the whole truck is on it; a shorter one while its
     // centre of gravity is.
     const bool whole = c.end_m - c.start_m > truck_length_m();
@@ -224,6 +245,7 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
     for (const Tick& k : ticks_) {
       if (!inside(k)) continue;
       ++seen;
+      ++why[static_cast<std::size_t>(k.why)];
       if (!k.usable) continue;
       crr += state_at(k)(CrrState::crr);
       sigma += std::sqrt(covariance_at(k)(CrrState::crr, CrrState::crr));
@@ -231,7 +253,11 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
       ++r.samples;
     }
     if (r.samples == 0) {
-      r.reason = seen == 0 ? "not driven" : "no usable force balance (braking, shifting or missing signals)";
+      // Name the commonest reason, so a missing input shows as itself and not as a blank.
+      const auto worst = static_cast<std::size_t>(std::max_element(why.begin() + 1, why.end()) - why.begin());
+      r.reason = seen == 0 ? std::string("not driven")
+                           : std::string("no usable force balance: ") + to_string(static_cast<Unusable>(worst)) + " (" +
+                                 std::to_string(why[worst]) + " of " + std::to_string(seen) + " ticks)";
       out.push_back(r);
       continue;
     }

@@ -72,6 +72,8 @@ const char* to_string(Unusable u) {
     case Unusable::braking: return "braking";
     case Unusable::declutched: return "shifting or declutched";
     case Unusable::stale: return "inputs are stale";
+    case Unusable::no_elevation: return "no elevation in the route's survey (no grade)";
+    case Unusable::count: break;
   }
   return "?";
 }

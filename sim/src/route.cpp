@@ -53,6 +53,11 @@ Parsed<Route> Route::build(RouteDef def) {
   const auto& geod = GeographicLib::Geodesic::WGS84();
   Route r;
   r.cumulative_m_.push_back(0.0);
+  for (std::size_t i = 0; i < def.points.size(); ++i) {
+    if (std::isnan(def.points[i].elev_m)) {
+      return ParseError{where, 0, "point[" + std::to_string(i) + "].elev_m", "the simulator needs every point's elevation"};
+    }
+  }
   for (std::size_t i = 0; i + 1 < def.points.size(); ++i) {
     double s12 = 0, azi1 = 0, azi2 = 0;
     geod.Inverse(def.points[i].lat_deg, def.points[i].lon_deg, def.points[i + 1].lat_deg, def.points[i + 1].lon_deg,

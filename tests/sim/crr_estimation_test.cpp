@@ -84,3 +84,52 @@ TEST(CrrEstimation, Th66At55MphTripCrrWithin0p0003) {
 
 }  // namespace
 }  // namespace roadload::sim
+
+namespace roadload::sim {
+namespace {
+
+// What a cell says when an input the force balance needs is missing: the reason, not a number.
+std::vector<CellResult> cells_of_mainline(bool drop_transport, bool drop_elevation) {
+  const j1939::Database db = test::core_database();
+  Scenario sc = test::builtin("mnroad-mainline-30mph");
+  sc.accelerometers = 0;
+  sc.end_m = 1200;
+  Simulation sim(sc, 1, db);
+  test::MemorySink sink;
+  sim.run(sink, nullptr);
+  if (drop_transport) {
+    // EC1 (reference torque) travels by BAM: without the transport protocol it never arrives.
+    std::erase_if(sink.frames, [](const CanFrame& f) {
+      const auto pf = (f.id >> 16) & 0xFF;
+      return pf == 0xEC || pf == 0xEB;
+    });
+  }
+  std::vector<GeoPoint> points = sc.route.points;
+  if (drop_elevation) {
+    for (GeoPoint& p : points) p.elev_m = std::nan("");
+  }
+  auto route = RouteGeometry::build(points);
+  EXPECT_TRUE(route.has_value());
+  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), AnalyzerConfig{});
+  test::analyze(analyzer, sink);
+  return analyzer.cells();
+}
+
+TEST(CrrEstimation, CellsSayTheyLackTheReferenceTorqueWithoutEc1) {
+  const auto cells = cells_of_mainline(true, false);
+  ASSERT_FALSE(cells.empty());
+  EXPECT_EQ(cells[0].samples, 0u);
+  EXPECT_NE(cells[0].reason.find("no reference torque"), std::string::npos) << cells[0].reason;
+  EXPECT_FALSE(cells[0].identified);
+}
+
+TEST(CrrEstimation, CellsSayTheyLackGradeWithoutSurveyElevations) {
+  const auto cells = cells_of_mainline(false, true);
+  ASSERT_FALSE(cells.empty());
+  EXPECT_EQ(cells[0].samples, 0u);
+  EXPECT_NE(cells[0].reason.find("no elevation"), std::string::npos) << cells[0].reason;
+  EXPECT_EQ(cells.back().reason, "not driven");
+}
+
+}  // namespace
+}  // namespace roadload::sim

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "roadload/can_frame.hpp"
+#include "roadload/contact_forces.hpp"
 #include "roadload/crr_filter.hpp"
 #include "roadload/drive_signals.hpp"
 #include "roadload/fuel_breakdown.hpp"
@@ -55,11 +56,12 @@ struct CellResult {
   double speed_mps = 0;
   double roll_force_n = 0;  // CRR x weight
   FuelBreakdown fuel;       // over the time the centre of gravity was in the cell
+  std::vector<AxleForceStats> contact;  // per axle of the attached ContactForces' layout (Eq. 2.1)
 };
 
 struct TripResult {
   std::size_t ticks = 0, usable_ticks = 0;
-  std::array<std::size_t, 7> unusable{};  // by Unusable
+  std::array<std::size_t, kUnusableCount> unusable{};  // ticks by Unusable
   double crr = 0, crr_sigma = 0, cda_m2 = 0, torque_bias_nm = 0, torque_bias_sigma_nm = 0;
   bool identified = false;
   std::size_t gnss_used = 0, gnss_off_route = 0;
@@ -75,6 +77,10 @@ class DriveAnalyzer {
   void push(const CanFrame& frame);
   void push(const GnssFix& fix);
   void push(const WeatherSample& sample);
+  // Accelerometer samples go to the attached contact-force estimator, placed by this drive's
+  // position; without one they are ignored.
+  void push(const AccelSample& sample);
+  void attach(ContactForces* contact) { contact_ = contact; }
   // Runs the smoother; call once after the last push.
   void finish();
 
@@ -89,6 +95,7 @@ class DriveAnalyzer {
     double s_cg_m;
     double speed_mps;
     bool usable;
+    Unusable why;
     std::size_t step;  // smoother index of the estimate after this tick's update
     PowerInterval power;  // since the previous tick; its resistances are filled in after smoothing
     double air_density_kgpm3, headwind_mps, grade_rad;
@@ -101,6 +108,7 @@ class DriveAnalyzer {
   // Variance of the CRR change as axles cross cell boundaries between two front-axle positions.
   double crr_jump_variance(double from_front_m, double to_front_m) const;
   double truck_length_m() const;
+  int cell_at(double s_m) const;
   double position_front_m() const { return odometer_m_ + (gnss_n_ > 0 ? offset_sum_m_ / static_cast<double>(gnss_n_) : 0.0); }
 
   const j1939::Database& db_;
@@ -114,6 +122,7 @@ class DriveAnalyzer {
   ekf::RtsSmoother<CrrState::count> smoother_;
   std::vector<Tick> ticks_;
   std::vector<FuelBreakdown> cell_fuel_;
+  ContactForces* contact_ = nullptr;
   TripResult trip_;
   bool started_ = false;
   CaptureTime last_tick_{};

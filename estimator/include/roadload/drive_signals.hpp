@@ -68,7 +68,10 @@ enum class Unusable : std::uint8_t {
   braking,
   declutched,           // shifting or clutch open
   stale,                // inputs older than the staleness limit
+  no_elevation,         // the route's survey has no elevation here: no grade
+  count
 };
+inline constexpr std::size_t kUnusableCount = static_cast<std::size_t>(Unusable::count);
 const char* to_string(Unusable u);
 
 struct TractionEstimate {
