@@ -96,7 +96,7 @@ std::optional<ParseError> write_trip_json(const std::string& path, const TripRes
     json << (i > 1 ? ", " : "") << "\"" << to_string(static_cast<Unusable>(i)) << "\": " << trip.unusable[i];
   }
   json << "},\n  \"gnss_used\": " << trip.gnss_used << ",\n  \"gnss_off_route\": " << trip.gnss_off_route
-       << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << trip.filter.mean_nis()
+       << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << trip.mean_nis << ",\n  \"mean_nis_95\": " << 1.96 * trip.mean_nis_se
        << ",\n  \"torque_bias_sigma_nm\": " << trip.torque_bias_sigma_nm << ",\n  \"fuel\": {\n    \"measured_l\": "
        << trip.fuel.fuel_l << ",\n    \"diesel_energy_mj_per_l\": " << kDieselEnergy_jpl / 1e6
        << ",\n    \"closure\": " << trip.fuel.closure() << ",\n    \"distance_m\": " << trip.fuel.distance_m
@@ -134,9 +134,9 @@ void print_cells(const std::vector<CellResult>& cells, const Truth* truth) {
 }
 
 void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth) {
-  std::fprintf(stderr, "analyze: trip CRR %.5f +- %.5f (%s), CdA %.2f m^2, %zu of %zu ticks usable, mean NIS %.2f\n",
+  std::fprintf(stderr, "analyze: trip CRR %.5f +- %.5f (%s), CdA %.2f m^2, %zu of %zu ticks usable, mean NIS %.2f +- %.2f\n",
                trip.crr, trip.crr_sigma, trip.identified ? "identified" : "NOT identified", trip.cda_m2,
-               trip.usable_ticks, trip.ticks, trip.filter.mean_nis());
+               trip.usable_ticks, trip.ticks, trip.mean_nis, 1.96 * trip.mean_nis_se);
   const FuelBreakdown& f = trip.fuel;
   std::fprintf(stderr, "analyze: fuel %.3f L measured (LFE1), rows sum to %.3f L (closure %+.2f %%)\n", f.fuel_l, f.sum_l(),
                100.0 * f.closure());

@@ -49,7 +49,7 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
     f(CrrState::speed, CrrState::crr) = -dt * weight * std::cos(in.grade_rad) / m_eff;
     f(CrrState::speed, CrrState::cda) = -dt * half_rho * v_air * std::abs(v_air) / m_eff;
     f(CrrState::speed, CrrState::torque_bias) = dt * in.wheel_force_per_flywheel_nm / m_eff;
-    const double sf = config_.force_noise_n / m_eff;
+    const double sf = std::hypot(config_.force_noise_n, config_.aero_force_noise_per_sqrt_hz * aero) / m_eff;
     q(CrrState::speed, CrrState::speed) = sf * sf * dt;
   } else {
     // The force balance cannot be trusted (brakes, clutch open): carry the speed by its

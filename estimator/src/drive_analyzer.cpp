@@ -142,7 +142,7 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
     contact_->set_axle_cells(t, std::span(under.data(), std::min(axles.size(), under.size())), in.grade_rad, wheel_speed_mps);
   }
   filter_.predict_to(in);
-  filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
+  const ekf::UpdateResult upd = filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
   PowerInterval power;
   power.dt_s = dt_s;
   const Reading& fuel = signals_.get(Quantity::fuel_rate_lph);
@@ -159,7 +159,7 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   power.speed_to_mps = wheel_speed_mps;
   power.effective_mass_kg = tr.effective_mass_kg > 0 ? tr.effective_mass_kg : config_.filter.truck.mass_kg;
   last_speed_mps_ = wheel_speed_mps;
-  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, why, smoother_.size(), power, in.air_density_kgpm3,
+  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, why, upd.accepted ? upd.nis : std::nan(""), smoother_.size(), power, in.air_density_kgpm3,
                     in.headwind_mps, in.grade_rad});
   ++trip_.ticks;
   if (in.usable) {
@@ -167,6 +167,33 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   } else {
     ++trip_.unusable[static_cast<std::size_t>(why)];
   }
+}
+
+void DriveAnalyzer::nis_statistics() {
+  constexpr std::size_t kBatch = 50;  // 5 s at CCVS1's 10 Hz, longer than the innovations' memory
+  std::vector<double> means;
+  double sum = 0, batch = 0;
+  std::size_t n = 0, in_batch = 0;
+  for (const Tick& k : ticks_) {
+    if (std::isnan(k.nis)) continue;
+    sum += k.nis;
+    ++n;
+    batch += k.nis;
+    if (++in_batch == kBatch) {
+      means.push_back(batch / kBatch);
+      batch = 0;
+      in_batch = 0;
+    }
+  }
+  if (n == 0) return;
+  trip_.mean_nis = sum / static_cast<double>(n);
+  if (means.size() < 2) return;
+  double m = 0, var = 0;
+  for (double x : means) m += x;
+  m /= static_cast<double>(means.size());
+  for (double x : means) var += (x - m) * (x - m);
+  var /= static_cast<double>(means.size() - 1);
+  trip_.mean_nis_se = std::sqrt(var / static_cast<double>(means.size()));
 }
 
 CrrFilter::Vec DriveAnalyzer::state_at(const Tick& k) const {
@@ -219,6 +246,7 @@ void DriveAnalyzer::finish() {
   trip_.torque_bias_sigma_nm = std::sqrt(filter_.core().p()(CrrState::torque_bias, CrrState::torque_bias));
   trip_.identified = n > 0 && trip_.crr_sigma <= config_.filter.identified_crr_sigma;
   trip_.filter = filter_.counters();
+  nis_statistics();
 }
 
 std::vector<CellResult> DriveAnalyzer::cells() const {

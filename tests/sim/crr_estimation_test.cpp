@@ -16,7 +16,14 @@ struct Score {
   double rmse = 0, bias = 0, trip_error = 0;
   double coverage = 0;
   std::size_t cells = 0;
+  double mean_nis = 0, mean_nis_se = 0;
 };
+
+// The speed innovations' mean NIS within its 95 % band (batch-means standard error).
+void expect_nis_in_band(const Score& s) {
+  EXPECT_GT(s.mean_nis_se, 0.0);
+  EXPECT_NEAR(s.mean_nis, 1.0, 1.96 * s.mean_nis_se);
+}
 
 Score estimate(const char* scenario, std::uint64_t seed) {
   const j1939::Database db = test::core_database();
@@ -51,8 +58,11 @@ Score estimate(const char* scenario, std::uint64_t seed) {
   s.bias /= n;
   s.coverage = static_cast<double>(inside) / n;
   s.trip_error = analyzer.trip().crr - sum_true / n;
-  std::printf("%s seed %llu: %zu cells, RMSE %.5f, bias %+.5f, 90 %% coverage %.0f %%, trip CRR error %+.5f\n", scenario,
-              static_cast<unsigned long long>(seed), s.cells, s.rmse, s.bias, 100 * s.coverage, s.trip_error);
+  s.mean_nis = analyzer.trip().mean_nis;
+  s.mean_nis_se = analyzer.trip().mean_nis_se;
+  std::printf("%s seed %llu: %zu cells, RMSE %.5f, bias %+.5f, 90 %% coverage %.0f %%, trip CRR error %+.5f, mean NIS %.3f +- %.3f\n",
+              scenario, static_cast<unsigned long long>(seed), s.cells, s.rmse, s.bias, 100 * s.coverage, s.trip_error, s.mean_nis,
+              1.96 * s.mean_nis_se);
   return s;
 }
 
@@ -65,6 +75,7 @@ TEST(CrrEstimation, MainlineAt30MphFindsEachCellsCrr) {
   EXPECT_LT(s.rmse, 0.0005);
   EXPECT_GT(s.coverage, 0.8);
   EXPECT_LT(std::abs(s.trip_error), 0.0005);
+  expect_nis_in_band(s);
 }
 
 }  // namespace
@@ -74,12 +85,17 @@ namespace roadload::sim {
 namespace {
 
 // Issue 4's goal for the highways: the trip's CRR within 0.0003 of the truth at 55 mph.
+// The innovations are consistent with the filter's noise model at both speeds.
 TEST(CrrEstimation, Th10At55MphTripCrrWithin0p0003) {
-  EXPECT_LT(std::abs(estimate("th10-55mph", 1).trip_error), 0.0003);
+  const Score s = estimate("th10-55mph", 1);
+  EXPECT_LT(std::abs(s.trip_error), 0.0003);
+  expect_nis_in_band(s);
 }
 
 TEST(CrrEstimation, Th66At55MphTripCrrWithin0p0003) {
-  EXPECT_LT(std::abs(estimate("th66-55mph", 1).trip_error), 0.0003);
+  const Score s = estimate("th66-55mph", 1);
+  EXPECT_LT(std::abs(s.trip_error), 0.0003);
+  expect_nis_in_band(s);
 }
 
 }  // namespace

@@ -116,17 +116,22 @@ void check(const char* scenario) {
   explained[static_cast<std::size_t>(FuelUse::driveline)] -= (1 - o.driveline_efficiency) * moved_j;
   std::printf("  EEC3 rounding: accessories %+.1f kJ, friction %+.1f kJ\n", o.rounding_accessories_j / 1e3,
               o.rounding_friction_j / 1e3);
-  std::printf("  %-13s %12s %12s %8s %12s %8s\n", "row", "estimate kJ", "truth kJ", "error", "+rounding kJ", "error");
+  std::printf("  %-13s %12s %12s %8s %12s %8s %10s\n", "row", "estimate kJ", "truth kJ", "error", "+rounding kJ", "error",
+              "cells kJ");
   for (std::size_t i = 0; i < kFuelUseCount; ++i) {
     const auto u = static_cast<FuelUse>(i);
-    std::printf("  %-13s %12.1f %12.1f %+7.2f%% %12.1f %+7.2f%%\n", to_string(u), o.trip.energy(u) / 1e3,
+    std::printf("  %-13s %12.1f %12.1f %+7.2f%% %12.1f %+7.2f%% %10.1f\n", to_string(u), o.trip.energy(u) / 1e3,
                 o.truth[i].energy_j / 1e3, 100 * row_error(o, u, o.truth[i].energy_j), explained[i] / 1e3,
-                100 * row_error(o, u, explained[i]));
+                100 * row_error(o, u, explained[i]), o.cells.energy_j[i] / 1e3);
+    // Once the rounding is accounted for, every row meets 5 %.
+    EXPECT_LT(std::abs(row_error(o, u, explained[i])), 0.05) << to_string(u) << " with EEC3 rounding";
   }
+  // These rows owe nothing to the rounding (or, the engine, too little to matter) and meet 5 % as
+  // they are. The others do not: on the Mainline accessories +25.6 % (about 1.6 % of 2386 N m is sent
+  // as 2 %), rolling -6.5 %, driveline -5.3 %.
   EXPECT_LT(std::abs(row_error(o, FuelUse::aero, o.truth[3].energy_j)), 0.05);
   EXPECT_LT(std::abs(row_error(o, FuelUse::grade, o.truth[5].energy_j)), 0.05);
   EXPECT_LT(std::abs(row_error(o, FuelUse::engine, o.truth[0].energy_j)), 0.05);
-  EXPECT_LT(std::abs(row_error(o, FuelUse::accessories, explained[2])), 0.05);
 }
 
 TEST(FuelBreakdownFromSimulation, MainlineAt30MphMatchesThePlantsLedger) { check("mnroad-mainline-30mph"); }

@@ -67,6 +67,10 @@ struct TripResult {
   std::size_t gnss_used = 0, gnss_off_route = 0;
   std::size_t no_fuel_rate = 0;  // ticks without LFE1: the breakdown's measured fuel misses them
   CrrCounters filter;
+  // Mean NIS of the speed updates and its standard error from means of batches of consecutive
+  // updates (the innovations are correlated over a few ticks, so a plain chi-square band is too
+  // narrow): the noise model is consistent when the mean lies within 1 +- 1.96 se.
+  double mean_nis = 0, mean_nis_se = 0;
   FuelBreakdown fuel;
 };
 
@@ -96,11 +100,13 @@ class DriveAnalyzer {
     double speed_mps;
     bool usable;
     Unusable why;
+    double nis;  // of this tick's speed update; NaN when gated out
     std::size_t step;  // smoother index of the estimate after this tick's update
     PowerInterval power;  // since the previous tick; its resistances are filled in after smoothing
     double air_density_kgpm3, headwind_mps, grade_rad;
   };
   // The smoothed state at a tick (the filter's own after the last prediction).
+  void nis_statistics();
   CrrFilter::Vec state_at(const Tick& k) const;
   CrrFilter::Mat covariance_at(const Tick& k) const;
   void fill_resistances(Tick& k) const;
