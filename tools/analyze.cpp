@@ -10,6 +10,7 @@
 #include "options.hpp"
 #include "roadload/contact_forces.hpp"
 #include "roadload/definitions.hpp"
+#include "roadload/grade_file.hpp"
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/route_file.hpp"
@@ -32,6 +33,9 @@ constexpr const char* kHelp =
     "  --truth DIR     a simulation's ground truth: the true CRR beside each cell, RMSE and coverage, and\n"
     "                  the true fuel breakdown beside the estimate\n"
     "  --estimate-cda  fit CdA from the drive (drives across speeds); otherwise CdA keeps its prior\n"
+    "  --grade FILE    grade and its sigma from FILE (`roadload grade`) instead of the route's survey\n"
+    "  --survey-sigma M  the route survey's height error, carried into the force balance (default 0:\n"
+    "                  the survey taken as exact)\n"
     "  --mass KG       vehicle mass (default: meta.toml vehicle.mass_kg, else 36152)\n"
     "  --dbc FILE      load FILE after the built-in definitions; repeatable\n"
     "  -q, --quiet     no table on standard output\n"
@@ -46,7 +50,8 @@ std::string resolve_route(const std::string& r) {
 
 int run_analyze(Args args) {
   OptionParser opt("analyze", args);
-  std::string recording, route_name, out, truth_dir;
+  std::string recording, route_name, out, truth_dir, grade_file;
+  double survey_sigma = 0;
   std::optional<double> mass;
   std::vector<std::string> dbcs;
   bool quiet = false, estimate_cda = false;
@@ -59,6 +64,10 @@ int run_analyze(Args args) {
       quiet = true;
     } else if (opt.flag("--estimate-cda")) {
       estimate_cda = true;
+    } else if (auto g = opt.value("--grade")) {
+      grade_file = *g;
+    } else if (auto sg = opt.real("--survey-sigma", 0, 10)) {
+      survey_sigma = *sg;
     } else if (auto r = opt.value("--route")) {
       route_name = *r;
     } else if (auto o = opt.value("--out")) {
@@ -105,6 +114,7 @@ int run_analyze(Args args) {
   }
   AnalyzerConfig cfg;
   cfg.estimate_cda = estimate_cda;
+  cfg.survey_elevation_sigma_m = survey_sigma;
   const auto& vehicle = reader.value().metadata().vehicle;
   if (mass) {
     cfg.filter.truck.mass_kg = *mass;
@@ -131,7 +141,16 @@ int run_analyze(Args args) {
 
   std::vector<CellSpan> cells;
   for (const CellDef& c : route.value().cells) cells.push_back({c.id, c.start_m, c.end_m});
+  const double route_length_m = geometry->length_m();
   DriveAnalyzer analyzer(db, std::move(*geometry), cells, cfg);
+  if (!grade_file.empty()) {
+    auto grade = load_grade_file(grade_file, route_length_m);
+    if (!grade) {
+      std::fprintf(stderr, "roadload analyze: %s\n", grade.error().to_string().c_str());
+      return grade.error().line > 0 ? kExitDataErr : kExitNoInput;
+    }
+    analyzer.set_grade(std::move(grade.value()));
+  }
   std::optional<ContactForces> contact;
   std::vector<std::string> axle_names;
   {

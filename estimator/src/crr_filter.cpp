@@ -11,7 +11,7 @@ double eec3_quantization_sigma_nm(double reference_torque_nm) {
 
 void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> torque_bias_sigma_nm) {
   Vec x;
-  x << speed_mps, config_.truck.crr_prior, config_.truck.cda_prior_m2, 0.0;
+  x << speed_mps, config_.truck.crr_prior, config_.truck.cda_prior_m2, 0.0, 0.0;
   Mat p = Mat::Zero();
   p(CrrState::speed, CrrState::speed) = 0.25;
   p(CrrState::crr, CrrState::crr) = config_.truck.crr_sigma * config_.truck.crr_sigma;
@@ -21,6 +21,7 @@ void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> tor
   core_.reset(x, p);
   core_.set_consider(CrrState::cda, !config_.estimate_cda);
   core_.set_consider(CrrState::torque_bias, true);
+  core_.set_consider(CrrState::grade_error, true);
   t_ = t;
   started_ = true;
 }
@@ -38,7 +39,8 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
   const double aero = half_rho * x(CrrState::cda) * v_air * std::abs(v_air);
   const double rolling = x(CrrState::crr) * weight * std::cos(in.grade_rad);
   const double bias_n = in.wheel_force_per_flywheel_nm * x(CrrState::torque_bias);
-  const double accel = (in.tractive_n + bias_n - aero - weight * std::sin(in.grade_rad) - rolling) / m_eff;
+  const double grade_n = weight * (std::sin(in.grade_rad) + std::cos(in.grade_rad) * x(CrrState::grade_error));
+  const double accel = (in.tractive_n + bias_n - aero - grade_n - rolling) / m_eff;
 
   Vec next = x;
   Mat f = Mat::Identity();
@@ -49,6 +51,7 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
     f(CrrState::speed, CrrState::crr) = -dt * weight * std::cos(in.grade_rad) / m_eff;
     f(CrrState::speed, CrrState::cda) = -dt * half_rho * v_air * std::abs(v_air) / m_eff;
     f(CrrState::speed, CrrState::torque_bias) = dt * in.wheel_force_per_flywheel_nm / m_eff;
+    f(CrrState::speed, CrrState::grade_error) = -dt * weight * std::cos(in.grade_rad) / m_eff;
     const double sf = std::hypot(config_.force_noise_n, config_.aero_force_noise_per_sqrt_hz * aero) / m_eff;
     q(CrrState::speed, CrrState::speed) = sf * sf * dt;
   } else {
@@ -62,6 +65,11 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
   q(CrrState::cda, CrrState::cda) = config_.cda_walk_per_sqrt_s * config_.cda_walk_per_sqrt_s * dt;
   const double bias_walk = config_.torque_bias_walk_nm_per_sqrt_s;
   q(CrrState::torque_bias, CrrState::torque_bias) = bias_walk * bias_walk * dt;
+  // The grade error decorrelates with distance travelled; its variance tends to the profile's here.
+  const double phi = std::exp(-std::abs(v) * dt / config_.grade_error_correlation_m);
+  f(CrrState::grade_error, CrrState::grade_error) = phi;
+  next(CrrState::grade_error) = phi * x(CrrState::grade_error);
+  q(CrrState::grade_error, CrrState::grade_error) = in.grade_sigma_rad * in.grade_sigma_rad * (1.0 - phi * phi);
   const Vec x_before = core_.x();
   const Mat p_before = core_.p();
   core_.predict(next, f, q);

@@ -15,6 +15,7 @@ DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std
                              AnalyzerConfig config)
     : db_(db),
       route_(std::move(route)),
+      grade_(GradeProfile::from_survey(route_, config.survey_elevation_sigma_m)),
       cells_(std::move(cells)),
       config_(config),
       signals_(db),
@@ -122,7 +123,7 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   }
   const double s_cg = s_front - config_.cg_behind_front_m;
   const TractionEstimate tr = traction(signals_, config_.filter.truck, t);
-  const double grade = route_.grade_rad(s_cg);
+  const double grade = grade_.grade_rad(s_cg);
   const Unusable why = tr.reason == Unusable::none && std::isnan(grade) ? Unusable::no_elevation : tr.reason;
   model::ForceInputs in;
   in.t = t;
@@ -133,6 +134,8 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   last_front_m_ = s_front;
   in.air_density_kgpm3 = model::air_density_kgpm3(pressure_pa_, air_temp_c_);
   in.grade_rad = std::isnan(grade) ? 0.0 : grade;
+  const double grade_sigma = grade_.grade_sigma_rad(s_cg);
+  in.grade_sigma_rad = std::isnan(grade_sigma) ? 0.0 : grade_sigma;
   in.headwind_mps = wind_mps_ * std::cos((wind_from_deg_ - route_.heading_deg(s_cg)) * kDeg);
   in.usable = why == Unusable::none;
   if (contact_ != nullptr) {

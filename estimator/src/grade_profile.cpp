@@ -277,6 +277,21 @@ double GradeProfile::interpolate(double s_m, double GradeBin::*field) const {
   return bins_[k].*field + w * (bins_[k + 1].*field - bins_[k].*field);
 }
 
+std::optional<GradeProfile> GradeProfile::from_bins(double route_length_m, std::vector<GradeBin> bins) {
+  if (bins.size() < 2) return std::nullopt;
+  GradeConfig cfg;
+  cfg.bin_m = bins[1].s_m - bins[0].s_m;
+  if (!(cfg.bin_m > 0)) return std::nullopt;
+  cfg.base_m = std::max(cfg.base_m, cfg.bin_m);
+  GradeProfile g(cfg, route_length_m);
+  if (g.bins_.size() != bins.size()) return std::nullopt;
+  for (std::size_t k = 0; k < bins.size(); ++k) {
+    if (std::abs(g.bins_[k].s_m - bins[k].s_m) > 0.05 * cfg.bin_m) return std::nullopt;
+  }
+  g.bins_ = std::move(bins);
+  return g;
+}
+
 double GradeProfile::grade_rad(double s_m) const { return interpolate(s_m, &GradeBin::grade_rad); }
 double GradeProfile::grade_sigma_rad(double s_m) const { return interpolate(s_m, &GradeBin::grade_sigma_rad); }
 double GradeProfile::elevation_m(double s_m) const { return interpolate(s_m, &GradeBin::elevation_m); }

@@ -24,6 +24,7 @@ using namespace roadload;
 struct Tally {
   double se = 0, bias = 0, bound_var = 0, sigma = 0, trip_se = 0, trip_max = 0;
   std::size_t cells = 0, inside = 0, runs = 0;
+  double trip_nees = 0, nis = 0, nis_band = 0;
   std::array<double, kFuelUseCount> fuel_err_max{};
   double closure_max = 0;
 };
@@ -70,6 +71,9 @@ void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database&
   const double trip_err = analyzer.trip().crr - sum_true / static_cast<double>(n);
   t.trip_se += trip_err * trip_err;
   t.trip_max = std::max(t.trip_max, std::abs(trip_err));
+  t.trip_nees += trip_err * trip_err / (analyzer.trip().crr_sigma * analyzer.trip().crr_sigma);
+  t.nis += analyzer.trip().mean_nis;
+  t.nis_band += 1.96 * analyzer.trip().mean_nis_se;
   ++t.runs;
 
   const FuelBreakdown& f = analyzer.trip().fuel;
@@ -85,6 +89,12 @@ void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database&
   }
 }
 
+// Quantile of chi-square(k) by Wilson and Hilferty's cube-root normal approximation.
+double chi2_quantile(double k, double z) {
+  const double a = 2.0 / (9.0 * k);
+  return k * std::pow(1.0 - a + z * std::sqrt(a), 3.0);
+}
+
 void report(const char* name, const Tally& t, bool per_cell_goal) {
   const auto n = static_cast<double>(t.cells);
   const double mse = t.se / n, bias = t.bias / n;
@@ -95,6 +105,12 @@ void report(const char* name, const Tally& t, bool per_cell_goal) {
   std::printf("%-22s Cramer-Rao sigma %.6f; MSE / bound %.1f (scatter alone %.1f); trip CRR error RMS %.5f, max %.5f\n", "",
               std::sqrt(bound), mse / bound, (mse - bias * bias) / bound, std::sqrt(t.trip_se / static_cast<double>(t.runs)),
               t.trip_max);
+  const auto runs = static_cast<double>(t.runs);
+  const double lo = chi2_quantile(runs, -1.96), hi = chi2_quantile(runs, 1.96);
+  std::printf("%-22s consistency: trip CRR NEES summed over runs %.2f, 95 %% band of chi-square(%zu) [%.2f, %.2f]: %s; "
+              "mean NIS %.3f (band +- %.3f): %s\n", "", t.trip_nees, t.runs, lo, hi,
+              t.trip_nees < lo ? "below (intervals conservative)" : t.trip_nees > hi ? "ABOVE (overconfident)" : "inside",
+              t.nis / runs, t.nis_band / runs, std::abs(t.nis / runs - 1.0) <= t.nis_band / runs ? "inside" : "outside");
   if (per_cell_goal) {
     const double cover = static_cast<double>(t.inside) / n;
     std::printf("%-22s goal RMSE <= 0.00025: %s; goal coverage 80-97 %%: %s\n", "", std::sqrt(mse) <= 0.00025 ? "met" : "NOT met",

@@ -149,3 +149,58 @@ TEST(CrrEstimation, CellsSayTheyLackGradeWithoutSurveyElevations) {
 
 }  // namespace
 }  // namespace roadload::sim
+
+namespace roadload::sim {
+namespace {
+
+// Grade from four GNSS passes (the report's method) instead of the survey: the grade's sigma goes
+// into the force balance, so the intervals widen to what that grade allows and still cover.
+TEST(CrrEstimation, GnssGradeSigmaWidensTheIntervalsHonestly) {
+  const j1939::Database db = test::core_database();
+  Scenario sc = test::builtin("mnroad-mainline-30mph");
+  sc.accelerometers = 0;
+  sc.end_m = 2600;  // the first 14 cells: a third of the run time
+  auto route = RouteGeometry::build(sc.route.points);
+  ASSERT_TRUE(route.has_value());
+  std::vector<test::MemorySink> passes(4);
+  std::vector<GnssTrack> tracks;
+  double antenna_m = 0;
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    Simulation sim(sc, 2 + i, db);
+    sim.run(passes[i], nullptr);
+    antenna_m = sim.metadata().vehicle.at("gnss_antenna_height_m");
+  }
+  for (const auto& p : passes) tracks.push_back({p.fixes, antenna_m});
+  const GradeProfile gnss = GradeProfile::from_gnss(*route, tracks);
+
+  Simulation sim(sc, 1, db);
+  test::MemorySink sink;
+  TruthRecorder truth(sim.route(), sim.plant().truck());
+  sim.run(sink, &truth);
+  DriveAnalyzer survey(db, *route, test::cell_spans(sc), AnalyzerConfig{});
+  test::analyze(survey, sink);
+  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), AnalyzerConfig{});
+  analyzer.set_grade(gnss);
+  test::analyze(analyzer, sink);
+
+  std::size_t n = 0, inside = 0;
+  double sigma = 0, survey_sigma = 0;
+  const auto truths = truth.cells();
+  for (std::size_t i = 0; i < truths.size(); ++i) {
+    const CellResult c = analyzer.cells()[i];
+    if (c.samples == 0 || !truths[i].complete) continue;
+    inside += truths[i].crr >= c.crr_lo && truths[i].crr <= c.crr_hi ? 1 : 0;
+    sigma += c.crr_sigma;
+    survey_sigma += survey.cells()[i].crr_sigma;
+    ++n;
+  }
+  const auto cells = static_cast<double>(n);
+  const double coverage = static_cast<double>(inside) / cells;
+  std::printf("GNSS grade from 4 passes: mean CRR sigma %.5f (survey %.5f), coverage %.0f %%\n", sigma / cells, survey_sigma / cells,
+              100 * coverage);
+  EXPECT_GT(sigma, 1.5 * survey_sigma);
+  EXPECT_GE(coverage, 0.75);
+}
+
+}  // namespace
+}  // namespace roadload::sim

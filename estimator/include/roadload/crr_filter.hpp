@@ -1,9 +1,10 @@
 #pragma once
-// The real-time CRR filter: a fixed-size EKF over [speed, CRR, CdA, torque bias] driven by the
-// force balance (model/longitudinal.hpp) and corrected by measured speed. Push API in capture time;
-// no I/O and no heap after construction. CRR, CdA and a flywheel torque bias are confounded at one
-// steady speed in one gear: CdA and the bias carry priors (config), and the filter reports CRR as
-// identified only when its posterior is tight enough.
+// The real-time CRR filter: a fixed-size EKF over [speed, CRR, CdA, torque bias, grade error]
+// driven by the force balance (model/longitudinal.hpp) and corrected by measured speed. Push API in
+// capture time; no I/O and no heap after construction. CRR, CdA, a flywheel torque bias and the
+// grade's error are confounded at one steady speed in one gear: the last three carry priors
+// (config, and the grade profile's sigma along the road), and the filter reports CRR as identified
+// only when its posterior is tight enough.
 #include <cstdint>
 #include <optional>
 
@@ -16,9 +17,9 @@ namespace roadload {
 
 // Named state indices; the size is fixed at compile time.
 struct CrrState {
-  enum Index : int { speed = 0, crr = 1, cda = 2, torque_bias = 3, count = 4 };
+  enum Index : int { speed = 0, crr = 1, cda = 2, torque_bias = 3, grade_error = 4, count = 5 };
 };
-static_assert(CrrState::count == 4, "CrrFilter matrices are sized by CrrState::count");
+static_assert(CrrState::count == 5, "CrrFilter matrices are sized by CrrState::count");
 
 // One whole-percent step of EEC3's friction (SPN 514) and parasitic (SPN 2978) torque each, as
 // uniform rounding errors: the flywheel torque the J1939 signals cannot resolve.
@@ -40,6 +41,9 @@ struct CrrFilterConfig {
   // (one steady speed, where speed ripples would pull it onto any speed-correlated model error).
   // The torque bias is always only considered: one gear cannot tell it from CRR.
   bool estimate_cda = true;
+  // The grade's error is considered too: a first-order Gauss-Markov process along the road, its
+  // sigma the grade profile's at each place, correlated over the profile's slope window.
+  double grade_error_correlation_m = 60.0;
   double gate_nis = 15.13;                 // chi-square(1) at 0.9999: beyond it a speed is an outlier
   Nanoseconds max_step{100'000'000};
   Nanoseconds late_window{500'000'000};    // older measurements are counted and dropped

@@ -11,6 +11,7 @@
 #include "roadload/crr_filter.hpp"
 #include "roadload/drive_signals.hpp"
 #include "roadload/fuel_breakdown.hpp"
+#include "roadload/grade_profile.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "roadload/route_geometry.hpp"
 #include "roadload/samples.hpp"
@@ -44,6 +45,7 @@ struct AnalyzerConfig {
   double cg_behind_front_m = 9.74;      // from the axle loads of Table 6.2
   double max_gnss_offset_m = 30.0;      // fixes farther from the route are not on it
   double interval_z = 1.645;            // 90 % two-sided
+  double survey_elevation_sigma_m = 0.0;  // the route survey's height error (0: taken as exact)
 };
 
 struct CellResult {
@@ -85,6 +87,8 @@ class DriveAnalyzer {
   // position; without one they are ignored.
   void push(const AccelSample& sample);
   void attach(ContactForces* contact) { contact_ = contact; }
+  // Grade and its sigma from this profile (`roadload grade`) instead of the route's survey.
+  void set_grade(GradeProfile grade) { grade_ = std::move(grade); }
   // Runs the smoother; call once after the last push.
   void finish();
 
@@ -119,6 +123,7 @@ class DriveAnalyzer {
 
   const j1939::Database& db_;
   RouteGeometry route_;
+  GradeProfile grade_;
   std::vector<CellSpan> cells_;
   AnalyzerConfig config_;
   j1939::MessageAssembler assembler_;

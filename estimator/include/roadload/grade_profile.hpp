@@ -17,6 +17,7 @@
 // minutes: mostly an offset, which moves every bin and not the slope.
 // Bins with fewer than `min_passes` passes have no grade (NaN): never guessed.
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -70,6 +71,9 @@ class GradeProfile {
   static GradeProfile from_survey(const RouteGeometry& route, double survey_sigma_m, const GradeConfig& cfg = {});
   static GradeProfile from_gnss(const RouteGeometry& route, std::span<const GnssTrack> tracks,
                                 const GradeConfig& cfg = {});
+  // A profile written earlier (`roadload grade`): nothing when the bins are not this route's
+  // bins at their own spacing (another route, or edited by hand).
+  static std::optional<GradeProfile> from_bins(double route_length_m, std::vector<GradeBin> bins);
 
   // Linear between bin centres; NaN off the route or where a bin involved has no value.
   double grade_rad(double s_m) const;

@@ -45,6 +45,7 @@ struct ForceInputs {
   double air_density_kgpm3 = 1.2;
   double headwind_mps = 0;       // wind component blowing against the direction of travel
   double grade_rad = 0;
+  double grade_sigma_rad = 0;    // the grade profile's uncertainty here
   double effective_mass_kg = 0;
   double wheel_force_per_flywheel_nm = 0;  // d(tractive force)/d(flywheel torque) in this gear, N per N m
   double crr_jump_variance = 0;  // CRR change allowed over this interval: axles crossing into a new cell

@@ -1,0 +1,53 @@
+#include "roadload/grade_file.hpp"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "roadload/recording/csv.hpp"
+
+namespace roadload {
+namespace {
+
+constexpr std::string_view kColumns[] = {"s_m", "elevation_m", "elevation_sigma_m", "grade_pct", "grade_sigma_pct", "passes"};
+
+std::optional<double> field(std::string_view text) {
+  if (text.empty()) return std::numeric_limits<double>::quiet_NaN();
+  return recording::parse_f64(text);
+}
+
+}  // namespace
+
+Parsed<GradeProfile> load_grade_file(const std::string& path, double route_length_m) {
+  auto csv = recording::CsvReader::open(path, kColumns);
+  if (!csv) return csv.error();
+  std::vector<GradeBin> bins;
+  std::span<const std::string_view> row;
+  for (recording::CsvReader::Status st; (st = csv.value().next(row)) != recording::CsvReader::Status::end;) {
+    if (st == recording::CsvReader::Status::bad_row) return *csv.value().error();
+    std::optional<double> v[6];
+    for (std::size_t i = 0; i < 6; ++i) {
+      v[i] = field(row[i]);
+      if (!v[i] || (i == 0 && std::isnan(*v[i]))) return csv.value().field_error(i, "expected a number");
+    }
+    GradeBin b;
+    b.s_m = *v[0];
+    b.elevation_m = *v[1];
+    b.elevation_sigma_m = *v[2];
+    b.grade_rad = std::atan(*v[3] / 100.0);
+    b.grade_sigma_rad = *v[4] / 100.0;
+    b.passes = std::isnan(*v[5]) || *v[5] < 0 ? 0 : static_cast<std::size_t>(*v[5]);
+    bins.push_back(b);
+  }
+  if (csv.value().error()) return *csv.value().error();
+  auto profile = GradeProfile::from_bins(route_length_m, std::move(bins));
+  if (!profile) {
+    return ParseError{path, 0, "s_m", "bins are not evenly spaced along this route (" + std::to_string(route_length_m) + " m long)"};
+  }
+  return std::move(*profile);
+}
+
+}  // namespace roadload
