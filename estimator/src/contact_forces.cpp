@@ -129,12 +129,8 @@ ForceStats rolling_resistance(const ForceStats& fz, double crr) {
   return {fz.count, crr * fz.mean_n, std::abs(crr) * fz.std_n};
 }
 
-ForceStats ContactForces::Welford::stats() const {
-  ForceStats s;
-  s.count = n;
-  s.mean_n = mean;
-  s.std_n = n > 1 ? std::sqrt(m2 / static_cast<double>(n - 1)) : 0.0;
-  return s;
+ForceStats ContactForces::stats(const RunningStats& r) {
+  return {r.n, r.mean, r.std()};
 }
 
 ContactForces::ContactForces(AxleLayout layout, std::size_t cell_count, ContactConfig config)
@@ -322,9 +318,9 @@ void ContactForces::add_force(std::size_t axle, CaptureTime t, double a_w, doubl
 
 AxleForceStats ContactForces::cell(std::size_t cell, std::size_t axle) const {
   const Acc& acc = cells_[cell * layout_.axles.size() + axle];
-  return {acc.fz.stats(), acc.dynamic.stats()};
+  return {stats(acc.fz), stats(acc.dynamic)};
 }
 
-AxleForceStats ContactForces::trip(std::size_t axle) const { return {trip_[axle].fz.stats(), trip_[axle].dynamic.stats()}; }
+AxleForceStats ContactForces::trip(std::size_t axle) const { return {stats(trip_[axle].fz), stats(trip_[axle].dynamic)}; }
 
 }  // namespace roadload

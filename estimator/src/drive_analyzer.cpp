@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "roadload/running_stats.hpp"
+
 namespace roadload {
 namespace {
 
@@ -114,38 +116,63 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   const double dt_s = to_seconds(t - last_tick_);
   odometer_m_ += wheel_speed_mps * dt_s;
   last_tick_ = t;
-  const double s_front = position_front_m();
   if (!station_air_) {
     const Reading& temp = signals_.get(Quantity::ambient_temp_c);
     const Reading& press = signals_.get(Quantity::pressure_pa);
     if (temp.seen) air_temp_c_ = temp.value;
     if (press.seen) pressure_pa_ = press.value;
   }
+  const double s_front = position_front_m();
   const double s_cg = s_front - config_.cg_behind_front_m;
   const TractionEstimate tr = traction(signals_, config_.filter.truck, t);
   const double grade = grade_.grade_rad(s_cg);
   const Unusable why = tr.reason == Unusable::none && std::isnan(grade) ? Unusable::no_elevation : tr.reason;
+  const model::ForceInputs in = force_inputs(t, s_front, tr, why);
+  last_front_m_ = s_front;
+  place_axles(t, s_front, in.grade_rad, wheel_speed_mps);
+  filter_.predict_to(in);
+  const ekf::UpdateResult upd = filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
+  const PowerInterval power = power_since_last_tick(dt_s, tr, wheel_speed_mps);
+  last_speed_mps_ = wheel_speed_mps;
+  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, why, upd.accepted ? upd.nis : std::nan(""),
+                    smoother_.size(), power, in.air_density_kgpm3, in.headwind_mps, in.grade_rad});
+  ++trip_.ticks;
+  if (in.usable) {
+    ++trip_.usable_ticks;
+  } else {
+    ++trip_.unusable[static_cast<std::size_t>(why)];
+  }
+}
+
+model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, const TractionEstimate& tr, Unusable why) const {
+  const double s_cg = s_front_m - config_.cg_behind_front_m;
+  const double grade = grade_.grade_rad(s_cg);
+  const double grade_sigma = grade_.grade_sigma_rad(s_cg);
   model::ForceInputs in;
   in.t = t;
   in.tractive_n = tr.tractive_n;
   in.effective_mass_kg = tr.effective_mass_kg;
   in.wheel_force_per_flywheel_nm = tr.wheel_force_per_flywheel_nm;
-  in.crr_jump_variance = crr_jump_variance(last_front_m_, s_front);
-  last_front_m_ = s_front;
+  in.crr_jump_variance = crr_jump_variance(last_front_m_, s_front_m);
   in.air_density_kgpm3 = model::air_density_kgpm3(pressure_pa_, air_temp_c_);
   in.grade_rad = std::isnan(grade) ? 0.0 : grade;
-  const double grade_sigma = grade_.grade_sigma_rad(s_cg);
   in.grade_sigma_rad = std::isnan(grade_sigma) ? 0.0 : grade_sigma;
   in.headwind_mps = wind_mps_ * std::cos((wind_from_deg_ - route_.heading_deg(s_cg)) * kDeg);
   in.usable = why == Unusable::none;
-  if (contact_ != nullptr) {
-    std::array<int, kMaxContactAxles> under{};
-    const auto& axles = contact_->layout().axles;
-    for (std::size_t i = 0; i < axles.size() && i < under.size(); ++i) under[i] = cell_at(s_front - axles[i].position_m);
-    contact_->set_axle_cells(t, std::span(under.data(), std::min(axles.size(), under.size())), in.grade_rad, wheel_speed_mps);
-  }
-  filter_.predict_to(in);
-  const ekf::UpdateResult upd = filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
+  return in;
+}
+
+// Every axle in the cell under it, for the contact forces.
+void DriveAnalyzer::place_axles(CaptureTime t, double s_front_m, double grade_rad, double speed_mps) {
+  if (contact_ == nullptr) return;
+  std::array<int, kMaxContactAxles> under{};
+  const auto& axles = contact_->layout().axles;
+  const std::size_t n = std::min(axles.size(), under.size());
+  for (std::size_t i = 0; i < n; ++i) under[i] = cell_at(s_front_m - axles[i].position_m);
+  contact_->set_axle_cells(t, std::span(under.data(), n), grade_rad, speed_mps);
+}
+
+PowerInterval DriveAnalyzer::power_since_last_tick(double dt_s, const TractionEstimate& tr, double wheel_speed_mps) {
   PowerInterval power;
   power.dt_s = dt_s;
   const Reading& fuel = signals_.get(Quantity::fuel_rate_lph);
@@ -161,42 +188,23 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   power.speed_from_mps = last_speed_mps_;
   power.speed_to_mps = wheel_speed_mps;
   power.effective_mass_kg = tr.effective_mass_kg > 0 ? tr.effective_mass_kg : config_.filter.truck.mass_kg;
-  last_speed_mps_ = wheel_speed_mps;
-  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, why, upd.accepted ? upd.nis : std::nan(""), smoother_.size(), power, in.air_density_kgpm3,
-                    in.headwind_mps, in.grade_rad});
-  ++trip_.ticks;
-  if (in.usable) {
-    ++trip_.usable_ticks;
-  } else {
-    ++trip_.unusable[static_cast<std::size_t>(why)];
-  }
+  return power;
 }
 
 void DriveAnalyzer::nis_statistics() {
-  constexpr std::size_t kBatch = 50;  // 5 s at CCVS1's 10 Hz, longer than the innovations' memory
-  std::vector<double> means;
-  double sum = 0, batch = 0;
-  std::size_t n = 0, in_batch = 0;
+  constexpr std::uint64_t kBatch = 50;  // 5 s at CCVS1's 10 Hz, longer than the innovations' memory
+  RunningStats all, batch, batch_means;
   for (const Tick& k : ticks_) {
     if (std::isnan(k.nis)) continue;
-    sum += k.nis;
-    ++n;
-    batch += k.nis;
-    if (++in_batch == kBatch) {
-      means.push_back(batch / kBatch);
-      batch = 0;
-      in_batch = 0;
+    all.add(k.nis);
+    batch.add(k.nis);
+    if (batch.n == kBatch) {
+      batch_means.add(batch.mean);
+      batch = {};
     }
   }
-  if (n == 0) return;
-  trip_.mean_nis = sum / static_cast<double>(n);
-  if (means.size() < 2) return;
-  double m = 0, var = 0;
-  for (double x : means) m += x;
-  m /= static_cast<double>(means.size());
-  for (double x : means) var += (x - m) * (x - m);
-  var /= static_cast<double>(means.size() - 1);
-  trip_.mean_nis_se = std::sqrt(var / static_cast<double>(means.size()));
+  trip_.mean_nis = all.mean;
+  if (batch_means.n >= 2) trip_.mean_nis_se = batch_means.std() / std::sqrt(static_cast<double>(batch_means.n));
 }
 
 CrrFilter::Vec DriveAnalyzer::state_at(const Tick& k) const {

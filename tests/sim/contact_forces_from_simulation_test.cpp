@@ -16,18 +16,6 @@
 namespace roadload::sim {
 namespace {
 
-struct Welford {
-  std::uint64_t n = 0;
-  double mean = 0, m2 = 0;
-  void add(double x) {
-    ++n;
-    const double d = x - mean;
-    mean += d / static_cast<double>(n);
-    m2 += d * (x - mean);
-  }
-  double std() const { return n > 1 ? std::sqrt(m2 / static_cast<double>(n - 1)) : 0.0; }
-};
-
 // Feeds the estimator as samples arrive and reads the plant's truth at each new physics step.
 // The truck's position comes from the plant (true x and grade): this test is about the forces,
 // positioning is the analyzer's.
@@ -49,8 +37,8 @@ class ContactSink final : public SampleSink {
     cf_.push(s);
   }
 
-  const Welford& truth_trip(std::size_t axle) const { return truth_trip_[axle]; }
-  const Welford& truth_cell(std::size_t cell, std::size_t axle) const { return truth_cells_[cell * cf_.axle_count() + axle]; }
+  const RunningStats& truth_trip(std::size_t axle) const { return truth_trip_[axle]; }
+  const RunningStats& truth_cell(std::size_t cell, std::size_t axle) const { return truth_cells_[cell * cf_.axle_count() + axle]; }
 
  private:
   int cell_of(const TruckState& st, std::size_t axle) const {
@@ -77,8 +65,8 @@ class ContactSink final : public SampleSink {
   ContactForces& cf_;
   double warmup_s_;
   double last_t_ = -1;
-  std::vector<Welford> truth_trip_;
-  std::vector<Welford> truth_cells_;
+  std::vector<RunningStats> truth_trip_;
+  std::vector<RunningStats> truth_cells_;
 };
 
 AxleLayout layout_from(const recording::Metadata& m) {
@@ -123,7 +111,7 @@ TEST(ContactForcesFromSimulation, MainlineAt30MphMatchesTheTrueTireForcePerAxle)
   for (std::size_t i = 0; i < cf.axle_count(); ++i) {
     const AxleContact& a = cf.layout().axles[i];
     const AxleForceStats est = cf.trip(i);
-    const Welford& truth = sink.truth_trip(i);
+    const RunningStats& truth = sink.truth_trip(i);
     const double std_err = est.dynamic.std_n / truth.std() - 1.0;
     const double mean_err = est.fz.mean_n / truth.mean - 1.0;
     std::printf("%-8s frame %-8s  F_z mean %8.0f N (truth %8.0f, %+.3f %%)  dynamic std %6.0f N (truth %6.0f, %+.1f %%)  paired %llu\n",
@@ -139,7 +127,7 @@ TEST(ContactForcesFromSimulation, MainlineAt30MphMatchesTheTrueTireForcePerAxle)
   // Per cell, for the cells an axle spent at least 10 s in: the same comparison, printed.
   for (std::size_t c = 0; c < cf.cell_count(); ++c) {
     for (std::size_t i = 0; i < cf.axle_count(); ++i) {
-      const Welford& truth = sink.truth_cell(c, i);
+      const RunningStats& truth = sink.truth_cell(c, i);
       const AxleForceStats est = cf.cell(c, i);
       if (est.fz.count < 12000 || truth.n < 24000) continue;
       std::printf("cell %-3s %-8s  F_z mean %+.3f %%  std %+.1f %%\n", sim.route().def().cells[c].id.c_str(),

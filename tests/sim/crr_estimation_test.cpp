@@ -78,11 +78,6 @@ TEST(CrrEstimation, MainlineAt30MphFindsEachCellsCrr) {
   expect_nis_in_band(s);
 }
 
-}  // namespace
-}  // namespace roadload::sim
-
-namespace roadload::sim {
-namespace {
 
 // Issue 4's goal for the highways: the trip's CRR within 0.0003 of the truth at 55 mph.
 // The innovations are consistent with the filter's noise model at both speeds.
@@ -98,11 +93,6 @@ TEST(CrrEstimation, Th66At55MphTripCrrWithin0p0003) {
   expect_nis_in_band(s);
 }
 
-}  // namespace
-}  // namespace roadload::sim
-
-namespace roadload::sim {
-namespace {
 
 // What a cell says when an input the force balance needs is missing: the reason, not a number.
 std::vector<CellResult> cells_of_mainline(bool drop_transport, bool drop_elevation) {
@@ -147,11 +137,6 @@ TEST(CrrEstimation, CellsSayTheyLackGradeWithoutSurveyElevations) {
   EXPECT_EQ(cells.back().reason, "not driven");
 }
 
-}  // namespace
-}  // namespace roadload::sim
-
-namespace roadload::sim {
-namespace {
 
 // Grade from four GNSS passes (the report's method) instead of the survey: the grade's sigma goes
 // into the force balance, so the intervals widen to what that grade allows and still cover.

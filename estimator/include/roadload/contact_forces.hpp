@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "roadload/parse_error.hpp"
+#include "roadload/running_stats.hpp"
 #include "roadload/samples.hpp"
 #include "roadload/time.hpp"
 
@@ -189,19 +190,9 @@ class ContactForces {
   AxleForce latest(std::size_t axle) const { return latest_[axle]; }
 
  private:
-  struct Welford {
-    std::uint64_t n = 0;
-    double mean = 0, m2 = 0;
-    void add(double x) {
-      ++n;
-      const double d = x - mean;
-      mean += d / static_cast<double>(n);
-      m2 += d * (x - mean);
-    }
-    ForceStats stats() const;
-  };
+  static ForceStats stats(const RunningStats& r);
   struct Acc {
-    Welford fz, dynamic;
+    RunningStats fz, dynamic;
   };
   // Running mean of one sensor's z and its latest deviation from it.
   struct SensorState {

@@ -115,6 +115,9 @@ class DriveAnalyzer {
   CrrFilter::Mat covariance_at(const Tick& k) const;
   void fill_resistances(Tick& k) const;
   void tick(CaptureTime t, double wheel_speed_mps);
+  model::ForceInputs force_inputs(CaptureTime t, double s_front_m, const TractionEstimate& tr, Unusable why) const;
+  void place_axles(CaptureTime t, double s_front_m, double grade_rad, double speed_mps);
+  PowerInterval power_since_last_tick(double dt_s, const TractionEstimate& tr, double wheel_speed_mps);
   // Variance of the CRR change as axles cross cell boundaries between two front-axle positions.
   double crr_jump_variance(double from_front_m, double to_front_m) const;
   double truck_length_m() const;
