@@ -98,7 +98,7 @@ std::optional<ParseError> write_trip_json(const std::string& path, const TripRes
   json << "},\n  \"gnss_used\": " << trip.gnss_used << ",\n  \"gnss_off_route\": " << trip.gnss_off_route
        << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << trip.mean_nis << ",\n  \"mean_nis_95\": " << 1.96 * trip.mean_nis_se
        << ",\n  \"torque_bias_sigma_nm\": " << trip.torque_bias_sigma_nm << ",\n  \"fuel\": {\n    \"measured_l\": "
-       << trip.fuel.fuel_l << ",\n    \"diesel_energy_mj_per_l\": " << kDieselEnergy_jpl / 1e6
+       << trip.fuel.fuel_l << ",\n    \"unsplit_l\": " << trip.fuel.unsplit_l << ",\n    \"diesel_energy_mj_per_l\": " << kDieselEnergy_jpl / 1e6
        << ",\n    \"closure\": " << trip.fuel.closure() << ",\n    \"distance_m\": " << trip.fuel.distance_m
        << ",\n    \"ticks_without_fuel_rate\": " << trip.no_fuel_rate;
   for (std::size_t i = 0; i < kUses; ++i) json << ",\n    \"" << to_string(use(i)) << "_l\": " << trip.fuel.liters(use(i));
@@ -138,8 +138,8 @@ void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, co
                trip.crr, trip.crr_sigma, trip.identified ? "identified" : "NOT identified", trip.cda_m2,
                trip.usable_ticks, trip.ticks, trip.mean_nis, 1.96 * trip.mean_nis_se);
   const FuelBreakdown& f = trip.fuel;
-  std::fprintf(stderr, "analyze: fuel %.3f L measured (LFE1), rows sum to %.3f L (closure %+.2f %%)\n", f.fuel_l, f.sum_l(),
-               100.0 * f.closure());
+  std::fprintf(stderr, "analyze: fuel %.3f L measured (LFE1), %.3f L of it while the engine's torques were unknown; "
+               "rows sum to %.3f L (closure %+.2f %%)\n", f.fuel_l, f.unsplit_l, f.sum_l(), 100.0 * f.closure());
   for (std::size_t i = 0; i < kUses; ++i) {
     std::fprintf(stderr, "  %-13s %8.4f L %6.1f %%", to_string(use(i)), f.liters(use(i)),
                  f.fuel_l > 0 ? 100.0 * f.liters(use(i)) / f.fuel_l : 0.0);

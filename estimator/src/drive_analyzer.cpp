@@ -184,6 +184,8 @@ PowerInterval DriveAnalyzer::power_since_last_tick(double dt_s, const TractionEs
   power.parasitic_nm = tr.parasitic_nm;
   power.engaged = tr.reason != Unusable::declutched;
   power.braking = tr.reason == Unusable::braking;
+  power.attributable = tr.reason != Unusable::no_reference_torque && tr.reason != Unusable::no_torque &&
+                       tr.reason != Unusable::no_gear && tr.reason != Unusable::stale;
   power.tractive_n = tr.tractive_n;
   power.speed_from_mps = last_speed_mps_;
   power.speed_to_mps = wheel_speed_mps;

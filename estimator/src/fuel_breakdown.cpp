@@ -27,33 +27,36 @@ const char* to_string(FuelUse u) {
 
 void FuelBreakdown::add(const PowerInterval& p, double energy_jpl) {
   auto& e = energy_j;
+  const auto row = [&e](FuelUse u) -> double& { return e[static_cast<std::size_t>(u)]; };
   const double omega = p.engine_speed_rpm * kRadps_per_rpm;
-  const double v_mean = 0.5 * (p.speed_from_mps + p.speed_to_mps);
-  const double dx = v_mean * p.dt_s;
+  const double dx = 0.5 * (p.speed_from_mps + p.speed_to_mps) * p.dt_s;
   const double fuel_l_now = p.fuel_rate_lph / 3600.0 * p.dt_s;
   fuel_l += fuel_l_now;
   distance_m += dx;
-  const double indicated_j = p.indicated_nm * omega * p.dt_s;
-  e[static_cast<std::size_t>(FuelUse::engine)] += fuel_l_now * energy_jpl - indicated_j + p.friction_nm * omega * p.dt_s;
-  e[static_cast<std::size_t>(FuelUse::accessories)] += p.parasitic_nm * omega * p.dt_s;
-  const double flywheel_j = (p.indicated_nm - p.friction_nm - p.parasitic_nm) * omega * p.dt_s;
+
+  // The wheel side needs only the smoothed resistances and the speed.
   const double kinetic_j = 0.5 * p.effective_mass_kg * (p.speed_to_mps * p.speed_to_mps - p.speed_from_mps * p.speed_from_mps);
   const double resist_j = (p.aero_n + p.rolling_n + p.grade_n) * dx;
-  e[static_cast<std::size_t>(FuelUse::aero)] += p.aero_n * dx;
-  e[static_cast<std::size_t>(FuelUse::rolling)] += p.rolling_n * dx;
-  e[static_cast<std::size_t>(FuelUse::grade)] += p.grade_n * dx;
-  e[static_cast<std::size_t>(FuelUse::acceleration)] += kinetic_j;
-  if (p.engaged) {
-    e[static_cast<std::size_t>(FuelUse::driveline)] += flywheel_j - p.tractive_n * dx;
-  } else {
-    // Declutched, the flywheel's work goes into the engine's own speed change at the shift.
-    e[static_cast<std::size_t>(FuelUse::driveline)] += flywheel_j;
-  }
+  row(FuelUse::aero) += p.aero_n * dx;
+  row(FuelUse::rolling) += p.rolling_n * dx;
+  row(FuelUse::grade) += p.grade_n * dx;
+  row(FuelUse::acceleration) += kinetic_j;
+  const double wheel_j = p.attributable && p.engaged ? p.tractive_n * dx : 0.0;
   // Brakes take what the wheel work and the resistances leave of the speed change.
-  if (p.braking) {
-    const double wheel_j = p.engaged ? p.tractive_n * dx : 0.0;
-    e[static_cast<std::size_t>(FuelUse::braking)] += wheel_j - resist_j - kinetic_j;
+  const double brake_j = p.braking ? wheel_j - resist_j - kinetic_j : 0.0;
+  row(FuelUse::braking) += brake_j;
+  if (!p.attributable) {
+    // The engine's torques are unknown: engine, driveline and accessories are one remainder.
+    unsplit_l += fuel_l_now;
+    row(FuelUse::engine) += fuel_l_now * energy_jpl - resist_j - kinetic_j - brake_j;
+    return;
   }
+  const double indicated_j = p.indicated_nm * omega * p.dt_s;
+  const double flywheel_j = (p.indicated_nm - p.friction_nm - p.parasitic_nm) * omega * p.dt_s;
+  row(FuelUse::engine) += fuel_l_now * energy_jpl - indicated_j + p.friction_nm * omega * p.dt_s;
+  row(FuelUse::accessories) += p.parasitic_nm * omega * p.dt_s;
+  // Declutched, the flywheel's work goes into the engine's own speed change at the shift.
+  row(FuelUse::driveline) += flywheel_j - wheel_j;
 }
 
 double FuelBreakdown::sum_l(double energy_jpl) const {

@@ -140,5 +140,20 @@ TEST(FuelBreakdown, NoFuelMeansNoClosure) {
   EXPECT_STREQ(to_string(FuelUse::braking), "braking");
 }
 
+TEST(FuelBreakdown, WithoutTheEngineTorquesTheWheelSideSplitsAndTheRestIsEngine) {
+  FuelBreakdown b;
+  b.add(steady());
+  PowerInterval blind = steady();
+  blind.attributable = false;
+  b.add(blind);
+  EXPECT_NEAR(b.fuel_l, 2 * 250e3 / kDieselEnergy_jpl, 1e-15);
+  EXPECT_NEAR(b.unsplit_l, 250e3 / kDieselEnergy_jpl, 1e-15);
+  EXPECT_NEAR(b.energy(FuelUse::aero), 60e3, kTolJ);  // the wheel side of both intervals
+  EXPECT_NEAR(b.energy(FuelUse::accessories), 5e3, kTolJ);  // the engine side of the first only
+  EXPECT_NEAR(b.energy(FuelUse::engine), 165e3 + 250e3 - 76e3, kTolJ);
+  EXPECT_NEAR(b.closure(), 0.0, 1e-12);
+  EXPECT_NEAR(b.distance_m, 40.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace roadload

@@ -28,11 +28,15 @@ struct PowerInterval {
   double effective_mass_kg = 0;
   double aero_n = 0, rolling_n = 0, grade_n = 0;
   bool braking = false;
+  // False while the engine's torques cannot be read (no EC1 yet, no EEC1, no gear): the wheel
+  // side still splits by force, the rest of the fuel is booked as engine losses.
+  bool attributable = true;
 };
 
 struct FuelBreakdown {
   std::array<double, kFuelUseCount> energy_j{};
-  double fuel_l = 0;  // measured
+  double fuel_l = 0;          // measured
+  double unsplit_l = 0;       // of it, burnt while the engine's torques could not be read
   double distance_m = 0;
 
   void add(const PowerInterval& p, double energy_jpl = kDieselEnergy_jpl);
