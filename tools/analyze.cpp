@@ -2,12 +2,15 @@
 // fixed-interval smoother), written as RESULTS/cells.csv and RESULTS/trip.json.
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "analyze_results.hpp"
 #include "command.hpp"
 #include "options.hpp"
+#include "route_arg.hpp"
 #include "roadload/contact_forces.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/grade_file.hpp"
@@ -41,9 +44,50 @@ constexpr const char* kHelp =
     "  -q, --quiet     no table on standard output\n"
     "  -h, --help      this text\n";
 
-std::string resolve_route(const std::string& r) {
-  if (std::filesystem::exists(r)) return r;
-  return data_dir() + "/routes/" + r + ".toml";
+// The truck as the recording describes it: mass, the axles (centre of gravity, and where each
+// meets a new pavement) and the GNSS antenna. The MnROAD truck's values where it is silent.
+AnalyzerConfig config_from_vehicle(const std::map<std::string, double>& vehicle, std::optional<double> mass) {
+  AnalyzerConfig cfg;
+  if (mass) {
+    cfg.filter.truck.mass_kg = *mass;
+  } else if (auto it = vehicle.find("mass_kg"); it != vehicle.end()) {
+    cfg.filter.truck.mass_kg = it->second;
+  }
+  double moment = 0, load = 0;
+  std::vector<AxleLoad> axles;
+  for (const AxleDefaults& axle : kMnroadAxles) {
+    const auto l = vehicle.find(std::string(axle.name) + "_load_kg");
+    const auto x = vehicle.find(std::string(axle.name) + "_position_m");
+    if (l != vehicle.end() && x != vehicle.end()) {
+      moment += l->second * x->second;
+      load += l->second;
+      axles.push_back({x->second, l->second});
+    }
+  }
+  if (load > 0) {
+    cfg.cg_behind_front_m = moment / load;
+    cfg.axles = axles;
+  }
+  if (auto it = vehicle.find("gnss_antenna_behind_front_axle_m"); it != vehicle.end()) cfg.antenna_behind_front_m = it->second;
+  return cfg;
+}
+
+// Contact forces for every axle with accelerometers; axles without them, or a recording without
+// any, are reported once and skipped.
+std::optional<ContactForces> contact_forces(const recording::Metadata& meta, const std::string& recording,
+                                            std::size_t cells, std::vector<std::string>& axle_names) {
+  std::vector<SensorPlacement> placements;
+  for (const auto& s : meta.sensors) placements.push_back({s.id, s.kind, s.position});
+  LayoutOptions lenient;
+  lenient.skip_axles_without_sensors = true;
+  auto layout = build_axle_layout(placements, meta.vehicle, recording + "/meta.toml", lenient);
+  if (!layout) {
+    std::fprintf(stderr, "roadload analyze: contact forces not estimated: %s\n", layout.error().to_string().c_str());
+    return std::nullopt;
+  }
+  for (const std::string& why : layout.value().skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
+  for (const AxleContact& a : layout.value().axles) axle_names.push_back(a.name);
+  return std::optional<ContactForces>(std::in_place, std::move(layout.value()), cells);
 }
 
 }  // namespace
@@ -112,32 +156,9 @@ int run_analyze(Args args) {
     std::fprintf(stderr, "roadload analyze: %s\n", reader.error().to_string().c_str());
     return kExitNoInput;
   }
-  AnalyzerConfig cfg;
+  AnalyzerConfig cfg = config_from_vehicle(reader.value().metadata().vehicle, mass);
   cfg.estimate_cda = estimate_cda;
   cfg.survey_elevation_sigma_m = survey_sigma;
-  const auto& vehicle = reader.value().metadata().vehicle;
-  if (mass) {
-    cfg.filter.truck.mass_kg = *mass;
-  } else if (auto it = vehicle.find("mass_kg"); it != vehicle.end()) {
-    cfg.filter.truck.mass_kg = it->second;
-  }
-  // Place the centre of gravity and the GNSS antenna from the recorded axle layout when given.
-  double moment = 0, load = 0;
-  std::vector<AxleLoad> axles;
-  for (const char* axle : {"front", "drive1", "drive2", "trailer1", "trailer2"}) {
-    const auto l = vehicle.find(std::string(axle) + "_load_kg");
-    const auto x = vehicle.find(std::string(axle) + "_position_m");
-    if (l != vehicle.end() && x != vehicle.end()) {
-      moment += l->second * x->second;
-      load += l->second;
-      axles.push_back({x->second, l->second});
-    }
-  }
-  if (load > 0) {
-    cfg.cg_behind_front_m = moment / load;
-    cfg.axles = axles;
-  }
-  if (auto it = vehicle.find("gnss_antenna_behind_front_axle_m"); it != vehicle.end()) cfg.antenna_behind_front_m = it->second;
 
   std::vector<CellSpan> cells;
   for (const CellDef& c : route.value().cells) cells.push_back({c.id, c.start_m, c.end_m});
@@ -151,23 +172,9 @@ int run_analyze(Args args) {
     }
     analyzer.set_grade(std::move(grade.value()));
   }
-  std::optional<ContactForces> contact;
   std::vector<std::string> axle_names;
-  {
-    std::vector<SensorPlacement> placements;
-    for (const auto& s : reader.value().metadata().sensors) placements.push_back({s.id, s.kind, s.position});
-    LayoutOptions lenient;
-    lenient.skip_axles_without_sensors = true;
-    auto layout = build_axle_layout(placements, vehicle, recording + "/meta.toml", lenient);
-    if (layout) {
-      for (const std::string& why : layout.value().skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
-      for (const AxleContact& a : layout.value().axles) axle_names.push_back(a.name);
-      contact.emplace(std::move(layout.value()), cells.size());
-      analyzer.attach(&*contact);
-    } else {
-      std::fprintf(stderr, "roadload analyze: contact forces not estimated: %s\n", layout.error().to_string().c_str());
-    }
-  }
+  std::optional<ContactForces> contact = contact_forces(reader.value().metadata(), recording, cells.size(), axle_names);
+  if (contact) analyzer.attach(&*contact);
   while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { analyzer.push(s); }, *r);
   for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
   analyzer.finish();

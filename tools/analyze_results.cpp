@@ -23,6 +23,12 @@ std::optional<double> truth_energy_j(const Truth& t, FuelUse u) {
   return it->second;
 }
 
+const double* true_crr(const Truth* t, const std::string& cell) {
+  if (t == nullptr) return nullptr;
+  const auto it = t->crr.find(cell);
+  return it == t->crr.end() ? nullptr : &it->second;
+}
+
 Parsed<std::map<std::string, double>> read_truth_cells(const std::string& path) {
   constexpr std::string_view kColumns[] = {"cell", "crr"};
   auto csv = recording::CsvReader::open(path, kColumns);
@@ -127,8 +133,7 @@ void print_cells(const std::vector<CellResult>& cells, const Truth* truth) {
       continue;
     }
     std::printf("%-6s %9.5f %9.5f %9.5f %7zu %9.5f", c.id.c_str(), c.crr, c.crr_lo, c.crr_hi, c.samples, c.fuel.liters(FuelUse::rolling));
-    const auto t = truth ? truth->crr.find(c.id) : std::map<std::string, double>::const_iterator{};
-    if (truth && t != truth->crr.end()) std::printf("   %7.5f  %s", t->second, t->second >= c.crr_lo && t->second <= c.crr_hi ? "yes" : "no");
+    if (const double* t = true_crr(truth, c.id)) std::printf("   %7.5f  %s", *t, *t >= c.crr_lo && *t <= c.crr_hi ? "yes" : "no");
     std::printf("\n");
   }
 }
@@ -152,10 +157,10 @@ void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, co
   double se = 0;
   std::size_t n = 0, covered = 0;
   for (const CellResult& c : cells) {
-    const auto t = truth->crr.find(c.id);
-    if (t == truth->crr.end() || c.samples == 0) continue;
-    se += (c.crr - t->second) * (c.crr - t->second);
-    covered += t->second >= c.crr_lo && t->second <= c.crr_hi ? 1 : 0;
+    const double* t = true_crr(truth, c.id);
+    if (t == nullptr || c.samples == 0) continue;
+    se += (c.crr - *t) * (c.crr - *t);
+    covered += *t >= c.crr_lo && *t <= c.crr_hi ? 1 : 0;
     ++n;
   }
   if (n > 0) {

@@ -10,6 +10,7 @@
 
 #include "command.hpp"
 #include "options.hpp"
+#include "route_arg.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/grade_profile.hpp"
 #include "roadload/recording/reader.hpp"
@@ -63,11 +64,6 @@ struct Track {
   std::vector<GnssFix> fixes;
   double antenna_height_m = 0;
 };
-
-std::string resolve_route(const std::string& r) {
-  if (std::filesystem::exists(r)) return r;
-  return data_dir() + "/routes/" + r + ".toml";
-}
 
 // Returns an exit code when the options are unusable, else nullopt.
 std::optional<int> parse(OptionParser& opt, Options& o) {

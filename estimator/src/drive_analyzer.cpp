@@ -238,9 +238,7 @@ void DriveAnalyzer::finish() {
   for (Tick& k : ticks_) {
     fill_resistances(k);
     trip_.fuel.add(k.power);
-    for (std::size_t i = 0; i < cells_.size(); ++i) {
-      if (k.s_cg_m >= cells_[i].start_m && k.s_cg_m < cells_[i].end_m) cell_fuel_[i].add(k.power);
-    }
+    if (const int c = cell_at(k.s_cg_m); c >= 0) cell_fuel_[static_cast<std::size_t>(c)].add(k.power);
   }
   // The trip's CRR is the smoothed CRR averaged over every usable tick (a distance average at
   // steady speed); its sigma, like a cell's, the mean per-tick sigma.

@@ -7,11 +7,6 @@
 #include <limits>
 
 namespace roadload {
-namespace {
-
-constexpr double kGradeBase_m = 30.0;
-
-}  // namespace
 
 std::optional<RouteGeometry> RouteGeometry::build(std::span<const GeoPoint> points) {
   if (points.size() < 2) return std::nullopt;
@@ -63,10 +58,6 @@ double RouteGeometry::elevation_m(double s_m) const {
   const double len = cumulative_m_[i + 1] - cumulative_m_[i];
   const double w = std::clamp((s_m - cumulative_m_[i]) / len, 0.0, 1.0);
   return points_[i].elev_m + w * (points_[i + 1].elev_m - points_[i].elev_m);
-}
-
-double RouteGeometry::grade_rad(double s_m) const {
-  return std::atan((elevation_m(s_m + kGradeBase_m) - elevation_m(s_m - kGradeBase_m)) / (2 * kGradeBase_m));
 }
 
 double RouteGeometry::heading_deg(double s_m) const { return azimuth_deg_[segment(s_m)]; }

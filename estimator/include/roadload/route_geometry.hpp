@@ -1,7 +1,7 @@
 #pragma once
-// Where on the route the truck is, and the road's grade there: a surveyed polyline with
-// elevation, distances along it on the WGS84 ellipsoid (GeographicLib), GNSS fixes projected
-// onto it, grade from the survey elevations over a +-30 m base (shorter bases amplify survey noise).
+// Where on the route the truck is: a surveyed polyline with elevation, distances along it on the
+// WGS84 ellipsoid (GeographicLib), GNSS fixes projected onto it. The grade and its uncertainty
+// come from a GradeProfile (grade_profile.hpp) built on it.
 #include <optional>
 #include <span>
 #include <vector>
@@ -23,7 +23,6 @@ class RouteGeometry {
 
   double length_m() const { return cumulative_m_.back(); }
   double elevation_m(double s_m) const;
-  double grade_rad(double s_m) const;
   double heading_deg(double s_m) const;
 
  private:
