@@ -5,6 +5,8 @@
 #include <limits>
 #include <optional>
 
+#include "roadload/running_stats.hpp"
+
 namespace roadload {
 namespace {
 
@@ -156,16 +158,12 @@ struct Scatter {
 };
 
 Scatter scatter_of(const std::vector<double>& x) {
+  RunningStats r;
+  for (double v : x) r.add(v);
   Scatter s;
   s.n = x.size();
-  if (x.empty()) return s;
-  double sum = 0;
-  for (double v : x) sum += v;
-  s.mean = sum / static_cast<double>(x.size());
-  if (x.size() < 2) return s;
-  double ss = 0;
-  for (double v : x) ss += (v - s.mean) * (v - s.mean);
-  s.variance = ss / static_cast<double>(x.size() - 1);
+  if (r.n > 0) s.mean = r.mean;
+  if (r.n > 1) s.variance = r.m2 / static_cast<double>(r.n - 1);
   return s;
 }
 
