@@ -17,6 +17,7 @@ int run_decode(Args args);
 int run_simulate(Args args);
 int run_analyze(Args args);
 int run_grade(Args args);
+int run_psd(Args args);
 
 // Exit codes, as sysexits.h names them.
 inline constexpr int kExitOk = 0;

@@ -13,6 +13,8 @@ constexpr Command kCommands[] = {
     {"analyze", "estimate CRR along a recorded drive and per pavement cell (cells.csv, trip.json)",
      roadload::cli::run_analyze},
     {"grade", "build a route's grade profile with its uncertainty from its survey or GNSS passes", roadload::cli::run_grade},
+    {"psd", "Welch power spectral density of accelerometer channels, as scipy.signal.welch computes it",
+     roadload::cli::run_psd},
     {"simulate", "drive the simulated truck over a simulated road; write a recording and its ground truth",
      roadload::cli::run_simulate},
 };

@@ -1,0 +1,197 @@
+// roadload psd: Welch power spectral density of a recording's accelerometers or of a CSV column,
+// the same numbers as scipy.signal.welch with the same settings (a check anyone can repeat).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "options.hpp"
+#include "roadload/recording/csv.hpp"
+#include "roadload/recording/reader.hpp"
+#include "roadload/spectra/welch.hpp"
+
+namespace roadload::cli {
+namespace {
+
+constexpr const char* kHelp =
+    "usage: roadload psd <recording | file.csv> [options]\n\n"
+    "Welch power spectral density, one-sided, per Hz: Hann window (periodic), segments of N samples\n"
+    "every N - M samples, each segment's mean removed, averaged. The numbers are those of\n"
+    "scipy.signal.welch(x, fs, window='hann', nperseg=N, noverlap=M) (equal to 1e-9, tested).\n"
+    "A recording gives one column per accelerometer and axis, in (m/s^2)^2/Hz, each at the sensor's\n"
+    "rate from meta.toml; a CSV file gives the PSD of one column.\n\n"
+    "  --nperseg N     segment length, even (default 4096)\n"
+    "  --noverlap M    overlap in samples (default N/2)\n"
+    "  --fs HZ         sampling rate (required for a CSV file; overrides meta.toml for a recording)\n"
+    "  --sensor NAME   only this accelerometer (name or id); repeatable (default: all)\n"
+    "  --axis A        x, y, z or all (default z)\n"
+    "  --column NAME   the CSV file's column\n"
+    "  -o FILE         write FILE instead of standard output: freq_hz,<sensor>_<axis>,...\n"
+    "  -h, --help      this text\n";
+
+struct Channel {
+  std::string name;
+  std::int64_t sensor = -1;  // accel.csv sensor id; -1 for a CSV column
+  std::size_t axis = 2;      // 0 x, 1 y, 2 z
+  double fs_hz = 0;
+  std::unique_ptr<spectra::WelchPsd> psd;
+  std::uint64_t samples = 0;
+};
+
+struct Options {
+  std::string input, out, column, axis = "z";
+  std::vector<std::string> sensors;
+  std::size_t nperseg = 4096;
+  std::optional<std::size_t> noverlap;
+  std::optional<double> fs_hz;
+};
+
+bool wanted(const Options& o, const recording::SensorInfo& s) {
+  if (s.kind != "accelerometer") return false;
+  if (o.sensors.empty()) return true;
+  for (const std::string& w : o.sensors)
+    if (w == s.name || w == std::to_string(s.id)) return true;
+  return false;
+}
+
+int fail_data(const ParseError& e) {
+  std::fprintf(stderr, "roadload psd: %s\n", e.to_string().c_str());
+  return e.line > 0 ? kExitDataErr : kExitNoInput;
+}
+
+// Feeds every row of `path` to the channels; the first malformed row ends it with its error.
+int feed(const std::string& path, std::span<const std::string_view> columns, std::vector<Channel>& channels) {
+  auto csv = recording::CsvReader::open(path, columns);
+  if (!csv) return fail_data(csv.error());
+  std::span<const std::string_view> row;
+  for (;;) {
+    const auto status = csv.value().next(row);
+    if (status == recording::CsvReader::Status::end) {
+      if (csv.value().error()) return fail_data(*csv.value().error());
+      return kExitOk;
+    }
+    if (status == recording::CsvReader::Status::bad_row) return fail_data(*csv.value().error());
+    if (columns.size() == 1) {
+      const auto x = recording::parse_f64(row[0]);
+      if (!x) return fail_data(csv.value().field_error(0, "not a number"));
+      channels[0].psd->push(*x);
+      ++channels[0].samples;
+      continue;
+    }
+    const auto sensor = recording::parse_i64(row[1]);
+    if (!sensor) return fail_data(csv.value().field_error(1, "not an integer"));
+    for (Channel& c : channels) {
+      if (c.sensor != *sensor) continue;
+      const auto x = recording::parse_f64(row[2 + c.axis]);
+      if (!x) return fail_data(csv.value().field_error(2 + c.axis, "not a number"));
+      c.psd->push(*x);
+      ++c.samples;
+    }
+  }
+}
+
+int write(const Options& o, const std::vector<Channel>& channels, const spectra::WelchConfig& first) {
+  std::FILE* f = o.out.empty() ? stdout : std::fopen(o.out.c_str(), "w");
+  if (!f) {
+    std::fprintf(stderr, "roadload psd: %s: cannot create\n", o.out.c_str());
+    return kExitCantCreate;
+  }
+  std::vector<std::vector<double>> d;
+  for (const Channel& c : channels) {
+    d.emplace_back(c.psd->bins());
+    c.psd->density(d.back());
+  }
+  std::fputs("freq_hz", f);
+  for (const Channel& c : channels) std::fprintf(f, ",%s", c.name.c_str());
+  std::fputc('\n', f);
+  for (std::size_t k = 0; k < spectra::bin_count(first); ++k) {
+    std::fprintf(f, "%.17g", static_cast<double>(k) * spectra::bin_hz(first));
+    for (const auto& col : d) std::fprintf(f, ",%.17g", col[k]);
+    std::fputc('\n', f);
+  }
+  const bool ok = std::fflush(f) == 0 && !std::ferror(f);
+  if (f != stdout) std::fclose(f);
+  if (!ok) {
+    std::fprintf(stderr, "roadload psd: %s: write failed\n", o.out.empty() ? "stdout" : o.out.c_str());
+    return kExitCantCreate;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int run_psd(Args args) {
+  OptionParser opt("psd", args);
+  Options o;
+  while (opt.more()) {
+    if (opt.flag("-h", "--help")) {
+      std::fputs(kHelp, stdout);
+      return kExitOk;
+    }
+    if (auto n = opt.number("--nperseg", 2, 1 << 22)) {
+      o.nperseg = static_cast<std::size_t>(*n);
+    } else if (auto m = opt.number("--noverlap", 0, 1 << 22)) {
+      o.noverlap = static_cast<std::size_t>(*m);
+    } else if (auto fs = opt.real("--fs", 1e-6, 1e9)) {
+      o.fs_hz = *fs;
+    } else if (auto s = opt.value("--sensor")) {
+      o.sensors.emplace_back(*s);
+    } else if (auto a = opt.value("--axis")) {
+      o.axis = *a;
+    } else if (auto c = opt.value("--column")) {
+      o.column = *c;
+    } else if (auto out = opt.value("-o")) {
+      o.out = *out;
+    } else if (auto p = opt.positional()) {
+      o.input = *p;
+    } else if (!opt.failed()) {
+      return opt.fail_unknown();
+    }
+  }
+  if (opt.failed()) return kExitUsage;
+  if (o.input.empty()) return opt.fail("a recording or CSV file is required");
+  if (o.axis != "x" && o.axis != "y" && o.axis != "z" && o.axis != "all") return opt.fail("--axis: expected x, y, z or all");
+  const auto config = [&](double fs) {
+    return spectra::WelchConfig{fs, o.nperseg, o.noverlap.value_or(o.nperseg / 2)};
+  };
+  if (auto why = spectra::check(config(o.fs_hz.value_or(1.0)))) return opt.fail(*why);
+
+  std::vector<Channel> channels;
+  int rc = kExitOk;
+  if (!std::filesystem::is_directory(o.input)) {
+    if (o.column.empty()) return opt.fail("--column is required for a CSV file");
+    if (!o.fs_hz) return opt.fail("--fs is required for a CSV file");
+    channels.push_back({o.column, -1, 0, *o.fs_hz, std::make_unique<spectra::WelchPsd>(config(*o.fs_hz)), 0});
+    const std::string_view cols[] = {o.column};
+    rc = feed(o.input, cols, channels);
+  } else {
+    auto reader = recording::RecordingReader::open(o.input);
+    if (!reader) return fail_data(reader.error());
+    for (const auto& s : reader.value().metadata().sensors) {
+      if (!wanted(o, s)) continue;
+      const double fs = o.fs_hz.value_or(s.rate_hz);
+      if (!(fs > 0)) return opt.fail("sensor " + s.name + " has no rate_hz in meta.toml: give --fs");
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        if (o.axis != "all" && o.axis[0] != "xyz"[axis]) continue;
+        channels.push_back({s.name + "_" + "xyz"[axis], s.id, axis, fs, std::make_unique<spectra::WelchPsd>(config(fs)), 0});
+      }
+    }
+    if (channels.empty()) return opt.fail("no accelerometer in " + o.input + "/meta.toml matches");
+    const std::string_view cols[] = {"t_ns", "sensor", "x_mps2", "y_mps2", "z_mps2"};
+    rc = feed(o.input + "/" + recording::kAccelFile, cols, channels);
+  }
+  if (rc != kExitOk) return rc;
+  for (const Channel& c : channels) {
+    if (c.fs_hz != channels[0].fs_hz) return opt.fail("sensors at different rates: give --fs or one --sensor");
+    if (c.psd->segments() < 1) {
+      std::fprintf(stderr, "roadload psd: %s: %llu samples, fewer than one segment of %zu\n", c.name.c_str(),
+                   static_cast<unsigned long long>(c.samples), o.nperseg);
+      return kExitDataErr;
+    }
+  }
+  return write(o, channels, config(channels[0].fs_hz));
+}
+
+}  // namespace roadload::cli
