@@ -95,6 +95,7 @@ void DriveAnalyzer::push(const WeatherSample& w) {
 
 void DriveAnalyzer::push(const AccelSample& sample) {
   if (contact_ != nullptr) contact_->push(sample);
+  if (vibration_ != nullptr) vibration_->push(sample);
 }
 
 int DriveAnalyzer::cell_at(double s_m) const {
@@ -164,12 +165,13 @@ model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, 
 
 // Every axle in the cell under it, for the contact forces.
 void DriveAnalyzer::place_axles(CaptureTime t, double s_front_m, double grade_rad, double speed_mps) {
-  if (contact_ == nullptr) return;
+  if (contact_ == nullptr && vibration_ == nullptr) return;
   std::array<int, kMaxContactAxles> under{};
-  const auto& axles = contact_->layout().axles;
+  const auto& axles = contact_ != nullptr ? contact_->layout().axles : vibration_->layout().axles;
   const std::size_t n = std::min(axles.size(), under.size());
   for (std::size_t i = 0; i < n; ++i) under[i] = cell_at(s_front_m - axles[i].position_m);
-  contact_->set_axle_cells(t, std::span(under.data(), n), grade_rad, speed_mps);
+  if (contact_ != nullptr) contact_->set_axle_cells(t, std::span(under.data(), n), grade_rad, speed_mps);
+  if (vibration_ != nullptr) vibration_->set_axle_cells(t, std::span(under.data(), n), speed_mps, s_front_m);
 }
 
 PowerInterval DriveAnalyzer::power_since_last_tick(double dt_s, const TractionEstimate& tr, double wheel_speed_mps) {

@@ -70,15 +70,17 @@ struct AxleDefaults {
   const char* frame_position;   // frame accelerometer above that axle, without the side
   double unsprung_kg;
   double position_m;            // only to rank frame sensors when the metadata lacks <axle>_position_m
+  int tires;                    // 2 single front tires, 4 on a dual-tire axle: the report's 4,000 N s/m each
+  double tire_stiffness_npm;    // all tires of the axle: 0.95 MN/m per steer tire, 0.85 per drive or trailer tire (E)
 };
 
 inline constexpr std::size_t kMaxContactAxles = 8;
 inline constexpr std::array<AxleDefaults, 5> kMnroadAxles{{
-    {"front", "tractor", "tractor-front-axle", "tractor-front-frame", 421.0, 0.0},
-    {"drive1", "tractor", "tractor-drive1-axle", "tractor-drive1-frame", 701.5, 5.14},
-    {"drive2", "tractor", "tractor-drive2-axle", "tractor-drive2-frame", 701.5, 6.46},
-    {"trailer1", "trailer", "trailer-axle1", "trailer-axle1-frame", 595.0, 16.45},
-    {"trailer2", "trailer", "trailer-axle2", "trailer-axle2-frame", 595.0, 17.69},
+    {"front", "tractor", "tractor-front-axle", "tractor-front-frame", 421.0, 0.0, 2, 1.9e6},
+    {"drive1", "tractor", "tractor-drive1-axle", "tractor-drive1-frame", 701.5, 5.14, 4, 3.4e6},
+    {"drive2", "tractor", "tractor-drive2-axle", "tractor-drive2-frame", 701.5, 6.46, 4, 3.4e6},
+    {"trailer1", "trailer", "trailer-axle1", "trailer-axle1-frame", 595.0, 16.45, 4, 3.4e6},
+    {"trailer2", "trailer", "trailer-axle2", "trailer-axle2-frame", 595.0, 17.69, 4, 3.4e6},
 }};
 
 struct LayoutOptions {

@@ -15,6 +15,7 @@
 #include "roadload/j1939/assembler.hpp"
 #include "roadload/route_geometry.hpp"
 #include "roadload/samples.hpp"
+#include "roadload/vibration.hpp"
 
 namespace roadload {
 
@@ -83,10 +84,11 @@ class DriveAnalyzer {
   void push(const CanFrame& frame);
   void push(const GnssFix& fix);
   void push(const WeatherSample& sample);
-  // Accelerometer samples go to the attached contact-force estimator, placed by this drive's
-  // position; without one they are ignored.
+  // Accelerometer samples go to the attached contact-force estimator and vibration spectra, placed
+  // by this drive's position; without them they are ignored. Both are built on one axle layout.
   void push(const AccelSample& sample);
   void attach(ContactForces* contact) { contact_ = contact; }
+  void attach(VibrationAnalysis* vibration) { vibration_ = vibration; }
   // Grade and its sigma from this profile (`roadload grade`) instead of the route's survey.
   void set_grade(GradeProfile grade) { grade_ = std::move(grade); }
   // Runs the smoother; call once after the last push.
@@ -137,6 +139,7 @@ class DriveAnalyzer {
   std::vector<Tick> ticks_;
   std::vector<FuelBreakdown> cell_fuel_;
   ContactForces* contact_ = nullptr;
+  VibrationAnalysis* vibration_ = nullptr;
   TripResult trip_;
   bool started_ = false;
   CaptureTime last_tick_{};

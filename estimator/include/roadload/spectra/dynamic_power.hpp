@@ -24,6 +24,9 @@ struct PowerBand {
 
 // d * sum_k S_k / (2 pi f_k)^2 * bin_hz over lo_hz <= f_k <= hi_hz; bin k is at k * bin_hz.
 double dashpot_power_w(double damping_nspm, std::span<const double> accel_density, double bin_hz, PowerBand band = {});
+// The same from the velocity's density (m/s)^2/Hz: d x sum_k S_k x bin_hz over the band.
+double dashpot_velocity_power_w(double damping_nspm, std::span<const double> velocity_density, double bin_hz,
+                                PowerBand band = {});
 
 // A tire's dissipation on its deflection rate rather than on the axle's absolute velocity (Eq. 2.7).
 // The dynamic tire force F = M_w a_w + M_c a_c (Eq. 2.1) drives the tire's spring and dashpot in

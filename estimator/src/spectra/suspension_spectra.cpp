@@ -1,0 +1,142 @@
+#include "roadload/spectra/suspension_spectra.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace roadload::spectra {
+namespace {
+
+std::size_t slot_count(const std::vector<SuspensionAxle>& axles) {
+  int n = 0;
+  for (const auto& a : axles) n = std::max({n, a.axle_slot + 1, a.frame_slot + 1});
+  return static_cast<std::size_t>(n);
+}
+
+}  // namespace
+
+SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::size_t cell_count, double grid_hz,
+                                     SuspensionConfig config)
+    : axles_(std::move(axles)),
+      config_(config),
+      transform_({grid_hz, config.nperseg, config.noverlap}),
+      weights_(hann_periodic(config.nperseg)),
+      segment_(config.nperseg),
+      slot_spectrum_(slot_count(axles_), std::vector<std::complex<double>>(bin_count(transform_.config()))),
+      slot_velocity_(slot_spectrum_),
+      slot_ok_(slot_count(axles_)),
+      delayed_(bin_count(transform_.config())),
+      delayed_velocity_(bin_count(transform_.config())),
+      response_(bin_count(transform_.config()), 1.0) {
+  const std::size_t bins = bin_count(transform_.config());
+  trip_.assign(axles_.size(), Sums(bins));
+  cell_.assign(cell_count * axles_.size(), Sums(bins));
+}
+
+void SuspensionSpectra::update(const SensorGrid& grid, const PlacementHistory& history) {
+  if (grid.latest() == std::numeric_limits<std::int64_t>::min()) return;
+  const auto n = static_cast<std::int64_t>(config_.nperseg);
+  if (!started_) {
+    next_end_ = grid.latest() + n - 1;
+    started_ = true;
+  }
+  while (grid.latest() >= next_end_ + config_.lag_samples) {
+    take(grid, history, next_end_);
+    next_end_ += static_cast<std::int64_t>(hop(transform_.config()));
+  }
+}
+
+void SuspensionSpectra::take(const SensorGrid& grid, const PlacementHistory& history, std::int64_t end) {
+  ++counters_.segments;
+  if (counters_.segments == 1) {
+    for (std::size_t k = 1; k < response_.size(); ++k)
+      response_[k] = grid.velocity_response_ratio(static_cast<double>(k) * bin_hz(transform_.config()));
+  }
+  for (std::size_t slot = 0; slot < slot_spectrum_.size(); ++slot) {
+    slot_ok_[slot] = slot < grid.sensor_count() && grid.copy(slot, end, segment_);
+    if (slot_ok_[slot]) transform_.transform(segment_, slot_spectrum_[slot]);
+    slot_ok_[slot] = slot_ok_[slot] && grid.copy_velocity(slot, end, segment_);
+    if (slot_ok_[slot]) transform_.transform(segment_, slot_velocity_[slot]);
+  }
+  const auto n = static_cast<std::int64_t>(config_.nperseg);
+  const CaptureTime t0 = grid.time_of(end - n + 1);
+  const std::int64_t period = grid.config().period_ns;
+  for (std::size_t a = 0; a < axles_.size(); ++a) {
+    const SuspensionAxle& ax = axles_[a];
+    if (ax.axle_slot < 0 || ax.frame_slot < 0 || !slot_ok_[static_cast<std::size_t>(ax.axle_slot)] ||
+        !slot_ok_[static_cast<std::size_t>(ax.frame_slot)]) {
+      ++counters_.missing;
+      continue;
+    }
+    const SegmentShares shares = weights_.shares(history, a, t0, period);
+    const auto u = static_cast<std::size_t>(ax.axle_slot), f = static_cast<std::size_t>(ax.frame_slot);
+    const double tau = (ax.frame_ahead_m > 0 && shares.speed_mps >= config_.min_delay_speed_mps)
+                           ? ax.frame_ahead_m / shares.speed_mps
+                           : 0.0;
+    delay(slot_spectrum_[f], tau, delayed_);
+    delay(slot_velocity_[f], tau, delayed_velocity_);
+    ++counters_.axle_segments;
+    const auto add = [&](Sums& sums, double w) {
+      sums.accel.add(slot_spectrum_[u], delayed_, w);
+      sums.velocity.add(slot_velocity_[u], delayed_velocity_, w);
+    };
+    add(trip_[a], 1.0);
+    for (std::size_t i = 0; i < shares.count; ++i)
+      add(cell_[static_cast<std::size_t>(shares.share[i].cell) * axles_.size() + a], shares.share[i].weight);
+  }
+}
+
+void SuspensionSpectra::delay(std::span<const std::complex<double>> in, double tau_s,
+                              std::span<std::complex<double>> out) const {
+  const double step = -2.0 * std::numbers::pi * bin_hz(transform_.config()) * tau_s;
+  for (std::size_t k = 0; k < in.size(); ++k) out[k] = in[k] * std::polar(1.0, step * static_cast<double>(k));
+}
+
+std::vector<double> SuspensionSpectra::density(const Sums& sums, std::size_t axle, AxleDensity which) const {
+  const bool velocity = which == AxleDensity::axle_velocity || which == AxleDensity::relative_velocity;
+  const Pair& p = velocity ? sums.velocity : sums.accel;
+  const std::size_t bins = p.uu.bins();
+  std::vector<std::complex<double>> uu(bins), ss(bins), us(bins);
+  const double scale = transform_.density_scale();
+  p.uu.density(scale, uu);
+  p.ss.density(scale, ss);
+  p.us.density(scale, us);
+  const double mw = axles_[axle].unsprung_kg, mc = axles_[axle].sprung_kg;
+  // The trapezoid's zero at Nyquist: above ~0.37 fs (75 Hz on the 200 Hz grid) its response falls
+  // below 0.2 and dividing it out would lift noise; the anti-alias filter has taken those bins down.
+  const auto usable = [&](std::size_t k) { return k > 0 && response_[k] >= 0.2; };
+  std::vector<double> out(bins);
+  for (std::size_t k = 0; k < bins; ++k) {
+    const double rel = uu[k].real() + ss[k].real() - 2.0 * us[k].real();
+    switch (which) {
+      case AxleDensity::axle: out[k] = uu[k].real(); break;
+      case AxleDensity::frame: out[k] = ss[k].real(); break;
+      case AxleDensity::relative: out[k] = rel; break;
+      case AxleDensity::force: out[k] = mw * mw * uu[k].real() + mc * mc * ss[k].real() + 2.0 * mw * mc * us[k].real(); break;
+      case AxleDensity::axle_velocity: out[k] = usable(k) ? uu[k].real() / response_[k] : 0.0; break;
+      case AxleDensity::relative_velocity: out[k] = usable(k) ? rel / response_[k] : 0.0; break;
+    }
+  }
+  return out;
+}
+
+AxlePower SuspensionSpectra::power(const Sums& s, std::size_t axle) const {
+  AxlePower p;
+  p.segments = s.accel.uu.segments();
+  if (p.segments <= 0) return p;
+  const SuspensionAxle& a = axles_[axle];
+  const double df = bin_hz(transform_.config());
+  p.damper_w = dashpot_velocity_power_w(a.damper_nspm, density(s, axle, AxleDensity::relative_velocity), df, config_.band);
+  p.damper_accel_w = dashpot_power_w(a.damper_nspm, density(s, axle, AxleDensity::relative), df, config_.band);
+  p.tire_eq27_w = dashpot_velocity_power_w(a.tire_damping_nspm, density(s, axle, AxleDensity::axle_velocity), df, config_.band);
+  p.tire_deflection_w = tire_deflection_power_w(a.tire_damping_nspm, a.tire_stiffness_npm,
+                                                density(s, axle, AxleDensity::force), df, config_.band);
+  return p;
+}
+
+std::vector<double> SuspensionSpectra::trip_density(std::size_t axle, AxleDensity which) const {
+  return density(trip_[axle], axle, which);
+}
+
+}  // namespace roadload::spectra

@@ -1,0 +1,80 @@
+#include "roadload/vibration.hpp"
+
+#include <string_view>
+
+namespace roadload {
+namespace {
+
+std::vector<spectra::GridSensor> grid_sensors(std::span<const VibrationSensor> sensors) {
+  std::vector<spectra::GridSensor> out;
+  for (const auto& s : sensors) out.push_back({s.id, s.rate_hz});
+  return out;
+}
+
+int slot_of(std::span<const VibrationSensor> sensors, std::uint8_t id) {
+  for (std::size_t i = 0; i < sensors.size(); ++i)
+    if (sensors[i].id == id) return static_cast<int>(i);
+  return -1;
+}
+
+const AxleDefaults* defaults(std::string_view name) {
+  for (const AxleDefaults& d : kMnroadAxles)
+    if (name == d.name) return &d;
+  return nullptr;
+}
+
+std::vector<spectra::SuspensionAxle> suspension_axles(const AxleLayout& layout, std::span<const VibrationSensor> sensors,
+                                                      const VibrationConfig& c) {
+  std::vector<spectra::SuspensionAxle> out;
+  for (const AxleContact& a : layout.axles) {
+    spectra::SuspensionAxle s;
+    s.name = a.name;
+    s.axle_slot = slot_of(sensors, a.axle_sensor);
+    s.frame_slot = slot_of(sensors, a.frame_sensor);
+    s.frame_ahead_m = a.frame_ahead_m;
+    s.unsprung_kg = a.unsprung_kg;
+    s.sprung_kg = a.sprung_kg;
+    s.damper_nspm = c.damper_nspm;
+    const AxleDefaults* d = defaults(a.name);
+    s.tire_damping_nspm = c.tire_damping_per_tire_nspm * (d ? d->tires : 4);
+    s.tire_stiffness_npm = d ? d->tire_stiffness_npm : 3.4e6;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::vector<spectra::ModeSensor> mode_sensors(const AxleLayout& layout, std::span<const VibrationSensor> sensors) {
+  std::vector<spectra::ModeSensor> out;
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    std::size_t axle = 0;
+    for (std::size_t a = 0; a < layout.axles.size(); ++a) {
+      const AxleContact& c = layout.axles[a];
+      if (c.axle_sensor == sensors[i].id || (c.frame_sensor == sensors[i].id && c.frame_of == c.name)) axle = a;
+    }
+    out.push_back({sensors[i].name, static_cast<int>(i), axle});
+  }
+  return out;
+}
+
+}  // namespace
+
+VibrationAnalysis::VibrationAnalysis(const AxleLayout& layout, std::span<const VibrationSensor> sensors,
+                                     std::size_t cell_count, std::vector<int> cell_group, std::size_t group_count,
+                                     VibrationConfig config)
+    : layout_(layout),
+      grid_(grid_sensors(sensors), config.grid),
+      history_(config.placement_history),
+      suspension_(suspension_axles(layout, sensors, config), cell_count, grid_.rate_hz(), config.suspension),
+      modes_(mode_sensors(layout, sensors), std::move(cell_group), group_count, grid_.rate_hz(), config.modes) {}
+
+void VibrationAnalysis::set_axle_cells(CaptureTime t, std::span<const int> cells, double speed_mps, double s_front_m) {
+  history_.add(t, cells, speed_mps, s_front_m);
+}
+
+void VibrationAnalysis::push(const AccelSample& s) {
+  grid_.push(s);
+  suspension_.update(grid_, history_);
+  modes_.update(grid_, history_);
+}
+
+}  // namespace roadload

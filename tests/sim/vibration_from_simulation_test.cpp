@@ -1,0 +1,238 @@
+// Dynamic rolling resistance from the simulated accelerometers (seed report Eq. 2.7-2.8): damper
+// power per cell and per trip against the plant's true damper dissipation, the tire figures beside
+// the true tire dissipation, and the joint line with the panel length it gives. The truck is placed
+// by the plant's true position: this test is about the spectra, positioning is the analyzer's.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <span>
+#include <vector>
+
+#include "roadload/running_stats.hpp"
+#include "roadload/spectra/modes.hpp"
+#include "roadload/spectra/welch.hpp"
+#include "roadload/vibration.hpp"
+#include "sim_fixture.hpp"
+
+namespace roadload::sim {
+namespace {
+
+constexpr double kFtToM = 0.3048;
+
+struct Powers {
+  double damper_w = 0, tire_w = 0;
+};
+
+class VibrationSink final : public SampleSink {
+ public:
+  VibrationSink(const Simulation& sim, VibrationAnalysis& va)
+      : sim_(sim), va_(va), cells_(sim.route().def().cells.size() * va.layout().axles.size()) {}
+  void frame(const CanFrame&) override {}
+  void gnss(const GnssFix&) override {}
+  void weather(const WeatherSample&) override {}
+  void accel(const AccelSample& s) override {
+    const TruckState& st = sim_.plant().state();
+    if (st.t_s != last_t_) {
+      last_t_ = st.t_s;
+      observe(st);
+    }
+    va_.push(s);
+  }
+  // Mean over the time axle i was in cell c, summed over axles, as truth/cells.csv has it.
+  Powers truth_cell(std::size_t c) const {
+    Powers p;
+    const std::size_t n = va_.layout().axles.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      p.damper_w += cells_[c * n + i].damper.mean;
+      p.tire_w += cells_[c * n + i].tire.mean;
+    }
+    return p;
+  }
+  Powers truth_trip() const { return {trip_damper_.mean, trip_tire_.mean}; }
+
+ private:
+  struct Acc {
+    RunningStats damper, tire;
+  };
+  int cell_of(const TruckState& st, std::size_t axle) const {
+    const Route& r = sim_.route();
+    const Cell* c = r.cell_at(st.x_m - va_.layout().axles[axle].position_m);
+    return c == nullptr ? -1 : static_cast<int>(c - r.def().cells.data());
+  }
+  void observe(const TruckState& st) {
+    const std::size_t n = va_.layout().axles.size();
+    std::array<int, kMaxContactAxles> cells{};
+    double damper = 0, tire = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      cells[i] = cell_of(st, i);
+      damper += st.axles[i].damper_power_w;
+      tire += st.axles[i].tire_power_w;
+      if (cells[i] >= 0) {
+        cells_[static_cast<std::size_t>(cells[i]) * n + i].damper.add(st.axles[i].damper_power_w);
+        cells_[static_cast<std::size_t>(cells[i]) * n + i].tire.add(st.axles[i].tire_power_w);
+      }
+    }
+    trip_damper_.add(damper);
+    for (std::size_t i = 0; i < n; ++i) axle_damper_[i].add(st.axles[i].damper_power_w);
+    if (step_ % 12 == 0) {
+      const auto& ax = st.axles[1];
+      vrel_.push(ax.unsprung_v_mps - ax.sprung_v_mps);
+      arel_.push(ax.unsprung_accel_mps2 - ax.sprung_accel_mps2);
+    }
+    trip_tire_.add(tire);
+    if (++step_ % 24 == 0)  // placements at 100 Hz
+      va_.set_axle_cells(capture_time_from_ns(std::llround(st.t_s * 1e9)), std::span(cells.data(), n), st.speed_mps, st.x_m);
+  }
+
+  const Simulation& sim_;
+  VibrationAnalysis& va_;
+  double last_t_ = -1;
+  std::uint64_t step_ = 0;
+  std::vector<Acc> cells_;
+  RunningStats trip_damper_, trip_tire_;
+
+ public:
+  std::array<RunningStats, kMaxContactAxles> axle_damper_{};
+  spectra::WelchPsd vrel_{{200.0, 256, 192}};
+  spectra::WelchPsd arel_{{200.0, 256, 192}};
+};
+
+AxleLayout layout_from(const recording::Metadata& m) {
+  std::vector<SensorPlacement> p;
+  for (const auto& s : m.sensors) p.push_back({s.id, s.kind, s.position});
+  auto l = build_axle_layout(p, m.vehicle);
+  EXPECT_TRUE(l.ok()) << (l.ok() ? "" : l.error().to_string());
+  return l.value();
+}
+
+std::vector<VibrationSensor> sensors_from(const recording::Metadata& m) {
+  std::vector<VibrationSensor> out;
+  for (const auto& s : m.sensors)
+    if (s.kind == "accelerometer") out.push_back({static_cast<std::uint8_t>(s.id), s.name, s.rate_hz});
+  return out;
+}
+
+struct Group {
+  std::string name;
+  double panel_m = 0;  // the route's joint spacing, 0 on bituminous
+};
+
+struct DriveResult {
+  std::vector<std::pair<std::string, double>> cell_ratio;  // damper estimate / truth per full cell
+  double trip_damper_ratio = 0;
+  std::vector<Group> groups;
+  std::vector<spectra::JointLine> guided, blind;  // per group
+};
+
+DriveResult run_drive(const std::string& scenario, std::uint64_t seed, double joint_faulting_m = -1) {
+  const j1939::Database db = test::core_database();
+  Scenario sc = test::builtin(scenario);
+  if (joint_faulting_m >= 0) sc.effects.set(Effect::joint_faulting, joint_faulting_m);
+  Simulation sim(sc, seed, db);
+  const auto& cells = sim.route().def().cells;
+  DriveResult r;
+  std::vector<int> group(cells.size());
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const Group g{cells[c].surface + (cells[c].joint_spacing_m > 0 ? " " + std::to_string(cells[c].joint_spacing_m) : ""),
+                  cells[c].joint_spacing_m};
+    std::size_t i = 0;
+    while (i < r.groups.size() && r.groups[i].name != g.name) ++i;
+    if (i == r.groups.size()) r.groups.push_back(g);
+    group[c] = static_cast<int>(i);
+  }
+  const std::vector<VibrationSensor> sensors = sensors_from(sim.metadata());
+  VibrationAnalysis va(layout_from(sim.metadata()), sensors, cells.size(), group, r.groups.size());
+  VibrationSink sink(sim, va);
+  sim.run(sink, nullptr);
+
+  const auto& sp = va.suspension();
+  double trip_damper = 0, trip_eq27 = 0, trip_defl = 0;
+  for (std::size_t a = 0; a < sp.axle_count(); ++a) {
+    const auto p = sp.trip_power(a);
+    trip_damper += p.damper_w;
+    trip_eq27 += p.tire_eq27_w;
+    trip_defl += p.tire_deflection_w;
+  }
+  const Powers truth = sink.truth_trip();
+  r.trip_damper_ratio = trip_damper / truth.damper_w;
+  std::printf("%s seed %llu: trip damper %.1f W (truth %.1f, %+.1f %%); tire Eq. 2.7 %.1f W, from deflection %.1f W (truth %.1f)\n",
+              scenario.c_str(), static_cast<unsigned long long>(seed), trip_damper, truth.damper_w,
+              100 * (r.trip_damper_ratio - 1), trip_eq27, trip_defl, truth.tire_w);
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    double est = 0, segs = 1e9;
+    for (std::size_t a = 0; a < sp.axle_count(); ++a) {
+      est += sp.cell_power(c, a).damper_w;
+      segs = std::min(segs, sp.cell_power(c, a).segments);
+    }
+    const Powers t = sink.truth_cell(c);
+    if (segs < 4) continue;  // a cell the truck did not cross whole
+    r.cell_ratio.emplace_back(cells[c].id, est / t.damper_w);
+  }
+  const auto& modes = va.modes();
+  const double bin = spectra::bin_hz(modes.spatial_welch());
+  for (std::size_t g = 0; g < r.groups.size(); ++g) {
+    std::vector<std::vector<double>> spatial;
+    for (std::size_t s = 0; s < modes.sensor_count(); ++s) spatial.push_back(modes.spatial_density(s, static_cast<int>(g)));
+    spectra::JointConfig guided;
+    guided.expected_panel_m = r.groups[g].panel_m;
+    r.blind.push_back(spectra::find_joint_line(spatial, bin));
+    r.guided.push_back(r.groups[g].panel_m > 0 ? spectra::find_joint_line(spatial, bin, guided) : spectra::JointLine{});
+    std::printf("  %-18s blind: %s %.3f m (%.1f sigma)   guided: %s %.3f m (%.1f sigma)\n", r.groups[g].name.c_str(),
+                r.blind.back().found ? "found" : "none ", r.blind.back().panel_m, r.blind.back().significance,
+                r.guided.back().found ? "found" : "none ", r.guided.back().panel_m, r.guided.back().significance);
+  }
+  return r;
+}
+
+double worst_cell_error(const DriveResult& r) {
+  double worst = 0;
+  for (const auto& [cell, ratio] : r.cell_ratio) worst = std::max(worst, std::abs(ratio - 1));
+  return worst;
+}
+
+// Seed report Sect. 6.3: damper power per cell within 5 % and per trip within 2 % of the plant's
+// true dissipation. The scenario's 0.5 mm faulting on the new Mainline concrete leaves the 15 ft
+// line below detection in one pass (printed; docs/spectra.md): the road's own roughness, the same
+// on every pass, is the background, so more passes do not help.
+TEST(VibrationFromSimulation, MainlineAt30MphDamperPower) {
+  const DriveResult r = run_drive("mnroad-mainline-30mph", 1);
+  EXPECT_NEAR(r.trip_damper_ratio, 1.0, 0.02);
+  EXPECT_GE(r.cell_ratio.size(), 25u);
+  EXPECT_LT(worst_cell_error(r), 0.05);
+  for (std::size_t g = 0; g < r.groups.size(); ++g) {
+    if (r.groups[g].panel_m == 0) {
+      EXPECT_FALSE(r.blind[g].found) << r.groups[g].name;
+    }
+  }
+}
+
+// The same road with TH 10's 2 mm faulting: the 15 ft line found blind.
+TEST(VibrationFromSimulation, MainlineAt30MphWith2mmFaultingShowsThe15FtJoints) {
+  const DriveResult r = run_drive("mnroad-mainline-30mph", 1, 0.002);
+  for (std::size_t g = 0; g < r.groups.size(); ++g) {
+    if (r.groups[g].panel_m != 15 * kFtToM) continue;
+    ASSERT_TRUE(r.blind[g].found) << r.groups[g].name;
+    EXPECT_NEAR(r.blind[g].panel_m, 15 * kFtToM, 0.03 * 15 * kFtToM);
+  }
+}
+
+// TH 10's 43-year-old concrete (2 mm faulting, 28 ft panels): the line found blind.
+TEST(VibrationFromSimulation, Th10At55Mph) {
+  const DriveResult r = run_drive("th10-55mph", 1);
+  EXPECT_NEAR(r.trip_damper_ratio, 1.0, 0.02);
+  EXPECT_LT(worst_cell_error(r), 0.05);
+  ASSERT_EQ(r.groups.size(), 1u);
+  ASSERT_TRUE(r.blind[0].found);
+  EXPECT_NEAR(r.blind[0].panel_m, 28 * kFtToM, 0.03 * 28 * kFtToM);
+}
+
+TEST(VibrationFromSimulation, Th66At55MphHasNoJointLine) {
+  const DriveResult r = run_drive("th66-55mph", 1);
+  EXPECT_NEAR(r.trip_damper_ratio, 1.0, 0.02);
+  for (const auto& j : r.blind) EXPECT_FALSE(j.found);
+}
+
+}  // namespace
+}  // namespace roadload::sim
