@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analyze_results.hpp"
+#include "analyze_vibration.hpp"
 #include "command.hpp"
 #include "options.hpp"
 #include "route_arg.hpp"
@@ -29,10 +30,14 @@ constexpr const char* kHelp =
     "GNSS and odometry, then a fixed-interval smoother so each cell uses data on both sides of it.\n"
     "Per cell also: the fuel breakdown (engine, driveline, accessories, aero, rolling, grade,\n"
     "acceleration, braking; litres at 35.8 MJ/L) and, from the accelerometers, the contact force\n"
-    "per axle (report Eq. 2.1).\n\n"
+    "per axle (report Eq. 2.1) and the power the dampers and tires dissipate (dynamic rolling\n"
+    "resistance, Eq. 2.7-2.8; 20,000 N s/m per axle, 4,000 N s/m per tire). Per pavement group\n"
+    "(surface and panel length): PSDs, vibration modes and the concrete joint line.\n\n"
     "  --route R       route file or built-in route name (config/routes): geometry, grade and cells\n"
     "  --out DIR       write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval; fuel breakdown per cell\n"
-    "                  in litres) and DIR/trip.json\n"
+    "                  in litres; damper_power_w,tire_power_w,...), DIR/trip.json, and the PSDs:\n"
+    "                  DIR/psd.csv (trip) and DIR/psd-<group>.csv (freq_hz, one column per accelerometer,\n"
+    "                  (m/s^2)^2/Hz), DIR/psd-spatial-<group>.csv (cycles_per_m, per cycle/m)\n"
     "  --truth DIR     a simulation's ground truth: the true CRR beside each cell, RMSE and coverage, and\n"
     "                  the true fuel breakdown beside the estimate\n"
     "  --estimate-cda  fit CdA from the drive (drives across speeds); otherwise CdA keeps its prior\n"
@@ -72,22 +77,27 @@ AnalyzerConfig config_from_vehicle(const std::map<std::string, double>& vehicle,
   return cfg;
 }
 
-// Contact forces for every axle with accelerometers; axles without them, or a recording without
-// any, are reported once and skipped.
-std::optional<ContactForces> contact_forces(const recording::Metadata& meta, const std::string& recording,
-                                            std::size_t cells, std::vector<std::string>& axle_names) {
+// The axles with accelerometers; axles without them, or a recording without any, are reported once
+// and skipped.
+std::optional<AxleLayout> axle_layout(const recording::Metadata& meta, const std::string& recording) {
   std::vector<SensorPlacement> placements;
   for (const auto& s : meta.sensors) placements.push_back({s.id, s.kind, s.position});
   LayoutOptions lenient;
   lenient.skip_axles_without_sensors = true;
   auto layout = build_axle_layout(placements, meta.vehicle, recording + "/meta.toml", lenient);
   if (!layout) {
-    std::fprintf(stderr, "roadload analyze: contact forces not estimated: %s\n", layout.error().to_string().c_str());
+    std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.error().to_string().c_str());
     return std::nullopt;
   }
   for (const std::string& why : layout.value().skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
-  for (const AxleContact& a : layout.value().axles) axle_names.push_back(a.name);
-  return std::optional<ContactForces>(std::in_place, std::move(layout.value()), cells);
+  return std::move(layout.value());
+}
+
+std::vector<VibrationSensor> accelerometers(const recording::Metadata& meta) {
+  std::vector<VibrationSensor> out;
+  for (const auto& s : meta.sensors)
+    if (s.kind == "accelerometer" && s.id >= 0 && s.id < 256) out.push_back({static_cast<std::uint8_t>(s.id), s.name, s.rate_hz});
+  return out;
 }
 
 }  // namespace
@@ -173,17 +183,30 @@ int run_analyze(Args args) {
     analyzer.set_grade(std::move(grade.value()));
   }
   std::vector<std::string> axle_names;
-  std::optional<ContactForces> contact = contact_forces(reader.value().metadata(), recording, cells.size(), axle_names);
-  if (contact) analyzer.attach(&*contact);
+  std::optional<ContactForces> contact;
+  std::optional<VibrationAnalysis> vibration;
+  const PavementGroups groups = pavement_groups(route.value().cells);
+  if (std::optional<AxleLayout> layout = axle_layout(reader.value().metadata(), recording)) {
+    for (const AxleContact& a : layout->axles) axle_names.push_back(a.name);
+    vibration.emplace(*layout, accelerometers(reader.value().metadata()), cells.size(), groups.cell_group, groups.names.size());
+    contact.emplace(std::move(*layout), cells.size());
+    analyzer.attach(&*contact);
+    analyzer.attach(&*vibration);
+  }
   while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { analyzer.push(s); }, *r);
   for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
   analyzer.finish();
   const std::vector<CellResult> results = analyzer.cells();
   const TripResult trip = analyzer.trip();
 
+  std::optional<VibrationSummary> spectra;
+  if (vibration) spectra = summarize(*vibration, groups, trip.fuel.time_s, trip.fuel.distance_m);
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
-  for (auto err : {write_cells_csv(out + "/cells.csv", results, axle_names), write_trip_json(out + "/trip.json", trip)}) {
+  const VibrationAnalysis* va = vibration ? &*vibration : nullptr;
+  for (auto err : {write_cells_csv(out + "/cells.csv", results, axle_names, va),
+                   write_trip_json(out + "/trip.json", trip, spectra ? vibration_json(*spectra) : std::string()),
+                   va ? write_psd_files(out, *va, groups) : std::nullopt}) {
     if (err) {
       std::fprintf(stderr, "roadload analyze: %s\n", err->to_string().c_str());
       return kExitCantCreate;
@@ -200,6 +223,8 @@ int run_analyze(Args args) {
   }
   if (!quiet) print_cells(results, truth ? &*truth : nullptr);
   print_trip(trip, results, truth ? &*truth : nullptr);
+  if (spectra) print_vibration(*spectra);
+  if (spectra && truth) print_vibration_truth(*vibration, route.value().cells, *truth);
   return kExitOk;
 }
 

@@ -1,5 +1,6 @@
 #include "analyze_results.hpp"
 
+#include <array>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <string_view>
 
 #include "roadload/recording/csv.hpp"
+#include "roadload/spectra/dynamic_power.hpp"
 #include "roadload/recording/writer.hpp"
 #include "roadload/toml_fields.hpp"
 
@@ -29,20 +31,27 @@ const double* true_crr(const Truth* t, const std::string& cell) {
   return it == t->crr.end() ? nullptr : &it->second;
 }
 
-Parsed<std::map<std::string, double>> read_truth_cells(const std::string& path) {
-  constexpr std::string_view kColumns[] = {"cell", "crr"};
+Parsed<Truth> read_truth_cells(const std::string& path) {
+  constexpr std::string_view kColumns[] = {"cell", "crr", "damper_power_w", "tire_power_w"};
   auto csv = recording::CsvReader::open(path, kColumns);
   if (!csv) return csv.error();
-  std::map<std::string, double> crr;
+  Truth t;
   std::span<const std::string_view> row;
   for (recording::CsvReader::Status st; (st = csv.value().next(row)) != recording::CsvReader::Status::end;) {
     if (st == recording::CsvReader::Status::bad_row) return *csv.value().error();
-    const auto value = recording::parse_f64(row[1]);
-    if (!value) return csv.value().field_error(1, "expected a number");
-    crr[std::string(row[0])] = *value;
+    std::array<double, 3> v{};
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const auto value = recording::parse_f64(row[i + 1]);
+      if (!value) return csv.value().field_error(i + 1, "expected a number");
+      v[i] = *value;
+    }
+    const std::string cell(row[0]);
+    t.crr[cell] = v[0];
+    t.damper_w[cell] = v[1];
+    t.tire_w[cell] = v[2];
   }
   if (csv.value().error()) return *csv.value().error();
-  return crr;
+  return t;
 }
 
 Parsed<std::map<std::string, double>> read_truth_energy(const std::string& path) {
@@ -63,12 +72,13 @@ Parsed<std::map<std::string, double>> read_truth_energy(const std::string& path)
 }  // namespace
 
 std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells,
-                                          const std::vector<std::string>& axle_names) {
+                                          const std::vector<std::string>& axle_names, const VibrationAnalysis* vibration) {
   auto csv = recording::OutputFile::create(path);
   if (!csv) return csv.error();
   std::string header = "cell,start_m,end_m,samples,crr,crr_lo,crr_hi,crr_sigma,identified,speed_mps,roll_force_n,fuel_l";
   for (std::size_t i = 0; i < kUses; ++i) header += std::string(",") + to_string(use(i)) + "_l";
   for (const std::string& a : axle_names) header += ",fz_" + a + "_mean_n,fz_" + a + "_std_n,fz_" + a + "_dynamic_std_n";
+  if (vibration) header += ",damper_power_w,tire_power_w,tire_eq27_power_w,dynamic_energy_j,dynamic_l,dynamic_l_per_100km";
   csv.value().write(header + ",reason\n");
   recording::LineBuilder line;
   const double nan = std::nan("");
@@ -87,13 +97,21 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
       line.num(have_fz ? c.contact[a].fz.mean_n : nan, 1).sep().num(have_fz ? c.contact[a].fz.std_n : nan, 1).sep();
       line.num(have_fz ? c.contact[a].dynamic.std_n : nan, 1).sep();
     }
+    if (vibration) {
+      const DynamicPower p = vibration->cell_power(static_cast<std::size_t>(&c - cells.data()));
+      const bool measured = p.segments > 0;
+      const spectra::StretchCost cost = spectra::stretch_cost(p.total_w(), c.fuel.time_s, c.fuel.time_s > 0 ? c.fuel.distance_m / c.fuel.time_s : 0.0, kDieselEnergy_jpl);
+      line.num(measured ? p.damper_w : nan, 2).sep().num(measured ? p.tire_w : nan, 2).sep().num(measured ? p.tire_eq27_w : nan, 2).sep();
+      line.num(measured && driven ? cost.energy_j : nan, 1).sep().num(measured && driven ? cost.diesel_l : nan, 6).sep();
+      line.num(measured && driven ? cost.l_per_100km : nan, 4).sep();
+    }
     line.text(c.reason);
     csv.value().write(line.finish());
   }
   return csv.value().close();
 }
 
-std::optional<ParseError> write_trip_json(const std::string& path, const TripResult& trip) {
+std::optional<ParseError> write_trip_json(const std::string& path, const TripResult& trip, const std::string& extra) {
   std::ofstream json(path);
   json << "{\n  \"crr\": " << trip.crr << ",\n  \"crr_sigma\": " << trip.crr_sigma << ",\n  \"crr_identified\": "
        << (trip.identified ? "true" : "false") << ",\n  \"cda_m2\": " << trip.cda_m2 << ",\n  \"ticks\": " << trip.ticks
@@ -108,17 +126,18 @@ std::optional<ParseError> write_trip_json(const std::string& path, const TripRes
        << ",\n    \"closure\": " << trip.fuel.closure() << ",\n    \"distance_m\": " << trip.fuel.distance_m
        << ",\n    \"ticks_without_fuel_rate\": " << trip.no_fuel_rate;
   for (std::size_t i = 0; i < kUses; ++i) json << ",\n    \"" << to_string(use(i)) << "_l\": " << trip.fuel.liters(use(i));
-  json << "\n  }\n}\n";
+  json << "\n  }";
+  if (!extra.empty()) json << ",\n" << extra;
+  json << "\n}\n";
   json.close();
   if (!json) return ParseError{path, 0, "file", "could not be written"};
   return std::nullopt;
 }
 
 Parsed<Truth> read_truth(const std::string& dir) {
-  Truth t;
   auto cells = read_truth_cells(dir + "/cells.csv");
   if (!cells) return cells.error();
-  t.crr = std::move(cells.value());
+  Truth t = std::move(cells.value());
   auto energy = read_truth_energy(dir + "/truth.toml");
   if (!energy) return energy.error();
   t.energy_j = std::move(energy.value());

@@ -33,6 +33,7 @@ void FuelBreakdown::add(const PowerInterval& p, double energy_jpl) {
   const double fuel_l_now = p.fuel_rate_lph / 3600.0 * p.dt_s;
   fuel_l += fuel_l_now;
   distance_m += dx;
+  time_s += p.dt_s;
 
   // The wheel side needs only the smoothed resistances and the speed.
   const double kinetic_j = 0.5 * p.effective_mass_kg * (p.speed_to_mps * p.speed_to_mps - p.speed_from_mps * p.speed_from_mps);

@@ -21,9 +21,17 @@ head -1 "$work/res/cells.csv" | grep -q "^cell,start_m,end_m,samples,crr,crr_lo,
 cmp -s <(cut -d, -f1 "$work/res/cells.csv") <(cut -d, -f1 "$work/truth/cells.csv") ||
   fail "analysed cells are not the simulator's cells"
 grep -q '"crr":' "$work/res/trip.json" || fail "trip.json has no crr"
+python3 -c 'import json, sys; json.load(open(sys.argv[1]))["dynamic_rolling"]["groups"]' "$work/res/trip.json" ||
+  fail "trip.json is not JSON or lacks dynamic_rolling.groups"
+head -1 "$work/res/cells.csv" | grep -q ",damper_power_w,tire_power_w," || fail "cells.csv lacks the dynamic power columns"
+accels=$(grep -c "kind = .accelerometer." "$work/rec/meta.toml")
+[[ $(head -1 "$work/res/psd.csv" | tr ',' '\n' | wc -l) -eq $((accels + 1)) ]] || fail "psd.csv: not one column per accelerometer"
+head -1 "$work/res/psd.csv" | grep -q "^freq_hz,TLF1," || fail "psd.csv header: $(head -1 "$work/res/psd.csv")"
+[[ -s $work/res/psd-bituminous.csv && -s $work/res/psd-spatial-bituminous.csv ]] || fail "no PSD per pavement group"
+grep -q "dampers.*against the truth\|against the truth.*dampers" "$work/err" || fail "no damper power against the truth"
 grep -q "RMSE" "$work/err" || fail "no comparison with the truth printed"
 mkdir -p "$work/badtruth"
-printf 'cell,crr\nTH66-01,abc\n' >"$work/badtruth/cells.csv"
+printf 'cell,crr,damper_power_w,tire_power_w\nTH66-01,abc,1,2\n' >"$work/badtruth/cells.csv"
 expect_status 65 "$roadload" analyze "$work/rec" --route th66-good-thunder --out "$work/res2" --truth "$work/badtruth"
 grep -q "badtruth/cells.csv:2: crr: expected a number" "$work/err" || fail "bad truth row not named: $(cat "$work/err")"
 echo "analyze-cli: PASS"

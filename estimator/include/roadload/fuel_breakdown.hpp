@@ -38,6 +38,7 @@ struct FuelBreakdown {
   double fuel_l = 0;          // measured
   double unsplit_l = 0;       // of it, burnt while the engine's torques could not be read
   double distance_m = 0;
+  double time_s = 0;
 
   void add(const PowerInterval& p, double energy_jpl = kDieselEnergy_jpl);
   double energy(FuelUse u) const { return energy_j[static_cast<std::size_t>(u)]; }

@@ -34,6 +34,16 @@ struct VibrationConfig {
   double tire_damping_per_tire_nspm = 4000;  // seed report Ch. 6, per tire
 };
 
+// Summed over the axles (the simulator's truth sums them the same way).
+struct DynamicPower {
+  double damper_w = 0;         // Eq. 2.8 on the relative velocity
+  double damper_accel_w = 0;   // Eq. 2.8 on the relative acceleration's periodogram (reads high)
+  double tire_w = 0;           // on the tire's deflection rate, from the contact force
+  double tire_eq27_w = 0;      // Eq. 2.7: the axle's absolute velocity
+  double segments = 0;         // fewest (fractional) segments of any axle: 0 when nothing was measured
+  double total_w() const { return damper_w + tire_w; }
+};
+
 class VibrationAnalysis {
  public:
   // Axles and masses from the contact-force layout; every accelerometer of `sensors` gets mode
@@ -47,6 +57,15 @@ class VibrationAnalysis {
   void set_axle_cells(CaptureTime t, std::span<const int> cells, double speed_mps, double s_front_m);
   void push(const AccelSample& s);
 
+  DynamicPower cell_power(std::size_t cell) const;
+  DynamicPower trip_power() const;
+  // Since the last clear_window(), for a live status every few seconds.
+  DynamicPower window_power() const;
+  void clear_window() { suspension_.clear_window(); }
+  // Mean over a group's cells, each weighted by its segments (its time).
+  DynamicPower group_power(std::size_t group) const;
+  const std::vector<int>& cell_group() const { return cell_group_; }
+
   const AxleLayout& layout() const { return layout_; }
   const spectra::SuspensionSpectra& suspension() const { return suspension_; }
   const spectra::ModeSpectra& modes() const { return modes_; }
@@ -54,6 +73,7 @@ class VibrationAnalysis {
 
  private:
   AxleLayout layout_;
+  std::vector<int> cell_group_;
   spectra::SensorGrid grid_;
   spectra::PlacementHistory history_;
   spectra::SuspensionSpectra suspension_;

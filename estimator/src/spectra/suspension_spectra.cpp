@@ -31,6 +31,7 @@ SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::siz
       response_(bin_count(transform_.config()), 1.0) {
   const std::size_t bins = bin_count(transform_.config());
   trip_.assign(axles_.size(), Sums(bins));
+  window_.assign(axles_.size(), Sums(bins));
   cell_.assign(cell_count * axles_.size(), Sums(bins));
 }
 
@@ -82,8 +83,19 @@ void SuspensionSpectra::take(const SensorGrid& grid, const PlacementHistory& his
       sums.velocity.add(slot_velocity_[u], delayed_velocity_, w);
     };
     add(trip_[a], 1.0);
+    add(window_[a], 1.0);
     for (std::size_t i = 0; i < shares.count; ++i)
       add(cell_[static_cast<std::size_t>(shares.share[i].cell) * axles_.size() + a], shares.share[i].weight);
+  }
+}
+
+void SuspensionSpectra::clear_window() {
+  for (Sums& s : window_) {
+    for (Pair* p : {&s.accel, &s.velocity}) {
+      p->uu.clear();
+      p->ss.clear();
+      p->us.clear();
+    }
   }
 }
 

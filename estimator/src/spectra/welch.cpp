@@ -1,5 +1,6 @@
 #include "roadload/spectra/welch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -87,9 +88,10 @@ bool SegmentRing::push(double x) {
 }
 
 void SegmentRing::copy_segment(std::span<double> out) const {
-  // next_ is the oldest sample once the ring is full.
-  const std::size_t n = ring_.size();
-  for (std::size_t i = 0; i < n; ++i) out[i] = ring_[(next_ + i) % n];
+  // next_ is the oldest sample once the ring is full: the tail of the ring, then its head.
+  const auto tail = ring_.begin() + static_cast<std::ptrdiff_t>(next_);
+  const auto rest = std::copy(tail, ring_.end(), out.begin());
+  std::copy(ring_.begin(), tail, rest);
 }
 
 void SegmentRing::clear() {

@@ -76,6 +76,9 @@ class SuspensionSpectra {
   const WelchConfig& welch() const { return transform_.config(); }
   AxlePower cell_power(std::size_t cell, std::size_t axle) const { return power(cell_[cell * axles_.size() + axle], axle); }
   AxlePower trip_power(std::size_t axle) const { return power(trip_[axle], axle); }
+  // Since the last clear_window(): the live status's time window.
+  AxlePower window_power(std::size_t axle) const { return power(window_[axle], axle); }
+  void clear_window();
   std::vector<double> trip_density(std::size_t axle, AxleDensity which) const;
   const SuspensionCounters& counters() const { return counters_; }
 
@@ -102,7 +105,7 @@ class SuspensionSpectra {
   SuspensionConfig config_;
   SegmentTransform transform_;
   SegmentWeights weights_;
-  std::vector<Sums> trip_, cell_;  // cell_[cell * axles + axle]
+  std::vector<Sums> trip_, window_, cell_;  // cell_[cell * axles + axle]
   std::vector<double> segment_;
   std::vector<std::vector<std::complex<double>>> slot_spectrum_, slot_velocity_;
   std::vector<bool> slot_ok_;

@@ -1,0 +1,206 @@
+#include "analyze_vibration.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "roadload/fuel_breakdown.hpp"
+#include "roadload/recording/writer.hpp"
+
+namespace roadload::cli {
+namespace {
+
+// Table 6.5's concrete / bituminous damper power on the Mainline (652 / 442 W) and Table 6.6's
+// TH 10 / TH 66 (9,353 / 6,486 W).
+constexpr double kReportMainlineRatio = 652.0 / 442.0;
+constexpr double kReportHighwayRatio = 9353.0 / 6486.0;
+
+std::string group_name(const CellDef& c) {
+  if (c.surface == "concrete" && c.joint_spacing_m > 0) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "concrete-%.2fm", c.joint_spacing_m);
+    return buf;
+  }
+  return c.surface.empty() ? "unknown" : c.surface;
+}
+
+std::optional<ParseError> write_columns(const std::string& path, const char* axis, double bin,
+                                        const std::vector<std::string>& names, const std::vector<std::vector<double>>& cols) {
+  auto out = recording::OutputFile::create(path);
+  if (!out) return out.error();
+  std::string header = axis;
+  for (const auto& n : names) header += "," + n;
+  out.value().write(header + "\n");
+  recording::LineBuilder line;
+  for (std::size_t k = 0; !cols.empty() && k < cols.front().size(); ++k) {
+    line.clear();
+    line.num(static_cast<double>(k) * bin, 6);
+    for (const auto& c : cols) line.sep().num(c[k], 9);
+    out.value().write(line.finish());
+  }
+  return out.value().close();
+}
+
+}  // namespace
+
+PavementGroups pavement_groups(const std::vector<CellDef>& cells) {
+  PavementGroups g;
+  for (const CellDef& c : cells) {
+    const std::string name = group_name(c);
+    std::size_t i = 0;
+    while (i < g.names.size() && g.names[i] != name) ++i;
+    if (i == g.names.size()) {
+      g.names.push_back(name);
+      g.panel_m.push_back(c.surface == "concrete" ? c.joint_spacing_m : 0.0);
+    }
+    g.cell_group.push_back(static_cast<int>(i));
+  }
+  return g;
+}
+
+VibrationSummary summarize(const VibrationAnalysis& va, const PavementGroups& groups, double trip_time_s, double trip_distance_m) {
+  VibrationSummary s;
+  s.trip = va.trip_power();
+  const double speed = trip_time_s > 0 ? trip_distance_m / trip_time_s : 0.0;
+  s.trip_cost = spectra::stretch_cost(s.trip.total_w(), trip_time_s, speed, kDieselEnergy_jpl);
+  s.annual = spectra::annual_cost(s.trip.total_w(), spectra::Duty{}, kDieselEnergy_jpl);
+  const auto& modes = va.modes();
+  const double spatial_bin = spectra::bin_hz(modes.spatial_welch());
+  const double time_bin = spectra::bin_hz(modes.welch());
+  for (std::size_t g = 0; g < groups.names.size(); ++g) {
+    GroupSpectra out;
+    out.name = groups.names[g];
+    out.power = va.group_power(g);
+    out.speed_mps = modes.mean_speed_mps(static_cast<int>(g));
+    out.expected_panel_m = groups.panel_m[g];
+    std::vector<std::vector<double>> spatial;
+    for (std::size_t i = 0; i < modes.sensor_count(); ++i) spatial.push_back(modes.spatial_density(i, static_cast<int>(g)));
+    spectra::JointConfig jc;
+    jc.expected_panel_m = groups.panel_m[g];
+    out.joint = spectra::find_joint_line(spatial, spatial_bin, jc);
+    out.joint_hz = out.joint.found && std::isfinite(out.speed_mps) ? out.speed_mps / out.joint.panel_m : 0.0;
+    for (std::size_t i = 0; i < modes.sensor_count(); ++i) {
+      auto peaks = spectra::find_peaks(modes.density(i, static_cast<int>(g)), time_bin);
+      spectra::label_joint_harmonics(peaks, out.joint_hz, time_bin);
+      out.peaks.push_back(std::move(peaks));
+    }
+    s.groups.push_back(std::move(out));
+  }
+  return s;
+}
+
+std::optional<ParseError> write_psd_files(const std::string& dir, const VibrationAnalysis& va, const PavementGroups& groups) {
+  const auto& modes = va.modes();
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < modes.sensor_count(); ++i) names.push_back(modes.sensor(i).name);
+  for (int g = -1; g < static_cast<int>(groups.names.size()); ++g) {
+    std::vector<std::vector<double>> time, spatial;
+    for (std::size_t i = 0; i < modes.sensor_count(); ++i) {
+      time.push_back(modes.density(i, g));
+      spatial.push_back(modes.spatial_density(i, g));
+    }
+    const std::string suffix = g < 0 ? "" : "-" + groups.names[static_cast<std::size_t>(g)];
+    if (auto e = write_columns(dir + "/psd" + suffix + ".csv", "freq_hz", spectra::bin_hz(modes.welch()), names, time)) return e;
+    if (g < 0) continue;
+    if (auto e = write_columns(dir + "/psd-spatial" + suffix + ".csv", "cycles_per_m", spectra::bin_hz(modes.spatial_welch()),
+                               names, spatial))
+      return e;
+  }
+  return std::nullopt;
+}
+
+std::string vibration_json(const VibrationSummary& s) {
+  std::ostringstream j;
+  const auto power = [&](const DynamicPower& p) {
+    j << "\"damper_power_w\": " << p.damper_w << ", \"tire_power_w\": " << p.tire_w << ", \"tire_eq27_power_w\": "
+      << p.tire_eq27_w << ", \"damper_accel_periodogram_w\": " << p.damper_accel_w;
+  };
+  j << "  \"dynamic_rolling\": {\n    ";
+  power(s.trip);
+  j << ",\n    \"energy_j\": " << s.trip_cost.energy_j << ", \"liters\": " << s.trip_cost.diesel_l
+    << ", \"l_per_100km\": " << s.trip_cost.l_per_100km << ",\n    \"annual\": {\"hours_per_year\": " << s.annual.hours_per_year
+    << ", \"energy_mj_per_year\": " << s.annual.energy_mj_per_year << ", \"diesel_l_per_year\": " << s.annual.diesel_l_per_year
+    << ", \"l_per_100km\": " << s.annual.l_per_100km << "},\n    \"groups\": [";
+  for (std::size_t g = 0; g < s.groups.size(); ++g) {
+    const GroupSpectra& gs = s.groups[g];
+    j << (g ? ",\n" : "\n") << "      {\"name\": \"" << gs.name << "\", ";
+    power(gs.power);
+    j << ", \"speed_mps\": " << (std::isfinite(gs.speed_mps) ? gs.speed_mps : 0.0) << ",\n       \"joint_line\": {\"found\": "
+      << (gs.joint.found ? "true" : "false") << ", \"panel_m\": " << gs.joint.panel_m << ", \"freq_hz\": " << gs.joint_hz
+      << ", \"significance\": " << gs.joint.significance << ", \"inventory_panel_m\": " << gs.expected_panel_m
+      << "},\n       \"modes\": [";
+    for (std::size_t i = 0; i < gs.peaks.size(); ++i) {
+      j << (i ? ", " : "") << "[";
+      for (std::size_t p = 0; p < gs.peaks[i].size(); ++p) {
+        const spectra::Peak& pk = gs.peaks[i][p];
+        j << (p ? ", " : "") << "{\"freq_hz\": " << pk.freq << ", \"prominence\": " << pk.prominence << ", \"width_hz\": "
+          << pk.width << ", \"label\": \"" << pk.label << "\", \"joint_harmonic\": " << pk.joint_harmonic << "}";
+      }
+      j << "]";
+    }
+    j << "]}";
+  }
+  j << "\n    ]\n  }";
+  return j.str();
+}
+
+void print_vibration(const VibrationSummary& s) {
+  std::fprintf(stderr, "analyze: dynamic rolling resistance (Eq. 2.7-2.8): dampers %.0f W, tires %.0f W (Eq. 2.7 on the axle's "
+               "absolute motion: %.0f W); %.4f L, %.3f L/100 km; a year of 2,207 h: %.0f MJ, %.0f L\n",
+               s.trip.damper_w, s.trip.tire_w, s.trip.tire_eq27_w, s.trip_cost.diesel_l, s.trip_cost.l_per_100km,
+               s.annual.energy_mj_per_year, s.annual.diesel_l_per_year);
+  const GroupSpectra* concrete = nullptr;
+  const GroupSpectra* bituminous = nullptr;
+  for (const GroupSpectra& g : s.groups) {
+    std::fprintf(stderr, "  %-18s dampers %7.1f W  tires %7.1f W", g.name.c_str(), g.power.damper_w, g.power.tire_w);
+    if (g.joint.found) {
+      std::fprintf(stderr, "  joint line %.2f Hz, panel %.2f m (%.1f sigma)", g.joint_hz, g.joint.panel_m, g.joint.significance);
+    } else if (g.expected_panel_m > 0) {
+      std::fprintf(stderr, "  no joint line at %.2f m (%.1f sigma)", g.expected_panel_m, g.joint.significance);
+    }
+    std::fprintf(stderr, "\n");
+    if (g.name.rfind("concrete", 0) == 0 && (concrete == nullptr || g.power.segments > concrete->power.segments)) concrete = &g;
+    if (g.name == "bituminous") bituminous = &g;
+  }
+  if (concrete && bituminous && bituminous->power.damper_w > 0) {
+    std::fprintf(stderr, "analyze: concrete / bituminous damper power %.2f (report: %.2f Mainline Table 6.5, %.2f TH 10 / TH 66 Table 6.6)\n",
+                 concrete->power.damper_w / bituminous->power.damper_w, kReportMainlineRatio, kReportHighwayRatio);
+  }
+}
+
+}  // namespace roadload::cli
+
+namespace roadload::cli {
+
+void print_vibration_truth(const VibrationAnalysis& va, const std::vector<CellDef>& cells, const Truth& truth) {
+  struct Tally {
+    double worst = 0, est = 0, truth = 0;
+    std::string worst_cell;
+  };
+  Tally damper, tire;
+  std::size_t n = 0;
+  const auto add = [](Tally& t, const std::string& cell, double est, double tru) {
+    t.est += est;
+    t.truth += tru;
+    if (tru > 0 && std::abs(est / tru - 1) > std::abs(t.worst)) {
+      t.worst = est / tru - 1;
+      t.worst_cell = cell;
+    }
+  };
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const DynamicPower p = va.cell_power(c);
+    const auto d = truth.damper_w.find(cells[c].id);
+    const auto t = truth.tire_w.find(cells[c].id);
+    // A cell counts when every axle has at least four segments in it: the truck crossed it whole.
+    if (p.segments < 4 || d == truth.damper_w.end() || t == truth.tire_w.end()) continue;
+    add(damper, cells[c].id, p.damper_w, d->second);
+    add(tire, cells[c].id, p.tire_w, t->second);
+    ++n;
+  }
+  if (n == 0) return;
+  std::fprintf(stderr, "analyze: against the truth over %zu cells: dampers %+.1f %% (worst cell %s %+.1f %%), "
+               "tires %+.1f %% (worst cell %s %+.1f %%)\n", n, 100 * (damper.est / damper.truth - 1), damper.worst_cell.c_str(),
+               100 * damper.worst, 100 * (tire.est / tire.truth - 1), tire.worst_cell.c_str(), 100 * tire.worst);
+}
+
+}  // namespace roadload::cli
