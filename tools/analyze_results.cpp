@@ -32,14 +32,14 @@ const double* true_crr(const Truth* t, const std::string& cell) {
 }
 
 Parsed<Truth> read_truth_cells(const std::string& path) {
-  constexpr std::string_view kColumns[] = {"cell", "crr", "damper_power_w", "tire_power_w"};
+  constexpr std::string_view kColumns[] = {"cell", "crr", "damper_power_w", "tire_power_w", "time_s"};
   auto csv = recording::CsvReader::open(path, kColumns);
   if (!csv) return csv.error();
   Truth t;
   std::span<const std::string_view> row;
   for (recording::CsvReader::Status st; (st = csv.value().next(row)) != recording::CsvReader::Status::end;) {
     if (st == recording::CsvReader::Status::bad_row) return *csv.value().error();
-    std::array<double, 3> v{};
+    std::array<double, 4> v{};
     for (std::size_t i = 0; i < v.size(); ++i) {
       const auto value = recording::parse_f64(row[i + 1]);
       if (!value) return csv.value().field_error(i + 1, "expected a number");
@@ -49,6 +49,7 @@ Parsed<Truth> read_truth_cells(const std::string& path) {
     t.crr[cell] = v[0];
     t.damper_w[cell] = v[1];
     t.tire_w[cell] = v[2];
+    t.time_s[cell] = v[3];
   }
   if (csv.value().error()) return *csv.value().error();
   return t;

@@ -15,15 +15,6 @@ namespace {
 constexpr double kReportMainlineRatio = 652.0 / 442.0;
 constexpr double kReportHighwayRatio = 9353.0 / 6486.0;
 
-std::string group_name(const CellDef& c) {
-  if (c.surface == "concrete" && c.joint_spacing_m > 0) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "concrete-%.2fm", c.joint_spacing_m);
-    return buf;
-  }
-  return c.surface.empty() ? "unknown" : c.surface;
-}
-
 std::optional<ParseError> write_columns(const std::string& path, const char* axis, double bin,
                                         const std::vector<std::string>& names, const std::vector<std::vector<double>>& cols) {
   auto out = recording::OutputFile::create(path);
@@ -44,18 +35,9 @@ std::optional<ParseError> write_columns(const std::string& path, const char* axi
 }  // namespace
 
 PavementGroups pavement_groups(const std::vector<CellDef>& cells) {
-  PavementGroups g;
-  for (const CellDef& c : cells) {
-    const std::string name = group_name(c);
-    std::size_t i = 0;
-    while (i < g.names.size() && g.names[i] != name) ++i;
-    if (i == g.names.size()) {
-      g.names.push_back(name);
-      g.panel_m.push_back(c.surface == "concrete" ? c.joint_spacing_m : 0.0);
-    }
-    g.cell_group.push_back(static_cast<int>(i));
-  }
-  return g;
+  std::vector<PavementKey> keys;
+  for (const CellDef& c : cells) keys.push_back({c.surface, c.joint_spacing_m});
+  return group_pavements(keys);
 }
 
 VibrationSummary summarize(const VibrationAnalysis& va, const PavementGroups& groups, double trip_time_s, double trip_distance_m) {
@@ -187,12 +169,15 @@ void print_vibration_truth(const VibrationAnalysis& va, const std::vector<CellDe
       t.worst_cell = cell;
     }
   };
+  const double hop_s = static_cast<double>(spectra::hop(va.suspension().welch())) / va.suspension().welch().fs_hz;
   for (std::size_t c = 0; c < cells.size(); ++c) {
     const DynamicPower p = va.cell_power(c);
     const auto d = truth.damper_w.find(cells[c].id);
     const auto t = truth.tire_w.find(cells[c].id);
-    // A cell counts when every axle has at least four segments in it: the truck crossed it whole.
-    if (p.segments < 4 || d == truth.damper_w.end() || t == truth.tire_w.end()) continue;
+    const auto time = truth.time_s.find(cells[c].id);
+    if (d == truth.damper_w.end() || t == truth.tire_w.end() || time == truth.time_s.end()) continue;
+    // A cell counts when the spectra cover 90 % of its time (none in a sensor's warm-up).
+    if (p.segments * hop_s < 0.9 * time->second) continue;
     add(damper, cells[c].id, p.damper_w, d->second);
     add(tire, cells[c].id, p.tire_w, t->second);
     ++n;

@@ -7,6 +7,7 @@
 
 #include "analyze_results.hpp"
 #include "roadload/parse_error.hpp"
+#include "roadload/pavement_groups.hpp"
 #include "roadload/route_file.hpp"
 #include "roadload/spectra/dynamic_power.hpp"
 #include "roadload/spectra/modes.hpp"
@@ -14,12 +15,6 @@
 
 namespace roadload::cli {
 
-// Cells grouped by pavement: surface and, on concrete, the inventory's panel length.
-struct PavementGroups {
-  std::vector<std::string> names;  // "bituminous", "concrete-4.57m"
-  std::vector<double> panel_m;     // 0 where the inventory gives none
-  std::vector<int> cell_group;
-};
 PavementGroups pavement_groups(const std::vector<CellDef>& cells);
 
 struct GroupSpectra {

@@ -31,7 +31,7 @@ head -1 "$work/res/psd.csv" | grep -q "^freq_hz,TLF1," || fail "psd.csv header: 
 grep -q "dampers.*against the truth\|against the truth.*dampers" "$work/err" || fail "no damper power against the truth"
 grep -q "RMSE" "$work/err" || fail "no comparison with the truth printed"
 mkdir -p "$work/badtruth"
-printf 'cell,crr,damper_power_w,tire_power_w\nTH66-01,abc,1,2\n' >"$work/badtruth/cells.csv"
+printf 'cell,crr,damper_power_w,tire_power_w,time_s\nTH66-01,abc,1,2,3\n' >"$work/badtruth/cells.csv"
 expect_status 65 "$roadload" analyze "$work/rec" --route th66-good-thunder --out "$work/res2" --truth "$work/badtruth"
 grep -q "badtruth/cells.csv:2: crr: expected a number" "$work/err" || fail "bad truth row not named: $(cat "$work/err")"
 echo "analyze-cli: PASS"

@@ -51,10 +51,18 @@ class VibrationSink final : public SampleSink {
     return p;
   }
   Powers truth_trip() const { return {trip_damper_.mean, trip_tire_.mean}; }
+  // The least time any axle spent in cell c.
+  double seconds_in_cell(std::size_t c) const {
+    const std::size_t n = va_.layout().axles.size();
+    double least = 1e300;
+    for (std::size_t i = 0; i < n; ++i) least = std::min(least, cells_[c * n + i].seconds);
+    return least;
+  }
 
  private:
   struct Acc {
     RunningStats damper, tire;
+    double seconds = 0;
   };
   int cell_of(const TruckState& st, std::size_t axle) const {
     const Route& r = sim_.route();
@@ -72,8 +80,10 @@ class VibrationSink final : public SampleSink {
       if (cells[i] >= 0) {
         cells_[static_cast<std::size_t>(cells[i]) * n + i].damper.add(st.axles[i].damper_power_w);
         cells_[static_cast<std::size_t>(cells[i]) * n + i].tire.add(st.axles[i].tire_power_w);
+        cells_[static_cast<std::size_t>(cells[i]) * n + i].seconds += st.t_s - last_observed_s_;
       }
     }
+    last_observed_s_ = st.t_s;
     trip_damper_.add(damper);
     for (std::size_t i = 0; i < n; ++i) axle_damper_[i].add(st.axles[i].damper_power_w);
     if (step_ % 12 == 0) {
@@ -88,7 +98,7 @@ class VibrationSink final : public SampleSink {
 
   const Simulation& sim_;
   VibrationAnalysis& va_;
-  double last_t_ = -1;
+  double last_t_ = -1, last_observed_s_ = 0;
   std::uint64_t step_ = 0;
   std::vector<Acc> cells_;
   RunningStats trip_damper_, trip_tire_;
@@ -167,7 +177,9 @@ DriveResult run_drive(const std::string& scenario, std::uint64_t seed, double jo
       segs = std::min(segs, sp.cell_power(c, a).segments);
     }
     const Powers t = sink.truth_cell(c);
-    if (segs < 4) continue;  // a cell the truck did not cross whole
+    // Cells crossed whole, and by the spectra for 90 % of the time (not in a sensor's warm-up).
+    const double hop_s = static_cast<double>(spectra::hop(sp.welch())) / sp.welch().fs_hz;
+    if (segs * hop_s < 0.9 * sink.seconds_in_cell(c)) continue;
     r.cell_ratio.emplace_back(cells[c].id, est / t.damper_w);
   }
   const auto& modes = va.modes();

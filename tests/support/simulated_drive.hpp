@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "roadload/drive_analyzer.hpp"
+#include "roadload/pavement_groups.hpp"
 #include "roadload/sim/simulation.hpp"
 
 namespace roadload::sim::test {
@@ -28,16 +29,24 @@ inline std::vector<CellSpan> cell_spans(const Scenario& sc) {
   return cells;
 }
 
-// CAN, GNSS and weather in capture-time order, then the smoother.
-inline void analyze(DriveAnalyzer& analyzer, const MemorySink& sink) {
-  std::size_t f = 0, g = 0, w = 0;
+// CAN, GNSS, weather and, with `accels`, the accelerometers in capture-time order, then the smoother.
+inline void analyze(DriveAnalyzer& analyzer, const MemorySink& sink, bool accels = false) {
+  std::size_t f = 0, g = 0, w = 0, a = 0;
   while (f < sink.frames.size()) {
     const CaptureTime t = sink.frames[f].t;
     while (g < sink.fixes.size() && sink.fixes[g].t <= t) analyzer.push(sink.fixes[g++]);
     while (w < sink.weather_samples.size() && sink.weather_samples[w].t <= t) analyzer.push(sink.weather_samples[w++]);
+    while (accels && a < sink.accels.size() && sink.accels[a].t <= t) analyzer.push(sink.accels[a++]);
     analyzer.push(sink.frames[f++]);
   }
   analyzer.finish();
+}
+
+// The pavement groups of a scenario's cells.
+inline PavementGroups pavement_groups(const Scenario& sc) {
+  std::vector<PavementKey> keys;
+  for (const Cell& c : sc.route.cells) keys.push_back({c.surface, c.joint_spacing_m});
+  return group_pavements(keys);
 }
 
 }  // namespace roadload::sim::test

@@ -90,7 +90,11 @@ int SensorGrid::slot(std::uint8_t id) const {
 void SensorGrid::put(Sensor& s, std::int64_t n, double v) {
   if (n < 0) return;  // before the capture clock's epoch: never a real stamp
   const auto k = static_cast<std::size_t>(n % static_cast<std::int64_t>(config_.history));
-  if (!s.integrating) s.integrator.reset(v);
+  if (!s.integrating) {
+    s.integrator.reset(v);
+    s.warm_from = n;
+    s.ready_from = n + static_cast<std::int64_t>(std::ceil(config_.warmup_s * rate_hz()));
+  }
   s.integrating = true;
   s.values[k] = v;
   s.velocity[k] = s.integrator.step(v);
@@ -143,7 +147,7 @@ bool SensorGrid::copy_from(std::size_t slot_index, std::int64_t end, std::span<d
   const std::vector<double>& src = velocity ? s.velocity : s.values;
   const auto h = static_cast<std::int64_t>(config_.history);
   const auto n = static_cast<std::int64_t>(out.size());
-  if (n > h) return false;
+  if (n > h || (end - n + 1 < s.ready_from && end >= s.warm_from)) return false;
   for (std::int64_t j = 0; j < n; ++j) {
     const std::int64_t idx = end - n + 1 + j;
     if (idx < 0) return false;

@@ -65,6 +65,9 @@ struct GridConfig {
   std::size_t history = 4096;          // grid values kept per sensor (20 s at 200 Hz)
   double velocity_highpass_hz = 0.1;   // a decade below the 1.5 Hz body modes
   double velocity_leak_hz = 0.05;
+  // Grid values this soon after a sensor's (re)start are held back: the integrator's leak takes
+  // its unknown initial velocity out with a 3.2 s time constant.
+  double warmup_s = 10.0;
 };
 
 struct GridSensor {
@@ -109,6 +112,7 @@ class SensorGrid {
     std::vector<std::int64_t> index;  // grid index held in each ring slot
     VelocityIntegrator integrator;
     bool integrating = false;
+    std::int64_t warm_from = 0, ready_from = 0;  // the latest warm-up's grid indices, not handed out
   };
   void put(Sensor& s, std::int64_t n, double v);
   bool copy_from(std::size_t slot, std::int64_t end, std::span<double> out, bool velocity) const;
