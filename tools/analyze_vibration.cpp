@@ -15,19 +15,23 @@ namespace {
 constexpr double kReportMainlineRatio = 652.0 / 442.0;
 constexpr double kReportHighwayRatio = 9353.0 / 6486.0;
 
+// A row of any width: a column per sensor, numbers in scientific notation (densities span decades).
 std::optional<ParseError> write_columns(const std::string& path, const char* axis, double bin,
                                         const std::vector<std::string>& names, const std::vector<std::vector<double>>& cols) {
   auto out = recording::OutputFile::create(path);
   if (!out) return out.error();
-  std::string header = axis;
-  for (const auto& n : names) header += "," + n;
-  out.value().write(header + "\n");
-  recording::LineBuilder line;
+  std::string line = axis;
+  for (const auto& n : names) line += "," + n;
+  out.value().write(line + "\n");
+  char buf[32];
   for (std::size_t k = 0; !cols.empty() && k < cols.front().size(); ++k) {
-    line.clear();
-    line.num(static_cast<double>(k) * bin, 6);
-    for (const auto& c : cols) line.sep().num(c[k], 9);
-    out.value().write(line.finish());
+    std::snprintf(buf, sizeof buf, "%.6f", static_cast<double>(k) * bin);
+    line = buf;
+    for (const auto& c : cols) {
+      std::snprintf(buf, sizeof buf, ",%.6e", c[k]);
+      line += buf;
+    }
+    out.value().write(line + "\n");
   }
   return out.value().close();
 }

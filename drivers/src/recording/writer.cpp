@@ -51,7 +51,8 @@ std::optional<ParseError> OutputFile::close() {
 }
 
 LineBuilder& LineBuilder::num(std::int64_t v) {
-  len_ = static_cast<std::size_t>(std::to_chars(buf_ + len_, buf_ + sizeof buf_, v).ptr - buf_);
+  const auto r = std::to_chars(buf_ + len_, buf_ + sizeof buf_ - 1, v);
+  if (r.ec == std::errc{}) len_ = static_cast<std::size_t>(r.ptr - buf_);
   return *this;
 }
 
@@ -60,8 +61,9 @@ LineBuilder& LineBuilder::num(double v, int decimals) {
   // Avoid "-0.000": it reads back equal, but a diff of two recordings would flag it.
   static constexpr double kHalfStep[] = {0.5, 0.05, 5e-3, 5e-4, 5e-5, 5e-6, 5e-7, 5e-8, 5e-9, 5e-10};
   if (decimals >= 0 && decimals < 10 && std::abs(v) < kHalfStep[decimals]) v = 0.0;
-  len_ = static_cast<std::size_t>(
-      std::to_chars(buf_ + len_, buf_ + sizeof buf_, v, std::chars_format::fixed, decimals).ptr - buf_);
+  // One byte stays free for finish()'s newline; a number that does not fit is left out whole.
+  const auto r = std::to_chars(buf_ + len_, buf_ + sizeof buf_ - 1, v, std::chars_format::fixed, decimals);
+  if (r.ec == std::errc{}) len_ = static_cast<std::size_t>(r.ptr - buf_);
   return *this;
 }
 
