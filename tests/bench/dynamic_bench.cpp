@@ -32,17 +32,6 @@ struct Tally {
   std::map<std::string, double> panel_err_max, bins_off_max, significance_min;
 };
 
-AxleLayout layout_from(const recording::Metadata& m) {
-  std::vector<SensorPlacement> p;
-  for (const auto& s : m.sensors) p.push_back({s.id, s.kind, s.position});
-  auto l = build_axle_layout(p, m.vehicle);
-  if (!l) {
-    std::fprintf(stderr, "bench_dynamic: %s\n", l.error().to_string().c_str());
-    std::exit(1);
-  }
-  return l.value();
-}
-
 double rel(double est, double truth) { return truth != 0 ? est / truth - 1.0 : 0.0; }
 
 void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database& db, Tally& t) {
@@ -53,10 +42,8 @@ void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database&
   auto route = RouteGeometry::build(sc.route.points);
   if (!route) std::exit(1);
   const PavementGroups groups = sim::test::pavement_groups(sc);
-  std::vector<VibrationSensor> sensors;
-  for (const auto& s : sim.metadata().sensors)
-    if (s.kind == "accelerometer") sensors.push_back({static_cast<std::uint8_t>(s.id), s.name, s.rate_hz});
-  VibrationAnalysis va(layout_from(sim.metadata()), sensors, sc.route.cells.size(), groups.cell_group, groups.names.size());
+  VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), sim::test::vibration_sensors(sim.metadata()),
+                       sc.route.cells.size(), groups.cell_group, groups.names.size());
   DriveAnalyzer analyzer(db, *route, sim::test::cell_spans(sc), AnalyzerConfig{});
   analyzer.attach(&va);
   sim::test::analyze(analyzer, sink, true);

@@ -69,14 +69,6 @@ class ContactSink final : public SampleSink {
   std::vector<RunningStats> truth_cells_;
 };
 
-AxleLayout layout_from(const recording::Metadata& m) {
-  std::vector<SensorPlacement> p;
-  for (const auto& s : m.sensors) p.push_back({s.id, s.kind, s.position});
-  auto l = build_axle_layout(p, m.vehicle);
-  EXPECT_TRUE(l.ok()) << (l.ok() ? "" : l.error().to_string());
-  return l.value();
-}
-
 TEST(ContactForcesFromSimulation, MetadataCarriesEachAxlesUnsprungMass) {
   const j1939::Database db = test::core_database();
   Simulation sim(test::builtin("mnroad-mainline-30mph"), 1, db);
@@ -87,7 +79,7 @@ TEST(ContactForcesFromSimulation, MetadataCarriesEachAxlesUnsprungMass) {
     ASSERT_NE(it, m.vehicle.end()) << a.name;
     EXPECT_DOUBLE_EQ(it->second, a.vertical.unsprung_kg) << a.name;
   }
-  const AxleLayout l = layout_from(m);
+  const AxleLayout l = test::axle_layout(m);
   ASSERT_EQ(l.axles.size(), t.axles.size());
   for (std::size_t i = 0; i < l.axles.size(); ++i) {
     EXPECT_EQ(l.axles[i].name, t.axles[i].name);
@@ -104,7 +96,7 @@ TEST(ContactForcesFromSimulation, MainlineAt30MphMatchesTheTrueTireForcePerAxle)
   sc.duration_s = 60.0;
   Simulation sim(sc, 1, db);
   const ContactConfig config;
-  ContactForces cf(layout_from(sim.metadata()), sim.route().def().cells.size(), config);
+  ContactForces cf(test::axle_layout(sim.metadata()), sim.route().def().cells.size(), config);
   ContactSink sink(sim, cf, config.warmup_s);
   sim.run(sink, nullptr);
 

@@ -12,7 +12,6 @@
 
 #include "roadload/running_stats.hpp"
 #include "roadload/spectra/modes.hpp"
-#include "roadload/spectra/welch.hpp"
 #include "roadload/vibration.hpp"
 #include "sim_fixture.hpp"
 
@@ -85,54 +84,24 @@ class VibrationSink final : public SampleSink {
     }
     last_observed_s_ = st.t_s;
     trip_damper_.add(damper);
-    for (std::size_t i = 0; i < n; ++i) axle_damper_[i].add(st.axles[i].damper_power_w);
-    if (step_ % 12 == 0) {
-      const auto& ax = st.axles[1];
-      vrel_.push(ax.unsprung_v_mps - ax.sprung_v_mps);
-      arel_.push(ax.unsprung_accel_mps2 - ax.sprung_accel_mps2);
-    }
     trip_tire_.add(tire);
-    if (++step_ % 24 == 0)  // placements at 100 Hz
+    if (st.t_s >= last_placed_s_ + 0.02) {  // placements at 50 Hz, as often as a fast wheel-speed message
+      last_placed_s_ = st.t_s;
       va_.set_axle_cells(capture_time_from_ns(std::llround(st.t_s * 1e9)), std::span(cells.data(), n), st.speed_mps, st.x_m);
+    }
   }
 
   const Simulation& sim_;
   VibrationAnalysis& va_;
-  double last_t_ = -1, last_observed_s_ = 0;
-  std::uint64_t step_ = 0;
+  double last_t_ = -1, last_observed_s_ = 0, last_placed_s_ = -1;
   std::vector<Acc> cells_;
   RunningStats trip_damper_, trip_tire_;
-
- public:
-  std::array<RunningStats, kMaxContactAxles> axle_damper_{};
-  spectra::WelchPsd vrel_{{200.0, 256, 192}};
-  spectra::WelchPsd arel_{{200.0, 256, 192}};
-};
-
-AxleLayout layout_from(const recording::Metadata& m) {
-  std::vector<SensorPlacement> p;
-  for (const auto& s : m.sensors) p.push_back({s.id, s.kind, s.position});
-  auto l = build_axle_layout(p, m.vehicle);
-  EXPECT_TRUE(l.ok()) << (l.ok() ? "" : l.error().to_string());
-  return l.value();
-}
-
-std::vector<VibrationSensor> sensors_from(const recording::Metadata& m) {
-  std::vector<VibrationSensor> out;
-  for (const auto& s : m.sensors)
-    if (s.kind == "accelerometer") out.push_back({static_cast<std::uint8_t>(s.id), s.name, s.rate_hz});
-  return out;
-}
-
-struct Group {
-  std::string name;
-  double panel_m = 0;  // the route's joint spacing, 0 on bituminous
 };
 
 struct DriveResult {
   std::vector<std::pair<std::string, double>> cell_ratio;  // damper estimate / truth per full cell
   double trip_damper_ratio = 0;
-  std::vector<Group> groups;
+  PavementGroups groups;
   std::vector<spectra::JointLine> guided, blind;  // per group
 };
 
@@ -143,17 +112,9 @@ DriveResult run_drive(const std::string& scenario, std::uint64_t seed, double jo
   Simulation sim(sc, seed, db);
   const auto& cells = sim.route().def().cells;
   DriveResult r;
-  std::vector<int> group(cells.size());
-  for (std::size_t c = 0; c < cells.size(); ++c) {
-    const Group g{cells[c].surface + (cells[c].joint_spacing_m > 0 ? " " + std::to_string(cells[c].joint_spacing_m) : ""),
-                  cells[c].joint_spacing_m};
-    std::size_t i = 0;
-    while (i < r.groups.size() && r.groups[i].name != g.name) ++i;
-    if (i == r.groups.size()) r.groups.push_back(g);
-    group[c] = static_cast<int>(i);
-  }
-  const std::vector<VibrationSensor> sensors = sensors_from(sim.metadata());
-  VibrationAnalysis va(layout_from(sim.metadata()), sensors, cells.size(), group, r.groups.size());
+  r.groups = test::pavement_groups(sc);
+  VibrationAnalysis va(test::axle_layout(sim.metadata()), test::vibration_sensors(sim.metadata()), cells.size(),
+                       r.groups.cell_group, r.groups.names.size());
   VibrationSink sink(sim, va);
   sim.run(sink, nullptr);
 
@@ -184,14 +145,14 @@ DriveResult run_drive(const std::string& scenario, std::uint64_t seed, double jo
   }
   const auto& modes = va.modes();
   const double bin = spectra::bin_hz(modes.spatial_welch());
-  for (std::size_t g = 0; g < r.groups.size(); ++g) {
+  for (std::size_t g = 0; g < r.groups.names.size(); ++g) {
     std::vector<std::vector<double>> spatial;
     for (std::size_t s = 0; s < modes.sensor_count(); ++s) spatial.push_back(modes.spatial_density(s, static_cast<int>(g)));
     spectra::JointConfig guided;
-    guided.expected_panel_m = r.groups[g].panel_m;
+    guided.expected_panel_m = r.groups.panel_m[g];
     r.blind.push_back(spectra::find_joint_line(spatial, bin));
-    r.guided.push_back(r.groups[g].panel_m > 0 ? spectra::find_joint_line(spatial, bin, guided) : spectra::JointLine{});
-    std::printf("  %-18s blind: %s %.3f m (%.1f sigma)   guided: %s %.3f m (%.1f sigma)\n", r.groups[g].name.c_str(),
+    r.guided.push_back(r.groups.panel_m[g] > 0 ? spectra::find_joint_line(spatial, bin, guided) : spectra::JointLine{});
+    std::printf("  %-18s blind: %s %.3f m (%.1f sigma)   guided: %s %.3f m (%.1f sigma)\n", r.groups.names[g].c_str(),
                 r.blind.back().found ? "found" : "none ", r.blind.back().panel_m, r.blind.back().significance,
                 r.guided.back().found ? "found" : "none ", r.guided.back().panel_m, r.guided.back().significance);
   }
@@ -213,9 +174,9 @@ TEST(VibrationFromSimulation, MainlineAt30MphDamperPower) {
   EXPECT_NEAR(r.trip_damper_ratio, 1.0, 0.02);
   EXPECT_GE(r.cell_ratio.size(), 25u);
   EXPECT_LT(worst_cell_error(r), 0.05);
-  for (std::size_t g = 0; g < r.groups.size(); ++g) {
-    if (r.groups[g].panel_m == 0) {
-      EXPECT_FALSE(r.blind[g].found) << r.groups[g].name;
+  for (std::size_t g = 0; g < r.groups.names.size(); ++g) {
+    if (r.groups.panel_m[g] == 0) {
+      EXPECT_FALSE(r.blind[g].found) << r.groups.names[g];
     }
   }
 }
@@ -223,9 +184,9 @@ TEST(VibrationFromSimulation, MainlineAt30MphDamperPower) {
 // The same road with TH 10's 2 mm faulting: the 15 ft line found blind.
 TEST(VibrationFromSimulation, MainlineAt30MphWith2mmFaultingShowsThe15FtJoints) {
   const DriveResult r = run_drive("mnroad-mainline-30mph", 1, 0.002);
-  for (std::size_t g = 0; g < r.groups.size(); ++g) {
-    if (r.groups[g].panel_m != 15 * kFtToM) continue;
-    ASSERT_TRUE(r.blind[g].found) << r.groups[g].name;
+  for (std::size_t g = 0; g < r.groups.names.size(); ++g) {
+    if (r.groups.panel_m[g] != 15 * kFtToM) continue;
+    ASSERT_TRUE(r.blind[g].found) << r.groups.names[g];
     EXPECT_NEAR(r.blind[g].panel_m, 15 * kFtToM, 0.03 * 15 * kFtToM);
   }
 }
@@ -235,7 +196,7 @@ TEST(VibrationFromSimulation, Th10At55Mph) {
   const DriveResult r = run_drive("th10-55mph", 1);
   EXPECT_NEAR(r.trip_damper_ratio, 1.0, 0.02);
   EXPECT_LT(worst_cell_error(r), 0.05);
-  ASSERT_EQ(r.groups.size(), 1u);
+  ASSERT_EQ(r.groups.names.size(), 1u);
   ASSERT_TRUE(r.blind[0].found);
   EXPECT_NEAR(r.blind[0].panel_m, 28 * kFtToM, 0.03 * 28 * kFtToM);
 }

@@ -1,6 +1,7 @@
 #pragma once
 // A simulated drive kept in memory and handed to the estimator as a recording reader would hand it
 // over: shared by the simulator's tests and the accuracy benchmark.
+#include <stdexcept>
 #include <vector>
 
 #include "roadload/drive_analyzer.hpp"
@@ -40,6 +41,23 @@ inline void analyze(DriveAnalyzer& analyzer, const MemorySink& sink, bool accels
     analyzer.push(sink.frames[f++]);
   }
   analyzer.finish();
+}
+
+// The truck's axles and accelerometers as a recording's metadata describes them (every axle with
+// a load must have its sensors: the simulator mounts them all).
+inline AxleLayout axle_layout(const recording::Metadata& m) {
+  std::vector<SensorPlacement> p;
+  for (const auto& s : m.sensors) p.push_back({s.id, s.kind, s.position});
+  auto l = build_axle_layout(p, m.vehicle);
+  if (!l) throw std::runtime_error(l.error().to_string());
+  return l.value();
+}
+
+inline std::vector<VibrationSensor> vibration_sensors(const recording::Metadata& m) {
+  std::vector<VibrationSensor> out;
+  for (const auto& s : m.sensors)
+    if (s.kind == "accelerometer") out.push_back({static_cast<std::uint8_t>(s.id), s.name, s.rate_hz});
+  return out;
 }
 
 // The pavement groups of a scenario's cells.
