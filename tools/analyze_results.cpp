@@ -83,7 +83,8 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
   csv.value().write(header + ",reason\n");
   recording::LineBuilder line;
   const double nan = std::nan("");
-  for (const CellResult& c : cells) {
+  for (std::size_t row = 0; row < cells.size(); ++row) {
+    const CellResult& c = cells[row];
     line.clear();
     line.text(c.id).sep().num(c.start_m, 1).sep().num(c.end_m, 1).sep().num(static_cast<std::int64_t>(c.samples)).sep();
     const bool have = c.samples > 0;
@@ -99,7 +100,7 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
       line.num(have_fz ? c.contact[a].dynamic.std_n : nan, 1).sep();
     }
     if (vibration) {
-      const DynamicPower p = vibration->cell_power(static_cast<std::size_t>(&c - cells.data()));
+      const DynamicPower p = vibration->cell_power(row);
       const bool measured = p.segments > 0;
       const spectra::StretchCost cost = spectra::stretch_cost(p.total_w(), c.fuel.time_s, c.fuel.time_s > 0 ? c.fuel.distance_m / c.fuel.time_s : 0.0, kDieselEnergy_jpl);
       line.num(measured ? p.damper_w : nan, 2).sep().num(measured ? p.tire_w : nan, 2).sep().num(measured ? p.tire_eq27_w : nan, 2).sep();

@@ -179,12 +179,13 @@ int run_psd(Args args) {
       }
     }
     if (channels.empty()) return opt.fail("no accelerometer in " + o.input + "/meta.toml matches");
+    for (const Channel& c : channels)
+      if (c.fs_hz != channels[0].fs_hz) return opt.fail("sensors at different rates: give --fs or one --sensor");
     const std::string_view cols[] = {"t_ns", "sensor", "x_mps2", "y_mps2", "z_mps2"};
     rc = feed(o.input + "/" + recording::kAccelFile, cols, channels);
   }
   if (rc != kExitOk) return rc;
   for (const Channel& c : channels) {
-    if (c.fs_hz != channels[0].fs_hz) return opt.fail("sensors at different rates: give --fs or one --sensor");
     if (c.psd->segments() < 1) {
       std::fprintf(stderr, "roadload psd: %s: %llu samples, fewer than one segment of %zu\n", c.name.c_str(),
                    static_cast<unsigned long long>(c.samples), o.nperseg);

@@ -66,7 +66,7 @@ VibrationAnalysis::VibrationAnalysis(const AxleLayout& layout, std::span<const V
       cell_group_(cell_group),
       grid_(grid_sensors(sensors), config.grid),
       history_(config.placement_history),
-      suspension_(suspension_axles(layout, sensors, config), cell_count, grid_.rate_hz(), config.suspension),
+      suspension_(suspension_axles(layout, sensors, config), cell_count, grid_, config.suspension),
       modes_(mode_sensors(layout, sensors), std::move(cell_group), group_count, grid_.rate_hz(), config.modes) {}
 
 namespace {

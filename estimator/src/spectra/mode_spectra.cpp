@@ -19,7 +19,8 @@ ModeSpectra::ModeSpectra(std::vector<ModeSensor> sensors, std::vector<int> cell_
       distance_segment_(config.distance_nperseg),
       spectrum_(bin_count(transform_.config())),
       distance_spectrum_(bin_count(distance_transform_.config())),
-      group_weight_(group_count + 1) {
+      group_weight_(group_count + 1),
+      schedule_(config.nperseg, config.nperseg - config.noverlap, config.lag_samples) {
   for (double& w : distance_window_sq_) w *= w;
   const std::size_t n = (group_count_ + 1) * sensors_.size();
   time_.assign(n, SpectralSum(bin_count(transform_.config())));
@@ -35,15 +36,17 @@ ModeSpectra::ModeSpectra(std::vector<ModeSensor> sensors, std::vector<int> cell_
 void ModeSpectra::update(const SensorGrid& grid, const PlacementHistory& history) {
   if (grid.latest() == std::numeric_limits<std::int64_t>::min()) return;
   if (!started_) {
-    next_end_ = grid.latest() + static_cast<std::int64_t>(config_.nperseg) - 1;
-    for (DistanceStream& d : streams_) d.next_index = grid.latest();
+    next_distance_index_ = grid.latest();
     started_ = true;
   }
-  while (grid.latest() >= next_end_ + config_.lag_samples) {
-    take_time(grid, history, next_end_);
-    next_end_ += static_cast<std::int64_t>(hop(transform_.config()));
+  schedule_.run(grid, [&](std::int64_t end) { take_time(grid, history, end); });
+  // Every stream moves through the same grid instants: the position is looked up once for all.
+  for (; next_distance_index_ <= grid.latest() - config_.lag_samples; ++next_distance_index_) {
+    const CaptureTime t = grid.time_of(next_distance_index_);
+    const double s_m = history.distance_at(t);
+    const Placement* p = history.at(t);
+    for (std::size_t i = 0; i < sensors_.size(); ++i) advance_distance(i, grid, next_distance_index_, s_m, p);
   }
-  for (std::size_t i = 0; i < sensors_.size(); ++i) advance_distance(i, grid, history);
 }
 
 // Group weights of one segment: the trip takes it whole, each group its cells' shares.
@@ -79,41 +82,37 @@ void ModeSpectra::take_time(const SensorGrid& grid, const PlacementHistory& hist
   }
 }
 
-void ModeSpectra::advance_distance(std::size_t i, const SensorGrid& grid, const PlacementHistory& history) {
+// Grid instant n at time t, the front axle at s_m (NaN if unknown) with placement p: one step of
+// sensor i's stream along the road.
+void ModeSpectra::advance_distance(std::size_t i, const SensorGrid& grid, std::int64_t n, double s_m, const Placement* p) {
   const ModeSensor& m = sensors_[i];
   DistanceStream& d = streams_[i];
-  if (m.slot < 0) return;
-  const std::size_t n = config_.distance_nperseg, hop_n = config_.distance_nperseg - config_.distance_noverlap;
-  const double ds = config_.distance_step_m;
-  for (; d.next_index <= grid.latest() - config_.lag_samples; ++d.next_index) {
-    double value = 0;
-    const CaptureTime t = grid.time_of(d.next_index);
-    const double s = history.distance_at(t);
-    if (!grid.value_at(static_cast<std::size_t>(m.slot), d.next_index, value) || !std::isfinite(s)) {
-      d.primed = false;  // a hole in the sensor or the position: start again after it
-      d.total = 0;
-      continue;
-    }
-    if (d.primed && s > d.prev_s) {
-      const Placement* p = history.at(t);
-      const int cell = p != nullptr && m.axle < kMaxPlacedAxles ? p->cell[m.axle] : -1;
-      for (; d.next_s <= s; d.next_s += ds) {
-        const double frac = (d.next_s - d.prev_s) / (s - d.prev_s);
-        const std::size_t k = d.total % n;
-        d.values[k] = d.prev_value + frac * (value - d.prev_value);
-        d.cells[k] = cell;
-        ++d.total;
-        if (d.total >= n && (d.total - n) % hop_n == 0) take_distance(i);
-      }
-    } else if (!d.primed) {
-      d.next_s = std::ceil(s / ds) * ds;
-    }
-    if (!d.primed || s > d.prev_s) {
-      d.prev_s = s;
-      d.prev_value = value;
-    }
-    d.primed = true;
+  double value = 0;
+  if (m.slot < 0 || !grid.value_at(static_cast<std::size_t>(m.slot), n, value) || !std::isfinite(s_m)) {
+    d.primed = false;  // a hole in the sensor or the position: start again after it
+    d.total = 0;
+    return;
   }
+  const std::size_t len = config_.distance_nperseg, hop_n = config_.distance_nperseg - config_.distance_noverlap;
+  const double ds = config_.distance_step_m;
+  if (d.primed && s_m > d.prev_s) {
+    const int cell = p != nullptr && m.axle < kMaxPlacedAxles ? p->cell[m.axle] : -1;
+    for (; d.next_s <= s_m; d.next_s += ds) {
+      const double frac = (d.next_s - d.prev_s) / (s_m - d.prev_s);
+      const std::size_t k = d.total % len;
+      d.values[k] = d.prev_value + frac * (value - d.prev_value);
+      d.cells[k] = cell;
+      ++d.total;
+      if (d.total >= len && (d.total - len) % hop_n == 0) take_distance(i);
+    }
+  } else if (!d.primed) {
+    d.next_s = std::ceil(s_m / ds) * ds;
+  }
+  if (!d.primed || s_m > d.prev_s) {
+    d.prev_s = s_m;
+    d.prev_value = value;
+  }
+  d.primed = true;
 }
 
 void ModeSpectra::take_distance(std::size_t i) {

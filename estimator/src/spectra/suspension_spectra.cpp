@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 namespace roadload::spectra {
@@ -16,11 +15,11 @@ std::size_t slot_count(const std::vector<SuspensionAxle>& axles) {
 
 }  // namespace
 
-SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::size_t cell_count, double grid_hz,
+SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::size_t cell_count, const SensorGrid& grid,
                                      SuspensionConfig config)
     : axles_(std::move(axles)),
       config_(config),
-      transform_({grid_hz, config.nperseg, config.noverlap}),
+      transform_({grid.rate_hz(), config.nperseg, config.noverlap}),
       weights_(hann_periodic(config.nperseg)),
       segment_(config.nperseg),
       slot_spectrum_(slot_count(axles_), std::vector<std::complex<double>>(bin_count(transform_.config()))),
@@ -28,7 +27,10 @@ SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::siz
       slot_ok_(slot_count(axles_)),
       delayed_(bin_count(transform_.config())),
       delayed_velocity_(bin_count(transform_.config())),
-      response_(bin_count(transform_.config()), 1.0) {
+      response_(bin_count(transform_.config()), 1.0),
+      schedule_(config.nperseg, config.nperseg - config.noverlap, config.lag_samples) {
+  for (std::size_t k = 1; k < response_.size(); ++k)
+    response_[k] = grid.velocity_response_ratio(static_cast<double>(k) * bin_hz(transform_.config()));
   const std::size_t bins = bin_count(transform_.config());
   trip_.assign(axles_.size(), Sums(bins));
   window_.assign(axles_.size(), Sums(bins));
@@ -36,24 +38,11 @@ SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::siz
 }
 
 void SuspensionSpectra::update(const SensorGrid& grid, const PlacementHistory& history) {
-  if (grid.latest() == std::numeric_limits<std::int64_t>::min()) return;
-  const auto n = static_cast<std::int64_t>(config_.nperseg);
-  if (!started_) {
-    next_end_ = grid.latest() + n - 1;
-    started_ = true;
-  }
-  while (grid.latest() >= next_end_ + config_.lag_samples) {
-    take(grid, history, next_end_);
-    next_end_ += static_cast<std::int64_t>(hop(transform_.config()));
-  }
+  schedule_.run(grid, [&](std::int64_t end) { take(grid, history, end); });
 }
 
 void SuspensionSpectra::take(const SensorGrid& grid, const PlacementHistory& history, std::int64_t end) {
   ++counters_.segments;
-  if (counters_.segments == 1) {
-    for (std::size_t k = 1; k < response_.size(); ++k)
-      response_[k] = grid.velocity_response_ratio(static_cast<double>(k) * bin_hz(transform_.config()));
-  }
   for (std::size_t slot = 0; slot < slot_spectrum_.size(); ++slot) {
     slot_ok_[slot] = slot < grid.sensor_count() && grid.copy(slot, end, segment_);
     if (slot_ok_[slot]) transform_.transform(segment_, slot_spectrum_[slot]);

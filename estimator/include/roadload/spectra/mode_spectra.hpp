@@ -61,7 +61,6 @@ class ModeSpectra {
  private:
   // One sensor resampled along the road.
   struct DistanceStream {
-    std::int64_t next_index = 0;  // grid index to read next
     bool primed = false;          // the previous grid value and distance are known
     double prev_value = 0, prev_s = 0, next_s = 0;
     std::size_t total = 0;        // distance samples since the last restart
@@ -72,7 +71,7 @@ class ModeSpectra {
     return static_cast<std::size_t>(group + 1) * sensors_.size() + sensor;
   }
   void take_time(const SensorGrid& grid, const PlacementHistory& history, std::int64_t end);
-  void advance_distance(std::size_t sensor, const SensorGrid& grid, const PlacementHistory& history);
+  void advance_distance(std::size_t sensor, const SensorGrid& grid, std::int64_t n, double s_m, const Placement* p);
   void take_distance(std::size_t sensor);
   void share_groups(const SegmentShares& shares);
 
@@ -89,8 +88,9 @@ class ModeSpectra {
   std::vector<double> segment_, distance_segment_;
   std::vector<std::complex<double>> spectrum_, distance_spectrum_;
   std::vector<double> group_weight_;
-  std::int64_t next_end_ = 0;
-  bool started_ = false;
+  SegmentSchedule schedule_;
+  bool started_ = false;                 // the distance streams begin at the first grid value
+  std::int64_t next_distance_index_ = 0;  // the grid instant all distance streams read next
 };
 
 }  // namespace roadload::spectra

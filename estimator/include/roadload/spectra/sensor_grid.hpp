@@ -10,6 +10,7 @@
 // Pure computation; storage is sized at construction and push() never allocates.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -122,6 +123,30 @@ class SensorGrid {
   std::vector<Sensor> sensors_;
   std::int64_t latest_;
   std::uint64_t restarts_ = 0;
+};
+
+// When segments of `length` grid samples are due, one every `hop`, from the first grid value on:
+// each is taken once the grid has moved `lag` samples past its end, so every sensor has had the
+// chance to fill it.
+class SegmentSchedule {
+ public:
+  SegmentSchedule(std::size_t length, std::size_t hop, std::int64_t lag)
+      : length_(static_cast<std::int64_t>(length)), hop_(static_cast<std::int64_t>(hop)), lag_(lag) {}
+  // Calls take(end) for each segment now due, in order.
+  template <typename Take>
+  void run(const SensorGrid& grid, Take&& take) {
+    if (grid.latest() == std::numeric_limits<std::int64_t>::min()) return;
+    if (!started_) {
+      next_end_ = grid.latest() + length_ - 1;
+      started_ = true;
+    }
+    for (; grid.latest() >= next_end_ + lag_; next_end_ += hop_) take(next_end_);
+  }
+
+ private:
+  std::int64_t length_, hop_, lag_;
+  std::int64_t next_end_ = 0;
+  bool started_ = false;
 };
 
 }  // namespace roadload::spectra

@@ -67,7 +67,9 @@ struct SuspensionCounters {
 
 class SuspensionSpectra {
  public:
-  SuspensionSpectra(std::vector<SuspensionAxle> axles, std::size_t cell_count, double grid_hz, SuspensionConfig config = {});
+  // `grid`: the rate and the velocity integrator whose response the densities divide out.
+  SuspensionSpectra(std::vector<SuspensionAxle> axles, std::size_t cell_count, const SensorGrid& grid,
+                    SuspensionConfig config = {});
 
   void update(const SensorGrid& grid, const PlacementHistory& history);
 
@@ -111,8 +113,7 @@ class SuspensionSpectra {
   std::vector<bool> slot_ok_;
   std::vector<std::complex<double>> delayed_, delayed_velocity_;
   std::vector<double> response_;  // the grid integrator's power response per bin
-  std::int64_t next_end_ = 0;
-  bool started_ = false;
+  SegmentSchedule schedule_;
   SuspensionCounters counters_;
 };
 
