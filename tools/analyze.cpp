@@ -11,12 +11,12 @@
 #include "analyze_vibration.hpp"
 #include "command.hpp"
 #include "options.hpp"
-#include "route_arg.hpp"
 #include "roadload/contact_forces.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/grade_file.hpp"
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/recording/reader.hpp"
+#include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/route_file.hpp"
 
 namespace roadload::cli {
@@ -48,57 +48,6 @@ constexpr const char* kHelp =
     "  --dbc FILE      load FILE after the built-in definitions; repeatable\n"
     "  -q, --quiet     no table on standard output\n"
     "  -h, --help      this text\n";
-
-// The truck as the recording describes it: mass, the axles (centre of gravity, and where each
-// meets a new pavement) and the GNSS antenna. The MnROAD truck's values where it is silent.
-AnalyzerConfig config_from_vehicle(const std::map<std::string, double>& vehicle, std::optional<double> mass) {
-  AnalyzerConfig cfg;
-  if (mass) {
-    cfg.filter.truck.mass_kg = *mass;
-  } else if (auto it = vehicle.find("mass_kg"); it != vehicle.end()) {
-    cfg.filter.truck.mass_kg = it->second;
-  }
-  double moment = 0, load = 0;
-  std::vector<AxleLoad> axles;
-  for (const AxleDefaults& axle : kMnroadAxles) {
-    const auto l = vehicle.find(std::string(axle.name) + "_load_kg");
-    const auto x = vehicle.find(std::string(axle.name) + "_position_m");
-    if (l != vehicle.end() && x != vehicle.end()) {
-      moment += l->second * x->second;
-      load += l->second;
-      axles.push_back({x->second, l->second});
-    }
-  }
-  if (load > 0) {
-    cfg.cg_behind_front_m = moment / load;
-    cfg.axles = axles;
-  }
-  if (auto it = vehicle.find("gnss_antenna_behind_front_axle_m"); it != vehicle.end()) cfg.antenna_behind_front_m = it->second;
-  return cfg;
-}
-
-// The axles with accelerometers; axles without them, or a recording without any, are reported once
-// and skipped.
-std::optional<AxleLayout> axle_layout(const recording::Metadata& meta, const std::string& recording) {
-  std::vector<SensorPlacement> placements;
-  for (const auto& s : meta.sensors) placements.push_back({s.id, s.kind, s.position});
-  LayoutOptions lenient;
-  lenient.skip_axles_without_sensors = true;
-  auto layout = build_axle_layout(placements, meta.vehicle, recording + "/meta.toml", lenient);
-  if (!layout) {
-    std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.error().to_string().c_str());
-    return std::nullopt;
-  }
-  for (const std::string& why : layout.value().skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
-  return std::move(layout.value());
-}
-
-std::vector<VibrationSensor> accelerometers(const recording::Metadata& meta) {
-  std::vector<VibrationSensor> out;
-  for (const auto& s : meta.sensors)
-    if (s.kind == "accelerometer" && s.id >= 0 && s.id < 256) out.push_back({static_cast<std::uint8_t>(s.id), s.name, s.rate_hz});
-  return out;
-}
 
 }  // namespace
 
@@ -166,7 +115,7 @@ int run_analyze(Args args) {
     std::fprintf(stderr, "roadload analyze: %s\n", reader.error().to_string().c_str());
     return kExitNoInput;
   }
-  AnalyzerConfig cfg = config_from_vehicle(reader.value().metadata().vehicle, mass);
+  AnalyzerConfig cfg = recording::config_from_vehicle(reader.value().metadata().vehicle, mass);
   cfg.estimate_cda = estimate_cda;
   cfg.survey_elevation_sigma_m = survey_sigma;
 
@@ -186,10 +135,16 @@ int run_analyze(Args args) {
   std::optional<ContactForces> contact;
   std::optional<VibrationAnalysis> vibration;
   const PavementGroups groups = pavement_groups(route.value().cells);
-  if (std::optional<AxleLayout> layout = axle_layout(reader.value().metadata(), recording)) {
-    for (const AxleContact& a : layout->axles) axle_names.push_back(a.name);
-    vibration.emplace(*layout, accelerometers(reader.value().metadata()), cells.size(), groups.cell_group, groups.names.size());
-    contact.emplace(std::move(*layout), cells.size());
+  auto layout = recording::axle_layout(reader.value().metadata(), recording + "/meta.toml");
+  if (!layout.layout) {
+    std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.why_not.c_str());
+  }
+  for (const std::string& why : layout.skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
+  if (layout.layout) {
+    for (const AxleContact& a : layout.layout->axles) axle_names.push_back(a.name);
+    vibration.emplace(*layout.layout, recording::accelerometers(reader.value().metadata()), cells.size(), groups.cell_group,
+                      groups.names.size());
+    contact.emplace(std::move(*layout.layout), cells.size());
     analyzer.attach(&*contact);
     analyzer.attach(&*vibration);
   }

@@ -38,12 +38,6 @@ std::optional<ParseError> write_columns(const std::string& path, const char* axi
 
 }  // namespace
 
-PavementGroups pavement_groups(const std::vector<CellDef>& cells) {
-  std::vector<PavementKey> keys;
-  for (const CellDef& c : cells) keys.push_back({c.surface, c.joint_spacing_m});
-  return group_pavements(keys);
-}
-
 VibrationSummary summarize(const VibrationAnalysis& va, const PavementGroups& groups, double trip_time_s, double trip_distance_m) {
   VibrationSummary s;
   s.trip = va.trip_power();

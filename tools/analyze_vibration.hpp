@@ -15,8 +15,6 @@
 
 namespace roadload::cli {
 
-PavementGroups pavement_groups(const std::vector<CellDef>& cells);
-
 struct GroupSpectra {
   std::string name;
   DynamicPower power;

@@ -18,6 +18,7 @@ int run_simulate(Args args);
 int run_analyze(Args args);
 int run_grade(Args args);
 int run_psd(Args args);
+int run_replay(Args args);
 
 // Exit codes, as sysexits.h names them.
 inline constexpr int kExitOk = 0;

@@ -10,7 +10,6 @@
 
 #include "command.hpp"
 #include "options.hpp"
-#include "route_arg.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/grade_profile.hpp"
 #include "roadload/recording/reader.hpp"

@@ -1,8 +1,10 @@
 #include "roadload/route_file.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
+#include "roadload/definitions.hpp"
 #include "roadload/toml_fields.hpp"
 
 namespace roadload {
@@ -81,6 +83,17 @@ Parsed<RouteFile> load_route_file(const std::string& path) {
   } catch (const detail::TomlFailure& e) {
     return e.error;
   }
+}
+
+PavementGroups pavement_groups(const std::vector<CellDef>& cells) {
+  std::vector<PavementKey> keys;
+  for (const CellDef& c : cells) keys.push_back({c.surface, c.joint_spacing_m});
+  return group_pavements(keys);
+}
+
+std::string resolve_route(const std::string& name_or_path) {
+  if (std::filesystem::exists(name_or_path)) return name_or_path;
+  return data_dir() + "/routes/" + name_or_path + ".toml";
 }
 
 }  // namespace roadload

@@ -22,9 +22,9 @@ DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std
       config_(config),
       signals_(db),
       filter_(filter_config(config, !cells_.empty())),
-      smoother_(36000) {
+      smoother_(config.keep_history ? 36000 : 0) {
   if (const auto* m = db_.find_name("CCVS1")) ccvs1_pgn_ = m->pgn;
-  filter_.attach(&smoother_);
+  if (config_.keep_history) filter_.attach(&smoother_);
   for (const CellSpan& c : cells_) {
     boundaries_m_.push_back(c.start_m);
     boundaries_m_.push_back(c.end_m);
@@ -135,8 +135,13 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   const ekf::UpdateResult upd = filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
   const PowerInterval power = power_since_last_tick(dt_s, tr, wheel_speed_mps);
   last_speed_mps_ = wheel_speed_mps;
-  ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, why, upd.accepted ? upd.nis : std::nan(""),
-                    smoother_.size(), power, in.air_density_kgpm3, in.headwind_mps, in.grade_rad});
+  if (config_.keep_history) {
+    ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, why, upd.accepted ? upd.nis : std::nan(""),
+                      smoother_.size(), power, in.air_density_kgpm3, in.headwind_mps, in.grade_rad});
+  }
+  live_ = {t, true, wheel_speed_mps, s_front, cell_at(s_cg), filter_.crr(), 0, 0, filter_.crr_identified(), in.usable};
+  live_.crr_lo = live_.crr - config_.interval_z * filter_.crr_sigma();
+  live_.crr_hi = live_.crr + config_.interval_z * filter_.crr_sigma();
   ++trip_.ticks;
   if (in.usable) {
     ++trip_.usable_ticks;

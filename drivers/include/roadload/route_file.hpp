@@ -8,6 +8,7 @@
 
 #include "roadload/geo_point.hpp"
 #include "roadload/parse_error.hpp"
+#include "roadload/pavement_groups.hpp"
 
 namespace roadload {
 
@@ -35,5 +36,9 @@ struct RouteFile {
 };
 
 Parsed<RouteFile> load_route_file(const std::string& path);
+// The cells' pavement groups (surface and panel length), for spectra per pavement.
+PavementGroups pavement_groups(const std::vector<CellDef>& cells);
+// A route argument: a route file, or the name of a built-in route (data_dir()/routes/NAME.toml).
+std::string resolve_route(const std::string& name_or_path);
 
 }  // namespace roadload

@@ -49,6 +49,19 @@ class TomlFields {
     if (auto v = text(t, key, where)) return *v;
     fail(&t, where + std::string(key), "required key missing");
   }
+  std::optional<bool> flag(const toml::table& t, std::string_view key, const std::string& where) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    if (!n->is_boolean()) fail(n, where + std::string(key), "expected true or false");
+    return *n->value<bool>();
+  }
+  // A sub-table, or nothing when absent; anything else under that key is an error.
+  const toml::table* table(const toml::table& t, std::string_view key) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return nullptr;
+    if (!n->is_table()) fail(n, std::string(key), "expected a table [" + std::string(key) + "]");
+    return n->as_table();
+  }
   // A key the reader does not know is a typo until proven otherwise: stop at it.
   void only(const toml::table& t, std::initializer_list<std::string_view> known, const std::string& where) const {
     for (const auto& [key, node] : t) {

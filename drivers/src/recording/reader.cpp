@@ -184,7 +184,7 @@ bool CandumpStream::next(Record& out, ErrorLog& errors) {
   return true;
 }
 
-Parsed<RecordingReader> RecordingReader::open(const std::string& path) {
+Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned streams) {
   RecordingReader r;
   std::error_code ec;
   if (!fs::is_directory(path, ec)) {
@@ -203,22 +203,23 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path) {
     r.meta_ = std::move(meta.value());
     r.has_meta_ = true;
   }
-  if (fs::exists(dir / kCanFile)) {
+  if ((streams & kCanStream) != 0 && fs::exists(dir / kCanFile)) {
     auto can = CandumpStream::open((dir / kCanFile).string());
     if (!can) return can.error();
     r.streams_.push_back(std::move(can.value()));
   }
   const struct {
+    unsigned bit;
     const char* file;
     Parsed<std::unique_ptr<Stream>> (*open)(const fs::path&);
   } csvs[] = {
-      {kAccelFile, [](const fs::path& p) { return open_csv<AccelSample>(p, kAccelColumns, kAccelFile, to_accel); }},
-      {kGnssFile, [](const fs::path& p) { return open_csv<GnssFix>(p, kGnssColumns, kGnssFile, to_gnss); }},
-      {kWeatherFile,
+      {kAccelStream, kAccelFile, [](const fs::path& p) { return open_csv<AccelSample>(p, kAccelColumns, kAccelFile, to_accel); }},
+      {kGnssStream, kGnssFile, [](const fs::path& p) { return open_csv<GnssFix>(p, kGnssColumns, kGnssFile, to_gnss); }},
+      {kWeatherStream, kWeatherFile,
        [](const fs::path& p) { return open_csv<WeatherSample>(p, kWeatherColumns, kWeatherFile, to_weather); }},
   };
   for (const auto& c : csvs) {
-    if (!fs::exists(dir / c.file)) continue;
+    if ((streams & c.bit) == 0 || !fs::exists(dir / c.file)) continue;
     auto s = c.open(dir / c.file);
     if (!s) return s.error();
     r.streams_.push_back(std::move(s.value()));

@@ -83,22 +83,22 @@ Parsed<RecordingWriter> RecordingWriter::create(const std::string& folder, const
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) return ParseError{folder, 0, "folder", ec.message()};
-  auto m = OutputFile::create(folder + "/meta.toml");
+  auto m = OutputFile::create(folder + "/" + kMetaFile);
   if (!m) return m.error();
   m.value().write(format_metadata(meta));
   if (auto e = m.value().close()) return *e;
   return RecordingWriter(folder);
 }
 
-OutputFile& RecordingWriter::stream(OutputFile& f, const char* name, std::string_view header) {
+OutputFile& RecordingWriter::stream(OutputFile& f, const CsvStreamFormat& format) {
   if (f.is_open() || error_) return f;
-  auto opened = OutputFile::create(folder_ + "/" + name);
+  auto opened = OutputFile::create(folder_ + "/" + format.file);
   if (!opened) {
     error_ = opened.error();
     return f;
   }
   f = std::move(opened.value());
-  f.write(header);
+  f.write(format.header);
   return f;
 }
 
@@ -106,31 +106,41 @@ void RecordingWriter::write(const CanFrame& frame, std::string_view iface) {
   char buf[kMaxLineChars + 1];
   const std::size_t n = format_candump_line(frame, iface, buf);
   buf[n] = '\n';
-  stream(can_, "can.log", {}).write({buf, n + 1});
+  stream(can_, {kCanFile, {}}).write({buf, n + 1});
+}
+
+std::string_view format_row(const AccelSample& s, LineBuilder& line) {
+  line.clear();
+  line.num(to_ns(s.t)).sep().num(std::int64_t{s.sensor}).sep();
+  line.num(s.x_mps2, 6).sep().num(s.y_mps2, 6).sep().num(s.z_mps2, 6);
+  return line.finish();
+}
+
+std::string_view format_row(const GnssFix& s, LineBuilder& line) {
+  line.clear();
+  line.num(to_ns(s.t)).sep().num(s.utc_ns).sep().num(s.lat_deg, 9).sep().num(s.lon_deg, 9).sep();
+  line.num(s.alt_m, 3).sep().num(s.speed_mps, 3).sep().num(s.course_deg, 2).sep();
+  line.num(static_cast<std::int64_t>(s.mode)).sep().num(s.hdop, 1);
+  return line.finish();
+}
+
+std::string_view format_row(const WeatherSample& s, LineBuilder& line) {
+  line.clear();
+  line.num(to_ns(s.t)).sep().num(std::int64_t{s.station}).sep().num(s.air_temp_c, 2).sep();
+  line.num(s.pressure_pa, 1).sep().num(s.wind_speed_mps, 2).sep().num(s.wind_from_deg, 1);
+  return line.finish();
 }
 
 void RecordingWriter::write(const AccelSample& s) {
-  line_.clear();
-  line_.num(to_ns(s.t)).sep().num(std::int64_t{s.sensor}).sep();
-  line_.num(s.x_mps2, 6).sep().num(s.y_mps2, 6).sep().num(s.z_mps2, 6);
-  stream(accel_, "accel.csv", "t_ns,sensor,x_mps2,y_mps2,z_mps2\n").write(line_.finish());
+  stream(accel_, kAccelFormat).write(format_row(s, line_));
 }
 
 void RecordingWriter::write(const GnssFix& s) {
-  line_.clear();
-  line_.num(to_ns(s.t)).sep().num(s.utc_ns).sep().num(s.lat_deg, 9).sep().num(s.lon_deg, 9).sep();
-  line_.num(s.alt_m, 3).sep().num(s.speed_mps, 3).sep().num(s.course_deg, 2).sep();
-  line_.num(static_cast<std::int64_t>(s.mode)).sep().num(s.hdop, 1);
-  stream(gnss_, "gnss.csv", "t_ns,utc_ns,lat_deg,lon_deg,alt_m,speed_mps,course_deg,mode,hdop\n")
-      .write(line_.finish());
+  stream(gnss_, kGnssFormat).write(format_row(s, line_));
 }
 
 void RecordingWriter::write(const WeatherSample& s) {
-  line_.clear();
-  line_.num(to_ns(s.t)).sep().num(std::int64_t{s.station}).sep().num(s.air_temp_c, 2).sep();
-  line_.num(s.pressure_pa, 1).sep().num(s.wind_speed_mps, 2).sep().num(s.wind_from_deg, 1);
-  stream(weather_, "weather.csv", "t_ns,station,air_temp_c,pressure_pa,wind_speed_mps,wind_from_deg\n")
-      .write(line_.finish());
+  stream(weather_, kWeatherFormat).write(format_row(s, line_));
 }
 
 std::optional<ParseError> RecordingWriter::close() {

@@ -47,6 +47,21 @@ struct AnalyzerConfig {
   double max_gnss_offset_m = 30.0;      // fixes farther from the route are not on it
   double interval_z = 1.645;            // 90 % two-sided
   double survey_elevation_sigma_m = 0.0;  // the route survey's height error (0: taken as exact)
+  // Offline, every tick is kept for the smoother and the cells; live (roadloadd), only the
+  // filter runs, in fixed memory, and cells() and finish() have nothing to smooth.
+  bool keep_history = true;
+};
+
+// The filter's estimate now, as the daemon's status shows it.
+struct LiveEstimate {
+  CaptureTime t{};
+  bool started = false;
+  double speed_mps = 0;
+  double s_front_m = 0;     // along the route
+  int cell = -1;            // index of the cell under the centre of gravity; -1 off the cells
+  double crr = 0, crr_lo = 0, crr_hi = 0;
+  bool identified = false;
+  bool usable = false;      // the last tick entered the force balance
 };
 
 struct CellResult {
@@ -96,6 +111,8 @@ class DriveAnalyzer {
 
   std::vector<CellResult> cells() const;
   TripResult trip() const;
+  LiveEstimate live() const { return live_; }
+  const std::vector<CellSpan>& cell_spans() const { return cells_; }
 
  private:
   static CrrFilterConfig filter_config(const AnalyzerConfig& c, bool cells);
@@ -141,6 +158,7 @@ class DriveAnalyzer {
   ContactForces* contact_ = nullptr;
   VibrationAnalysis* vibration_ = nullptr;
   TripResult trip_;
+  LiveEstimate live_;
   bool started_ = false;
   CaptureTime last_tick_{};
   double odometer_m_ = 0;

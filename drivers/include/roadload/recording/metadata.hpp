@@ -14,6 +14,14 @@ namespace roadload::recording {
 
 inline constexpr std::int64_t kFormatVersion = 1;
 
+// The files of a recording folder (docs/recording-format.md).
+inline constexpr const char* kCanFile = "can.log";
+inline constexpr const char* kAccelFile = "accel.csv";
+inline constexpr const char* kGnssFile = "gnss.csv";
+inline constexpr const char* kWeatherFile = "weather.csv";
+inline constexpr const char* kMetaFile = "meta.toml";
+
+
 struct SensorInfo {
   std::int64_t id = 0;       // the `sensor` column of accel.csv
   std::string name;          // e.g. TLF1, as the report labels its accelerometers

@@ -21,12 +21,6 @@ namespace roadload::recording {
 
 using Record = std::variant<CanFrame, AccelSample, GnssFix, WeatherSample>;
 
-inline constexpr const char* kCanFile = "can.log";
-inline constexpr const char* kAccelFile = "accel.csv";
-inline constexpr const char* kGnssFile = "gnss.csv";
-inline constexpr const char* kWeatherFile = "weather.csv";
-inline constexpr const char* kMetaFile = "meta.toml";
-
 // Bad input kept for the report: every error is counted, the first kMaxKept are kept whole.
 class ErrorLog {
  public:
@@ -75,10 +69,19 @@ class CandumpStream final : public Stream {
   CaptureTime last_{};
 };
 
+// Which of a folder's streams to read (a replay source reads only its own).
+enum StreamMask : unsigned {
+  kCanStream = 1,
+  kAccelStream = 2,
+  kGnssStream = 4,
+  kWeatherStream = 8,
+  kAllStreams = 15,
+};
+
 class RecordingReader {
  public:
   // `path` is a recording folder or a candump log file.
-  static Parsed<RecordingReader> open(const std::string& path);
+  static Parsed<RecordingReader> open(const std::string& path, unsigned streams = kAllStreams);
 
   // Next record across all streams, earliest stamp first (ties: can, accel, gnss, weather).
   const Record* next();

@@ -54,6 +54,21 @@ class LineBuilder {
   std::size_t len_ = 0;
 };
 
+// The CSV streams' files, headers and rows, shared by every writer of recordings.
+struct CsvStreamFormat {
+  const char* file;
+  std::string_view header;  // with its newline
+};
+inline constexpr CsvStreamFormat kAccelFormat{kAccelFile, "t_ns,sensor,x_mps2,y_mps2,z_mps2\n"};
+inline constexpr CsvStreamFormat kGnssFormat{kGnssFile,
+                                             "t_ns,utc_ns,lat_deg,lon_deg,alt_m,speed_mps,course_deg,mode,hdop\n"};
+inline constexpr CsvStreamFormat kWeatherFormat{
+    kWeatherFile, "t_ns,station,air_temp_c,pressure_pa,wind_speed_mps,wind_from_deg\n"};
+// Each returns the row with its newline; the view lives until `line` is next cleared.
+std::string_view format_row(const AccelSample& s, LineBuilder& line);
+std::string_view format_row(const GnssFix& s, LineBuilder& line);
+std::string_view format_row(const WeatherSample& s, LineBuilder& line);
+
 class RecordingWriter {
  public:
   static Parsed<RecordingWriter> create(const std::string& folder, const Metadata& meta);
@@ -66,7 +81,7 @@ class RecordingWriter {
 
  private:
   explicit RecordingWriter(std::string folder) : folder_(std::move(folder)) {}
-  OutputFile& stream(OutputFile& f, const char* name, std::string_view header);
+  OutputFile& stream(OutputFile& f, const CsvStreamFormat& format);
 
   std::string folder_;
   OutputFile can_, accel_, gnss_, weather_;

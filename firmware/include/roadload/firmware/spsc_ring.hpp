@@ -18,6 +18,7 @@ class SpscRing {
   static_assert(std::is_trivially_copyable_v<T>, "items are copied in and out");
 
  public:
+  using value_type = T;
   static constexpr std::size_t capacity() { return Capacity; }
 
   // Producer side.
@@ -45,6 +46,16 @@ class SpscRing {
     out = slots_[tail & (Capacity - 1)];
     tail_.store(tail + 1, std::memory_order_release);
     return true;
+  }
+
+  // Consumer side: the oldest item without taking it, or null when empty.
+  const T* peek() {
+    const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
+    if (tail == head_seen_) {
+      head_seen_ = head_.load(std::memory_order_acquire);
+      if (tail == head_seen_) return nullptr;
+    }
+    return &slots_[tail & (Capacity - 1)];
   }
 
   // Either side, approximately.

@@ -1,0 +1,104 @@
+#pragma once
+// One source and its thread: it reads batches from the device (or a replay) and pushes each item
+// into two rings, one drained by the writer and one by the estimator, so a slow disk never stalls
+// the estimator and neither stalls acquisition. What either ring refuses is counted. The status is
+// published under a mutex a few times a second for the status thread; the data path takes no lock.
+#include <array>
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "roadload/firmware/spsc_ring.hpp"
+#include "roadload/firmware/status_report.hpp"
+#include "roadload/io/source.hpp"
+
+namespace roadload::firmware {
+
+// Frame length in bits without stuffing, as can-utils' canbusload counts by default.
+std::uint32_t can_frame_bits(const CanFrame& f);
+
+template <typename T, std::size_t RingCapacity>
+class Channel {
+ public:
+  Channel(std::unique_ptr<io::Source<T>> source, SourceKind kind, std::string name)
+      : source_(std::move(source)), kind_(kind), name_(std::move(name)) {}
+  ~Channel() { join(); }
+  Channel(const Channel&) = delete;
+  Channel& operator=(const Channel&) = delete;
+
+  // Without an estimator its ring stays empty rather than filling up and counting drops.
+  void start(const std::atomic<bool>& stop, bool feed_estimator) {
+    feed_estimator_ = feed_estimator;
+    thread_ = std::thread([this, &stop] { run(stop); });
+  }
+  void join() {
+    if (thread_.joinable()) thread_.join();
+  }
+
+  SpscRing<T, RingCapacity>& to_writer() { return to_writer_; }
+  SpscRing<T, RingCapacity>& to_estimator() { return to_estimator_; }
+  const std::string& name() const { return name_; }
+  SourceKind kind() const { return kind_; }
+  // The source itself, before start() or after join() only.
+  io::Source<T>& source() { return *source_; }
+
+  // A copy of the latest published status and the bits seen (CAN), for the status thread.
+  SourceReport report() {
+    SourceReport r;
+    r.name = name_;
+    r.kind = kind_;
+    {
+      std::lock_guard lock(mutex_);
+      r.status = published_;
+    }
+    r.ring_dropped = to_writer_.dropped() + to_estimator_.dropped();
+    return r;
+  }
+  std::uint64_t bits() const { return bits_.load(std::memory_order_relaxed); }
+  // A replay at its end; a live source never finishes.
+  bool finished() const { return finished_.load(std::memory_order_acquire); }
+  bool is_replay() const { return source_->status().stamps == StampSource::recording; }
+
+ private:
+  static constexpr std::size_t kBatch = 64;
+  static constexpr Nanoseconds kReadTimeout{100'000'000};
+
+  void run(const std::atomic<bool>& stop) {
+    std::array<T, kBatch> batch{};
+    std::uint64_t bits = 0;
+    while (!stop.load(std::memory_order_relaxed)) {
+      const std::size_t n = source_->read(batch, kReadTimeout);
+      for (std::size_t i = 0; i < n; ++i) {
+        to_writer_.try_push(batch[i]);
+        if (feed_estimator_) to_estimator_.try_push(batch[i]);
+        if constexpr (std::is_same_v<T, CanFrame>) bits += can_frame_bits(batch[i]);
+      }
+      bits_.store(bits, std::memory_order_relaxed);
+      publish();
+      if (source_->status().state == io::SourceState::ended) break;
+    }
+    publish();
+    finished_.store(true, std::memory_order_release);
+  }
+
+  void publish() {
+    std::lock_guard lock(mutex_);
+    published_ = source_->status();
+  }
+
+  std::unique_ptr<io::Source<T>> source_;
+  SourceKind kind_;
+  std::string name_;
+  SpscRing<T, RingCapacity> to_writer_;
+  SpscRing<T, RingCapacity> to_estimator_;
+  std::mutex mutex_;
+  io::SourceStatus published_;
+  std::atomic<std::uint64_t> bits_{0};
+  std::atomic<bool> finished_{false};
+  bool feed_estimator_ = true;
+  std::thread thread_;
+};
+
+}  // namespace roadload::firmware

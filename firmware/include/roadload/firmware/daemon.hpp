@@ -1,0 +1,102 @@
+#pragma once
+// roadloadd's wiring: a thread per source into its rings, a writer thread recording every item, an
+// estimator thread running the live CRR filter on the items in capture-time order, and the status
+// of all of it on demand. Sources are built by the caller (devices in roadloadd, replays or dummies
+// in tests), so the daemon runs the same on a truck, on vcan and in a unit test.
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "roadload/drive_analyzer.hpp"
+#include "roadload/firmware/channel.hpp"
+#include "roadload/firmware/recorder.hpp"
+#include "roadload/firmware/status_report.hpp"
+#include "roadload/io/replay_clock.hpp"
+#include "roadload/j1939/database.hpp"
+#include "roadload/vibration.hpp"
+
+namespace roadload::firmware {
+
+// Ring sizes: about a second of a full bus at ten times its rate, and four seconds of a 4 kHz part.
+using CanChannel = Channel<CanFrame, 1 << 15>;
+using AccelChannel = Channel<AccelSample, 1 << 14>;
+using GnssChannel = Channel<GnssFix, 1 << 8>;
+using WeatherChannel = Channel<WeatherSample, 1 << 8>;
+
+struct DaemonSources {
+  std::vector<std::unique_ptr<CanChannel>> can;
+  std::vector<std::unique_ptr<AccelChannel>> accel;
+  std::unique_ptr<GnssChannel> gnss;
+  std::unique_ptr<WeatherChannel> weather;
+};
+
+struct CanBusInfo {
+  double bitrate_bps = 500'000;
+};
+
+struct DaemonSetup {
+  std::optional<RecorderConfig> recording;  // none: record nothing
+  recording::Metadata metadata;
+  std::vector<std::string> interfaces;      // CanFrame::iface -> name
+  std::vector<CanBusInfo> buses;            // per CAN channel, in order
+  const j1939::Database* db = nullptr;      // none: no estimator
+  RouteGeometry route;
+  std::vector<CellSpan> cells;
+  AnalyzerConfig analyzer;
+  // Axles with accelerometers: streaming spectra and the dynamic rolling-resistance power.
+  std::optional<AxleLayout> layout;
+  std::vector<VibrationSensor> accelerometers;
+  std::vector<int> cell_group;  // per cell, for spectra per pavement
+  std::size_t group_count = 0;
+  // Items are handed to the estimator once every source has moved past them or this long after
+  // their capture time, so streams with different latencies merge in order.
+  Nanoseconds merge_delay{200'000'000};
+};
+
+class Daemon {
+ public:
+  Daemon(DaemonSetup setup, DaemonSources sources, io::WaitClock& clock);
+  ~Daemon();
+  Daemon(const Daemon&) = delete;
+  Daemon& operator=(const Daemon&) = delete;
+
+  void start();
+  // Stops the sources, lets the writer and estimator drain every ring, ends the recording segment.
+  void stop();
+  // There are replay sources and every one has reached its end (live sources never do).
+  bool replays_finished();
+  // SIGHUP: the recording starts a new segment.
+  void rotate_recording() { rotate_.store(true, std::memory_order_relaxed); }
+  // The status now; rates are over the time since the previous call.
+  StatusReport report();
+
+ private:
+  void write_loop();
+  void estimate_loop();
+  bool write_pending(std::size_t max_items);
+  bool estimate_next(CaptureTime horizon);
+
+  DaemonSetup setup_;
+  DaemonSources sources_;
+  io::WaitClock& clock_;
+  std::optional<Recorder> recorder_;
+  std::optional<DriveAnalyzer> analyzer_;
+  std::optional<VibrationAnalysis> vibration_;
+  double dynamic_power_w_ = -1;  // last window's, under mutex_
+  std::atomic<bool> stop_sources_{false}, stop_workers_{false}, rotate_{false};
+  std::thread writer_, estimator_;
+  CaptureTime started_{};
+  // Shared with the status thread.
+  std::mutex mutex_;
+  RecorderStatus recorder_status_;
+  LiveEstimate estimate_;
+  // Status thread's own memory of the previous report, for rates.
+  CaptureTime last_report_{};
+  std::vector<std::uint64_t> last_items_, last_bits_, last_dropped_;
+  bool running_ = false;
+};
+
+}  // namespace roadload::firmware

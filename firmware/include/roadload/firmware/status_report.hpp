@@ -1,0 +1,52 @@
+#pragma once
+// What roadloadd tells a person with `tail -f status.log` and a program reading status.jsonl, one
+// line per interval: the estimate, each source's rate, drops and state, the recording, clock sync
+// and the warnings that need someone's attention.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "roadload/drive_analyzer.hpp"
+#include "roadload/firmware/recorder.hpp"
+#include "roadload/io/source.hpp"
+
+namespace roadload::firmware {
+
+enum class SourceKind : std::uint8_t { can, accelerometer, gnss, weather };
+const char* to_string(SourceKind k);
+
+struct SourceReport {
+  std::string name;
+  SourceKind kind = SourceKind::can;
+  io::SourceStatus status;
+  double rate_per_s = 0;      // items over the last interval
+  double bus_load = 0;        // CAN: fraction of the bit rate, unstuffed bits as canbusload counts them
+  std::uint64_t ring_dropped = 0;  // lost because a consumer fell behind
+  std::uint64_t dropped_recent = 0;  // source + ring drops in the last interval
+};
+
+struct SyncReport {
+  std::uint64_t clock_steps = 0;      // wall-clock steps seen under the CAN stamps
+  std::uint64_t unplaced_stamps = 0;  // CAN stamps stamped at read instead
+  bool utc_known = false;
+};
+
+struct StatusReport {
+  std::int64_t utc_ns = 0;       // wall clock when written, for people; the data use the capture clock
+  double uptime_s = 0;
+  LiveEstimate estimate;
+  std::string cell;              // name of estimate.cell, empty off the cells
+  double dynamic_power_w = -1;   // suspension + tires, last window; negative when not available
+  std::vector<SourceReport> sources;
+  RecorderStatus recording;
+  bool recording_enabled = true;
+  SyncReport sync;
+  std::vector<std::string> warnings;
+};
+
+// The warnings a report implies (sources down, drops, recording errors), in order of urgency.
+std::vector<std::string> warnings_for(const StatusReport& r);
+std::string format_text(const StatusReport& r);
+std::string format_json(const StatusReport& r);
+
+}  // namespace roadload::firmware

@@ -1,0 +1,171 @@
+// roadloadd: the daemon's process. Everything it does is in the firmware library; this file reads
+// the command line, builds the sources, and turns signals and the status interval into calls.
+#include <signal.h>
+#include <systemd/sd-daemon.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "roadload/definitions.hpp"
+#include "roadload/firmware/command_line.hpp"
+#include "roadload/firmware/daemon.hpp"
+#include "roadload/firmware/sources.hpp"
+#include "roadload/firmware/status_log.hpp"
+#include "roadload/recording/vehicle_setup.hpp"
+#include "roadload/route_file.hpp"
+
+namespace {
+
+using namespace roadload;
+using namespace roadload::firmware;
+
+int fail(const std::string& what) {
+  std::fprintf(stderr, "roadloadd: %s\n", what.c_str());
+  return 1;
+}
+
+struct Estimation {
+  j1939::Database db;
+  RouteGeometry route;
+  std::vector<CellSpan> cells;
+  PavementGroups groups;
+};
+
+std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) {
+  if (auto err = load_dbc_file(e.db, core_dbc_path())) return err;
+  if (c.estimator.route.empty()) return std::nullopt;
+  auto route = load_route_file(resolve_route(c.estimator.route));
+  if (!route) return route.error();
+  auto geometry = RouteGeometry::build(route.value().points);
+  if (!geometry) return ParseError{route.value().source_file, 0, "point", "the route's points do not make a route"};
+  e.route = std::move(*geometry);
+  for (const CellDef& cell : route.value().cells) e.cells.push_back({cell.id, cell.start_m, cell.end_m});
+  e.groups = pavement_groups(route.value().cells);
+  return std::nullopt;
+}
+
+recording::Metadata metadata(const DaemonConfig& c, const BuiltSources& b) {
+  recording::Metadata m = b.replaying ? b.replayed : recording::Metadata{};
+  m.created_by = std::string("roadloadd ") + ROADLOAD_VERSION;
+  m.clock_source = b.replaying ? "kernel (CAN), replayed (sensors)" : "kernel";
+  m.can_interfaces = b.interfaces;
+  if (!b.replaying) {
+    for (const AccelConfig& a : c.accelerometers) {
+      m.sensors.push_back({a.id, a.name, "accelerometer", a.position, "ADXL355", a.odr_hz});
+    }
+  }
+  return m;
+}
+
+std::optional<RecorderConfig> recorder_config(const RecordingConfig& r) {
+  if (!r.enabled) return std::nullopt;
+  RecorderConfig rc;
+  rc.data_dir = r.data_dir;
+  rc.fsync_interval = Nanoseconds{static_cast<std::int64_t>(r.fsync_interval_s * 1e9)};
+  rc.segment_max = Nanoseconds{static_cast<std::int64_t>(r.segment_max_s * 1e9)};
+  rc.segment_max_bytes = static_cast<std::uint64_t>(r.segment_max_mib * 1048576.0);
+  rc.quota_bytes = static_cast<std::uint64_t>(r.quota_mib * 1048576.0);
+  return rc;
+}
+
+// Runs until SIGTERM/SIGINT (or the replays end, with --exit-when-done); SIGHUP reopens and rotates.
+void serve(Daemon& daemon, StatusLog& log, const CommandLine& cl, const sigset_t& signals) {
+  const double interval_s = cl.config.status.interval_s;
+  const timespec wait{static_cast<time_t>(interval_s), static_cast<long>((interval_s - static_cast<double>(static_cast<time_t>(interval_s))) * 1e9)};
+  for (;;) {
+    const int sig = sigtimedwait(&signals, nullptr, &wait);
+    if (sig == SIGTERM || sig == SIGINT) return;
+    if (sig == SIGHUP) {
+      log.reopen();
+      daemon.rotate_recording();
+      continue;
+    }
+    const StatusReport r = daemon.report();
+    log.text(format_text(r));
+    log.json(format_json(r));
+    sd_notifyf(0, "WATCHDOG=1\nSTATUS=%zu sources, %zu warnings", r.sources.size(), r.warnings.size());
+    if (cl.exit_when_done && daemon.replays_finished()) return;
+  }
+}
+
+int run(const CommandLine& cl) {
+  const DaemonConfig& c = cl.config;
+  // Signals are taken synchronously by the main thread; every thread started later inherits the mask.
+  sigset_t signals;
+  sigemptyset(&signals);
+  for (int s : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&signals, s);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  Estimation est;
+  if (auto e = load_estimation(c, est)) return fail(e->to_string());
+  io::MonotonicClock clock;
+  std::vector<std::string> notes;
+  auto built = build_sources(c, clock, notes);
+  if (!built) return fail(built.error().to_string());
+  StatusLog log(c.status.text_file, c.status.json_file);
+  if (!log.open()) return fail("status: " + log.error());
+
+  DaemonSetup setup;
+  setup.recording = recorder_config(c.recording);
+  setup.metadata = metadata(c, built.value());
+  setup.interfaces = built.value().interfaces;
+  setup.buses = built.value().buses;
+  // The force balance needs the route's grade: without one the daemon records and reports only.
+  setup.db = c.estimator.route.empty() ? nullptr : &est.db;
+  if (setup.db == nullptr) notes.push_back("estimator: no route configured, CRR not estimated");
+  setup.route = est.route;
+  setup.cells = est.cells;
+  setup.analyzer = recording::config_from_vehicle(setup.metadata.vehicle, std::nullopt);
+  if (setup.db != nullptr) {
+    recording::LayoutResult layout = recording::axle_layout(setup.metadata, "accelerometers");
+    if (layout.layout) {
+      setup.layout = std::move(layout.layout);
+      setup.accelerometers = recording::accelerometers(setup.metadata);
+      setup.cell_group = est.groups.cell_group;
+      setup.group_count = est.groups.names.size();
+    } else if (!setup.metadata.sensors.empty()) {
+      notes.push_back("spectra: not estimated: " + layout.why_not);
+    }
+    for (const std::string& why : layout.skipped) notes.push_back("spectra: no contact force for " + why);
+  }
+  std::string start = std::string("roadloadd ") + ROADLOAD_VERSION + " started with " + c.source;
+  for (const std::string& n : notes) start += "; " + n;
+  log.text(start + "\n");
+  std::fprintf(stderr, "%s\n", start.c_str());
+  Daemon daemon(std::move(setup), std::move(built.value().sources), clock);
+  daemon.start();
+  sd_notify(0, "READY=1");
+  serve(daemon, log, cl, signals);
+  sd_notify(0, "STOPPING=1");
+  daemon.stop();
+  const StatusReport last = daemon.report();
+  log.text(format_text(last));
+  log.json(format_json(last));
+  log.text("roadloadd stopped: " + std::to_string(last.recording.lines) + " lines recorded, " +
+           std::to_string(last.recording.lines_lost) + " lost\n");
+  return last.recording.lines_lost == 0 ? 0 : 3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  auto cl = parse_command_line(std::vector<std::string>(argv + 1, argv + argc));
+  if (!cl) {
+    std::fprintf(stderr, "roadloadd: %s\n", cl.error().to_string().c_str());
+    return 2;
+  }
+  if (cl.value().help) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (cl.value().version) {
+    std::printf("roadloadd %s\n", ROADLOAD_VERSION);
+    return 0;
+  }
+  if (cl.value().print_config) {
+    std::fputs(format_config(cl.value().config).c_str(), stdout);
+    return 0;
+  }
+  return run(cl.value());
+}

@@ -1,0 +1,185 @@
+#include "roadload/firmware/config.hpp"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "roadload/toml_fields.hpp"
+
+namespace roadload::firmware {
+
+namespace {
+
+using detail::TomlFields;
+
+void read_can(const TomlFields& f, const toml::table& root, DaemonConfig& c) {
+  const toml::node* n = root.get("can");
+  if (n == nullptr) return;
+  const toml::array* list = n->as_array();
+  if (list == nullptr) f.fail(n, "can", "expected [[can]] tables");
+  c.can.clear();
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::table* t = (*list)[i].as_table();
+    const std::string where = "can[" + std::to_string(i) + "].";
+    if (t == nullptr) f.fail(&(*list)[i], where, "expected a table");
+    f.only(*t, {"interface", "j1939_only", "bitrate_bps", "receive_buffer_kib"}, where);
+    CanBusConfig b;
+    b.interface = f.required_text(*t, "interface", where);
+    b.j1939_only = f.flag(*t, "j1939_only", where).value_or(b.j1939_only);
+    b.bitrate_bps = f.number(*t, "bitrate_bps", where, b.bitrate_bps);
+    b.receive_buffer_kib = static_cast<std::int64_t>(f.number(*t, "receive_buffer_kib", where, 2048));
+    c.can.push_back(std::move(b));
+  }
+}
+
+void read_accelerometers(const TomlFields& f, const toml::table& root, DaemonConfig& c) {
+  const toml::node* n = root.get("accelerometer");
+  if (n == nullptr) return;
+  const toml::array* list = n->as_array();
+  if (list == nullptr) f.fail(n, "accelerometer", "expected [[accelerometer]] tables");
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::table* t = (*list)[i].as_table();
+    const std::string where = "accelerometer[" + std::to_string(i) + "].";
+    if (t == nullptr) f.fail(&(*list)[i], where, "expected a table");
+    f.only(*t, {"id", "name", "position", "spidev", "gpiochip", "line", "range_g", "odr_hz"}, where);
+    AccelConfig a;
+    const double id = f.required_number(*t, "id", where);
+    if (id < 0 || id > 255 || id != std::floor(id)) f.fail(t->get("id"), where + "id", "expected a whole number 0-255");
+    a.id = static_cast<std::uint8_t>(id);
+    a.name = f.required_text(*t, "name", where);
+    a.position = f.text(*t, "position", where).value_or("");
+    a.spidev = f.required_text(*t, "spidev", where);
+    a.gpiochip = f.required_text(*t, "gpiochip", where);
+    const double line = f.required_number(*t, "line", where);
+    if (line < 0 || line > 1023 || line != std::floor(line)) f.fail(t->get("line"), where + "line", "expected a line offset 0-1023");
+    a.line = static_cast<std::uint32_t>(line);
+    a.range_g = f.number(*t, "range_g", where, a.range_g);
+    a.odr_hz = f.number(*t, "odr_hz", where, a.odr_hz);
+    c.accelerometers.push_back(std::move(a));
+  }
+}
+
+void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c) {
+  if (const toml::table* t = f.table(root, "gnss")) {
+    f.only(*t, {"enabled", "host", "port"}, "gnss.");
+    c.gnss.enabled = f.flag(*t, "enabled", "gnss.").value_or(c.gnss.enabled);
+    c.gnss.host = f.text(*t, "host", "gnss.").value_or(c.gnss.host);
+    c.gnss.port = f.text(*t, "port", "gnss.").value_or(c.gnss.port);
+  }
+  if (const toml::table* t = f.table(root, "recording")) {
+    const std::string w = "recording.";
+    f.only(*t, {"enabled", "data_dir", "fsync_interval_s", "segment_max_s", "segment_max_mib", "quota_mib"}, w);
+    RecordingConfig& r = c.recording;
+    r.enabled = f.flag(*t, "enabled", w).value_or(r.enabled);
+    r.data_dir = f.text(*t, "data_dir", w).value_or(r.data_dir);
+    r.fsync_interval_s = f.number(*t, "fsync_interval_s", w, r.fsync_interval_s);
+    r.segment_max_s = f.number(*t, "segment_max_s", w, r.segment_max_s);
+    r.segment_max_mib = f.number(*t, "segment_max_mib", w, r.segment_max_mib);
+    r.quota_mib = f.number(*t, "quota_mib", w, r.quota_mib);
+  }
+  if (const toml::table* t = f.table(root, "status")) {
+    f.only(*t, {"text_file", "json_file", "interval_s"}, "status.");
+    c.status.text_file = f.text(*t, "text_file", "status.").value_or(c.status.text_file);
+    c.status.json_file = f.text(*t, "json_file", "status.").value_or(c.status.json_file);
+    c.status.interval_s = f.number(*t, "interval_s", "status.", c.status.interval_s);
+  }
+  if (const toml::table* t = f.table(root, "replay")) {
+    f.only(*t, {"recording", "rate", "can"}, "replay.");
+    c.replay.recording = f.text(*t, "recording", "replay.").value_or("");
+    c.replay.rate = f.number(*t, "rate", "replay.", c.replay.rate);
+    c.replay.can = f.flag(*t, "can", "replay.").value_or(c.replay.can);
+  }
+  if (const toml::table* t = f.table(root, "estimator")) {
+    f.only(*t, {"route"}, "estimator.");
+    c.estimator.route = f.text(*t, "route", "estimator.").value_or("");
+  }
+}
+
+ParseError field_error(std::string field, std::string message) {
+  return ParseError{"config", 0, std::move(field), std::move(message)};
+}
+
+}  // namespace
+
+Parsed<DaemonConfig> load_config(const std::string& path) {
+  auto parsed = detail::parse_toml_file(path);
+  if (!parsed) return parsed.error();
+  const toml::table& root = parsed.value();
+  TomlFields f(path);
+  DaemonConfig c;
+  c.source = path;
+  try {
+    f.only(root, {"can", "accelerometer", "gnss", "recording", "status", "replay", "estimator"}, "");
+    read_can(f, root, c);
+    read_accelerometers(f, root, c);
+    read_sections(f, root, c);
+  } catch (const detail::TomlFailure& e) {
+    return e.error;
+  }
+  if (auto e = validate(c)) {
+    e->file = path;
+    return *e;
+  }
+  return c;
+}
+
+std::optional<ParseError> validate(const DaemonConfig& c) {
+  std::set<std::string> ifaces;
+  for (std::size_t i = 0; i < c.can.size(); ++i) {
+    const CanBusConfig& b = c.can[i];
+    const std::string w = "can[" + std::to_string(i) + "].";
+    if (b.interface.empty() || b.interface.size() > 15) return field_error(w + "interface", "expected 1 to 15 characters");
+    if (!ifaces.insert(b.interface).second) return field_error(w + "interface", "'" + b.interface + "' listed twice");
+    if (!(b.bitrate_bps >= 10'000 && b.bitrate_bps <= 8'000'000)) return field_error(w + "bitrate_bps", "expected 10000 to 8000000");
+    if (b.receive_buffer_kib < 64 || b.receive_buffer_kib > 1 << 20) return field_error(w + "receive_buffer_kib", "expected 64 to 1048576");
+  }
+  if (c.can.size() > 8) return field_error("can", "at most 8 buses");
+  std::set<int> ids;
+  for (std::size_t i = 0; i < c.accelerometers.size(); ++i) {
+    const AccelConfig& a = c.accelerometers[i];
+    const std::string w = "accelerometer[" + std::to_string(i) + "].";
+    if (!ids.insert(a.id).second) return field_error(w + "id", std::to_string(a.id) + " used twice");
+    if (a.range_g != 2 && a.range_g != 4 && a.range_g != 8) return field_error(w + "range_g", "the ADXL355 has 2, 4 or 8");
+    if (!(a.odr_hz > 3.9 && a.odr_hz <= 4000)) return field_error(w + "odr_hz", "expected 3.906 to 4000");
+  }
+  if (c.accelerometers.size() > 16) return field_error("accelerometer", "at most 16 accelerometers");
+  const RecordingConfig& r = c.recording;
+  if (r.data_dir.empty()) return field_error("recording.data_dir", "must not be empty");
+  if (!(r.fsync_interval_s >= 0.05 && r.fsync_interval_s <= 60)) return field_error("recording.fsync_interval_s", "expected 0.05 to 60");
+  if (!(r.segment_max_s >= 10)) return field_error("recording.segment_max_s", "expected at least 10");
+  if (!(r.segment_max_mib >= 1)) return field_error("recording.segment_max_mib", "expected at least 1");
+  if (!(r.quota_mib >= 2 * r.segment_max_mib)) return field_error("recording.quota_mib", "expected at least twice segment_max_mib");
+  if (c.status.text_file.empty()) return field_error("status.text_file", "must not be empty");
+  if (!(c.status.interval_s >= 0.1 && c.status.interval_s <= 60)) return field_error("status.interval_s", "expected 0.1 to 60");
+  if (!(c.replay.rate >= 0 && c.replay.rate <= 1000)) return field_error("replay.rate", "expected 0 (as fast as read) to 1000");
+  if (c.replay.can && c.replay.recording.empty()) return field_error("replay.can", "needs replay.recording");
+  return std::nullopt;
+}
+
+std::string format_config(const DaemonConfig& c) {
+  std::ostringstream o;
+  o << "# roadloadd settings from " << c.source << "\n";
+  for (const CanBusConfig& b : c.can) {
+    o << "\n[[can]]\ninterface = \"" << b.interface << "\"\nj1939_only = " << (b.j1939_only ? "true" : "false")
+      << "\nbitrate_bps = " << b.bitrate_bps << "\nreceive_buffer_kib = " << b.receive_buffer_kib << "\n";
+  }
+  for (const AccelConfig& a : c.accelerometers) {
+    o << "\n[[accelerometer]]\nid = " << int{a.id} << "\nname = \"" << a.name << "\"\nposition = \"" << a.position
+      << "\"\nspidev = \"" << a.spidev << "\"\ngpiochip = \"" << a.gpiochip << "\"\nline = " << a.line
+      << "\nrange_g = " << a.range_g << "\nodr_hz = " << a.odr_hz << "\n";
+  }
+  o << "\n[gnss]\nenabled = " << (c.gnss.enabled ? "true" : "false") << "\nhost = \"" << c.gnss.host
+    << "\"\nport = \"" << c.gnss.port << "\"\n";
+  const RecordingConfig& r = c.recording;
+  o << "\n[recording]\nenabled = " << (r.enabled ? "true" : "false") << "\ndata_dir = \"" << r.data_dir
+    << "\"\nfsync_interval_s = " << r.fsync_interval_s << "\nsegment_max_s = " << r.segment_max_s
+    << "\nsegment_max_mib = " << r.segment_max_mib << "\nquota_mib = " << r.quota_mib << "\n";
+  o << "\n[status]\ntext_file = \"" << c.status.text_file << "\"\njson_file = \"" << c.status.json_file
+    << "\"\ninterval_s = " << c.status.interval_s << "\n";
+  o << "\n[replay]\nrecording = \"" << c.replay.recording << "\"\nrate = " << c.replay.rate
+    << "\ncan = " << (c.replay.can ? "true" : "false") << "\n";
+  o << "\n[estimator]\nroute = \"" << c.estimator.route << "\"\n";
+  return o.str();
+}
+
+}  // namespace roadload::firmware

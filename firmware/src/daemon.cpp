@@ -1,0 +1,240 @@
+#include "roadload/firmware/daemon.hpp"
+
+#include <time.h>
+
+#include <limits>
+
+namespace roadload::firmware {
+
+namespace {
+
+constexpr Nanoseconds kIdleSleep{2'000'000};
+constexpr std::size_t kWriteBatch = 4096;
+constexpr Nanoseconds kPowerWindow{5'000'000'000};
+
+template <typename Ring, typename Fn>
+std::size_t drain(Ring& ring, std::size_t max, Fn&& fn) {
+  std::size_t n = 0;
+  typename Ring::value_type item;
+  while (n < max && ring.try_pop(item)) {
+    fn(item);
+    ++n;
+  }
+  return n;
+}
+
+std::int64_t utc_now_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+}  // namespace
+
+std::uint32_t can_frame_bits(const CanFrame& f) {
+  switch (f.kind) {
+    case CanFrameKind::standard: return 47 + 8u * f.len;
+    case CanFrameKind::extended: return 67 + 8u * f.len;
+    case CanFrameKind::remote: return f.id29 ? 67u : 47u;
+    case CanFrameKind::error: return 0;
+    case CanFrameKind::fd: return (f.id29 ? 67u : 47u) + 8u * f.len;
+  }
+  return 0;
+}
+
+Daemon::Daemon(DaemonSetup setup, DaemonSources sources, io::WaitClock& clock)
+    : setup_(std::move(setup)), sources_(std::move(sources)), clock_(clock) {
+  if (setup_.recording) recorder_.emplace(*setup_.recording, setup_.metadata, setup_.interfaces);
+  if (setup_.db != nullptr) {
+    AnalyzerConfig cfg = setup_.analyzer;
+    cfg.keep_history = false;
+    analyzer_.emplace(*setup_.db, setup_.route, setup_.cells, cfg);
+    if (setup_.layout) {
+      vibration_.emplace(*setup_.layout, setup_.accelerometers, setup_.cells.size(), setup_.cell_group,
+                         setup_.group_count);
+      analyzer_->attach(&*vibration_);
+    }
+  }
+}
+
+Daemon::~Daemon() { stop(); }
+
+void Daemon::start() {
+  started_ = last_report_ = clock_.now();
+  running_ = true;
+  // The first segment exists before the first item arrives.
+  if (recorder_) recorder_->tick(started_);
+  const bool feed = analyzer_.has_value();
+  for (auto& c : sources_.can) c->start(stop_sources_, feed);
+  for (auto& c : sources_.accel) c->start(stop_sources_, feed);
+  if (sources_.gnss) sources_.gnss->start(stop_sources_, feed);
+  if (sources_.weather) sources_.weather->start(stop_sources_, feed);
+  writer_ = std::thread([this] { write_loop(); });
+  estimator_ = std::thread([this] { estimate_loop(); });
+}
+
+void Daemon::stop() {
+  if (!running_) return;
+  running_ = false;
+  stop_sources_.store(true);
+  for (auto& c : sources_.can) c->join();
+  for (auto& c : sources_.accel) c->join();
+  if (sources_.gnss) sources_.gnss->join();
+  if (sources_.weather) sources_.weather->join();
+  // The workers see the flag only once the sources are quiet, and then drain what is left.
+  stop_workers_.store(true);
+  writer_.join();
+  estimator_.join();
+}
+
+bool Daemon::replays_finished() {
+  std::size_t replays = 0, ended = 0;
+  auto count = [&](auto& c) {
+    if (!c->is_replay()) return;
+    ++replays;
+    if (c->finished()) ++ended;
+  };
+  for (auto& c : sources_.can) count(c);
+  for (auto& c : sources_.accel) count(c);
+  if (sources_.gnss) count(sources_.gnss);
+  if (sources_.weather) count(sources_.weather);
+  return replays > 0 && ended == replays;
+}
+
+bool Daemon::write_pending(std::size_t max_items) {
+  std::size_t n = 0;
+  auto write = [this](const auto& item) {
+    if (recorder_) recorder_->write(item);
+  };
+  for (auto& c : sources_.can) n += drain(c->to_writer(), max_items, write);
+  for (auto& c : sources_.accel) n += drain(c->to_writer(), max_items, write);
+  if (sources_.gnss) n += drain(sources_.gnss->to_writer(), max_items, write);
+  if (sources_.weather) n += drain(sources_.weather->to_writer(), max_items, write);
+  return n > 0;
+}
+
+void Daemon::write_loop() {
+  for (;;) {
+    const bool stopping = stop_workers_.load();
+    const bool wrote = write_pending(kWriteBatch);
+    if (recorder_) {
+      if (rotate_.exchange(false)) recorder_->end_segment();
+      recorder_->tick(clock_.now());
+      std::lock_guard lock(mutex_);
+      recorder_status_ = recorder_->status();
+    }
+    if (stopping && !wrote) break;
+    if (!wrote) clock_.sleep_until(clock_.now() + kIdleSleep, kIdleSleep);
+  }
+  if (recorder_) {
+    recorder_->end_segment();
+    std::lock_guard lock(mutex_);
+    recorder_status_ = recorder_->status();
+  }
+}
+
+// The oldest item across every estimator ring, if it is at or before `horizon`.
+bool Daemon::estimate_next(CaptureTime horizon) {
+  CaptureTime best = horizon;
+  int kind = -1;
+  std::size_t index = 0;
+  auto consider = [&](auto& ring, int k, std::size_t i) {
+    if (const auto* head = ring.peek(); head != nullptr && head->t <= best) {
+      best = head->t;
+      kind = k;
+      index = i;
+    }
+  };
+  for (std::size_t i = 0; i < sources_.can.size(); ++i) consider(sources_.can[i]->to_estimator(), 0, i);
+  for (std::size_t i = 0; i < sources_.accel.size(); ++i) consider(sources_.accel[i]->to_estimator(), 1, i);
+  if (sources_.gnss) consider(sources_.gnss->to_estimator(), 2, 0);
+  if (sources_.weather) consider(sources_.weather->to_estimator(), 3, 0);
+  auto take = [this](auto& ring) {
+    typename std::remove_reference_t<decltype(ring)>::value_type item;
+    if (ring.try_pop(item)) analyzer_->push(item);
+  };
+  switch (kind) {
+    case 0: take(sources_.can[index]->to_estimator()); return true;
+    case 1: take(sources_.accel[index]->to_estimator()); return true;
+    case 2: take(sources_.gnss->to_estimator()); return true;
+    case 3: take(sources_.weather->to_estimator()); return true;
+    default: return false;
+  }
+}
+
+void Daemon::estimate_loop() {
+  if (!analyzer_) return;
+  CaptureTime window_start = clock_.now();
+  for (;;) {
+    const bool stopping = stop_workers_.load();
+    const CaptureTime now = clock_.now();
+    const CaptureTime horizon = stopping ? CaptureTime::max() : now - setup_.merge_delay;
+    std::size_t n = 0;
+    while (n < kWriteBatch && estimate_next(horizon)) ++n;
+    // The dynamic power over the last few seconds: spectra need several segments to mean much.
+    double window_w = -2;
+    if (vibration_ && now - window_start >= kPowerWindow) {
+      const DynamicPower p = vibration_->window_power();
+      window_w = p.segments > 0 ? p.total_w() : -1;
+      vibration_->clear_window();
+      window_start = now;
+    }
+    {
+      std::lock_guard lock(mutex_);
+      estimate_ = analyzer_->live();
+      if (window_w > -2) dynamic_power_w_ = window_w;
+    }
+    if (stopping && n == 0) break;
+    if (n == 0) clock_.sleep_until(clock_.now() + kIdleSleep, kIdleSleep);
+  }
+}
+
+StatusReport Daemon::report() {
+  StatusReport r;
+  const CaptureTime now = clock_.now();
+  r.utc_ns = utc_now_ns();
+  r.uptime_s = to_seconds(now - started_);
+  const double dt_s = std::max(1e-3, to_seconds(now - last_report_));
+  last_report_ = now;
+  {
+    std::lock_guard lock(mutex_);
+    r.recording = recorder_status_;
+    r.estimate = estimate_;
+    r.dynamic_power_w = dynamic_power_w_;
+  }
+  r.recording_enabled = recorder_.has_value();
+  if (r.estimate.cell >= 0 && static_cast<std::size_t>(r.estimate.cell) < setup_.cells.size()) {
+    r.cell = setup_.cells[static_cast<std::size_t>(r.estimate.cell)].id;
+  }
+  std::vector<std::uint64_t> bits;
+  for (std::size_t i = 0; i < sources_.can.size(); ++i) {
+    r.sources.push_back(sources_.can[i]->report());
+    bits.push_back(sources_.can[i]->bits());
+  }
+  for (auto& c : sources_.accel) r.sources.push_back(c->report());
+  if (sources_.gnss) r.sources.push_back(sources_.gnss->report());
+  if (sources_.weather) r.sources.push_back(sources_.weather->report());
+  const std::size_t n = r.sources.size();
+  last_items_.resize(n, 0);
+  last_dropped_.resize(n, 0);
+  last_bits_.resize(bits.size(), 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    SourceReport& s = r.sources[i];
+    s.rate_per_s = static_cast<double>(s.status.items - last_items_[i]) / dt_s;
+    const std::uint64_t dropped = s.status.dropped + s.ring_dropped;
+    s.dropped_recent = dropped - last_dropped_[i];
+    last_items_[i] = s.status.items;
+    last_dropped_[i] = dropped;
+    r.sync.clock_steps += s.status.clock_steps;
+    r.sync.unplaced_stamps += s.status.userspace_stamps;
+    if (i < bits.size()) {
+      const double bitrate = i < setup_.buses.size() ? setup_.buses[i].bitrate_bps : 500'000.0;
+      s.bus_load = static_cast<double>(bits[i] - last_bits_[i]) / dt_s / bitrate;
+      last_bits_[i] = bits[i];
+    }
+  }
+  r.warnings = warnings_for(r);
+  return r;
+}
+
+}  // namespace roadload::firmware

@@ -1,0 +1,82 @@
+#include "roadload/firmware/sources.hpp"
+
+#include "roadload/can/socketcan_source.hpp"
+#include "roadload/io/replay_source.hpp"
+
+namespace roadload::firmware {
+
+namespace {
+
+// The recording's first stamp maps to now: the replay starts as the daemon does.
+Parsed<io::ReplayTiming> replay_timing(const ReplayConfig& r, io::WaitClock& clock, recording::Metadata& meta) {
+  auto reader = recording::RecordingReader::open(r.recording);
+  if (!reader) return reader.error();
+  meta = reader.value().metadata();
+  const recording::Record* first = reader.value().next();
+  if (first == nullptr) return ParseError{r.recording, 0, "", "the recording holds no samples"};
+  io::ReplayTiming t;
+  t.recorded_origin = std::visit([](const auto& s) { return s.t; }, *first);
+  t.capture_origin = clock.now();
+  t.rate = r.rate;
+  return t;
+}
+
+template <typename Sample, typename ChannelT>
+void add_replay(const std::string& folder, const io::ReplayTiming& timing, io::WaitClock& clock,
+                                     SourceKind kind, const char* name, std::unique_ptr<ChannelT>& out,
+                                     std::vector<std::string>& notes) {
+  auto src = io::ReplaySource<Sample>::open(folder, timing, clock, name);
+  if (!src) {
+    notes.push_back(std::string(name) + ": none in " + folder + ", skipped");
+    return;
+  }
+  out = std::make_unique<ChannelT>(std::move(src.value()), kind, name);
+  notes.push_back(std::string(name) + ": replayed from " + folder);
+}
+
+}  // namespace
+
+Parsed<BuiltSources> build_sources(const DaemonConfig& c, io::WaitClock& clock, std::vector<std::string>& notes) {
+  BuiltSources b;
+  const bool can_replayed = !c.replay.recording.empty() && c.replay.can;
+  for (std::size_t i = 0; i < c.can.size() && !can_replayed; ++i) {
+    can::SocketCanConfig sc;
+    sc.interface = c.can[i].interface;
+    sc.iface_index = static_cast<std::uint8_t>(i);
+    sc.j1939_only = c.can[i].j1939_only;
+    sc.receive_buffer_bytes = static_cast<int>(c.can[i].receive_buffer_kib * 1024);
+    auto src = can::SocketCanSource::open(sc);
+    if (!src) return src.error();
+    b.sources.can.push_back(std::make_unique<CanChannel>(std::move(src.value()), SourceKind::can, sc.interface));
+    b.interfaces.push_back(sc.interface);
+    b.buses.push_back({c.can[i].bitrate_bps});
+  }
+  if (c.can.empty() && !can_replayed) notes.push_back("can: no bus configured, skipped");
+
+  if (!c.replay.recording.empty()) {
+    auto timing = replay_timing(c.replay, clock, b.replayed);
+    if (!timing) return timing.error();
+    b.replaying = true;
+    if (can_replayed) {
+      std::unique_ptr<CanChannel> can;
+      add_replay<CanFrame>(c.replay.recording, timing.value(), clock, SourceKind::can, "can", can, notes);
+      if (can) b.sources.can.push_back(std::move(can));
+      b.interfaces = b.replayed.can_interfaces;
+      if (b.interfaces.empty()) b.interfaces.push_back("can0");
+      b.buses.push_back({});
+    }
+    std::unique_ptr<AccelChannel> accel;
+    add_replay<AccelSample>(c.replay.recording, timing.value(), clock, SourceKind::accelerometer, "accel", accel, notes);
+    if (accel) b.sources.accel.push_back(std::move(accel));
+    add_replay<GnssFix>(c.replay.recording, timing.value(), clock, SourceKind::gnss, "gnss", b.sources.gnss, notes);
+    add_replay<WeatherSample>(c.replay.recording, timing.value(), clock, SourceKind::weather, "weather",
+                              b.sources.weather, notes);
+    return b;
+  }
+  if (c.accelerometers.empty()) notes.push_back("accelerometers: none configured, skipped");
+  if (!c.gnss.enabled) notes.push_back("gnss: disabled, skipped");
+  notes.push_back("weather: no station driver on this gateway, skipped");
+  return b;
+}
+
+}  // namespace roadload::firmware

@@ -1,0 +1,129 @@
+#include "roadload/firmware/status_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+
+namespace roadload::firmware {
+
+namespace {
+
+std::string utc_text(std::int64_t utc_ns) {
+  const std::time_t s = static_cast<std::time_t>(utc_ns / 1'000'000'000);
+  std::tm tm{};
+  char buf[32] = "1970-01-01T00:00:00Z";
+  if (gmtime_r(&s, &tm) != nullptr) std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char esc[8];
+      std::snprintf(esc, sizeof esc, "\\u%04x", c);
+      out += esc;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string json_number(double v, const char* f = "%.6g") { return std::isfinite(v) ? fmt(f, v) : "null"; }
+
+}  // namespace
+
+const char* to_string(SourceKind k) {
+  switch (k) {
+    case SourceKind::can: return "can";
+    case SourceKind::accelerometer: return "accelerometer";
+    case SourceKind::gnss: return "gnss";
+    case SourceKind::weather: return "weather";
+  }
+  return "?";
+}
+
+std::vector<std::string> warnings_for(const StatusReport& r) {
+  std::vector<std::string> w;
+  if (r.recording_enabled && r.recording.error != 0) w.push_back("recording: " + r.recording.error_text);
+  for (const SourceReport& s : r.sources) {
+    if (s.status.state == io::SourceState::down) w.push_back(s.name + " down: " + s.status.detail);
+    if (s.dropped_recent > 0) w.push_back(s.name + " dropped " + std::to_string(s.dropped_recent));
+  }
+  if (r.sync.clock_steps > 0) w.push_back("wall clock stepped " + std::to_string(r.sync.clock_steps) + "x (data unaffected)");
+  if (r.estimate.started && !r.estimate.identified) w.push_back("CRR not identified yet");
+  return w;
+}
+
+std::string format_text(const StatusReport& r) {
+  std::string line = utc_text(r.utc_ns) + " up " + fmt("%.0f", r.uptime_s) + "s";
+  const LiveEstimate& e = r.estimate;
+  if (e.started) {
+    line += " | speed " + fmt("%.2f", e.speed_mps) + " m/s";
+    line += " cell " + (r.cell.empty() ? std::string("-") : r.cell);
+    line += " crr " + fmt("%.5f", e.crr) + " [" + fmt("%.5f", e.crr_lo) + " " + fmt("%.5f", e.crr_hi) + "]";
+  } else {
+    line += " | no speed yet";
+  }
+  if (r.dynamic_power_w >= 0) line += " dyn " + fmt("%.0f", r.dynamic_power_w) + " W";
+  for (const SourceReport& s : r.sources) {
+    line += " | " + s.name + " " + io::to_string(s.status.state) + " " + fmt("%.0f", s.rate_per_s) + "/s";
+    if (s.kind == SourceKind::can) line += " load " + fmt("%.0f", 100 * s.bus_load) + "%";
+    line += " drop " + std::to_string(s.status.dropped + s.ring_dropped) + " err " + std::to_string(s.status.errors);
+  }
+  if (r.recording_enabled) {
+    line += " | rec " + (r.recording.segment.empty() ? std::string("none") : r.recording.segment) + " " +
+            fmt("%.1f", static_cast<double>(r.recording.bytes_in_dir) / (1 << 20)) + " MiB lost " +
+            std::to_string(r.recording.lines_lost);
+  }
+  line += r.sync.clock_steps == 0 && r.sync.unplaced_stamps == 0 ? " | sync ok" : " | sync degraded";
+  for (const std::string& w : r.warnings) line += " | WARN " + w;
+  return line + "\n";
+}
+
+std::string format_json(const StatusReport& r) {
+  const LiveEstimate& e = r.estimate;
+  std::string j = "{\"time\":" + json_string(utc_text(r.utc_ns)) + ",\"uptime_s\":" + fmt("%.1f", r.uptime_s);
+  if (e.started) {
+    j += ",\"speed_mps\":" + json_number(e.speed_mps) + ",\"s_m\":" + json_number(e.s_front_m, "%.1f");
+    j += ",\"cell\":" + (r.cell.empty() ? std::string("null") : json_string(r.cell));
+    j += ",\"crr\":" + json_number(e.crr) + ",\"crr_lo\":" + json_number(e.crr_lo) + ",\"crr_hi\":" + json_number(e.crr_hi);
+    j += std::string(",\"crr_identified\":") + (e.identified ? "true" : "false");
+  }
+  j += ",\"dynamic_power_w\":" + (r.dynamic_power_w >= 0 ? json_number(r.dynamic_power_w, "%.1f") : std::string("null"));
+  j += ",\"sources\":[";
+  for (std::size_t i = 0; i < r.sources.size(); ++i) {
+    const SourceReport& s = r.sources[i];
+    j += (i ? ",{" : "{") + std::string("\"name\":") + json_string(s.name) + ",\"kind\":" + json_string(to_string(s.kind));
+    j += ",\"state\":" + json_string(io::to_string(s.status.state)) + ",\"items\":" + std::to_string(s.status.items);
+    j += ",\"rate_per_s\":" + json_number(s.rate_per_s, "%.1f");
+    if (s.kind == SourceKind::can) j += ",\"bus_load\":" + json_number(s.bus_load, "%.4f");
+    j += ",\"dropped\":" + std::to_string(s.status.dropped) + ",\"ring_dropped\":" + std::to_string(s.ring_dropped);
+    j += ",\"errors\":" + std::to_string(s.status.errors) + ",\"restarts\":" + std::to_string(s.status.restarts);
+    j += ",\"detail\":" + json_string(s.status.detail) + "}";
+  }
+  j += "]";
+  if (r.recording_enabled) {
+    const RecorderStatus& rec = r.recording;
+    j += ",\"recording\":{\"segment\":" + json_string(rec.segment) + ",\"lines\":" + std::to_string(rec.lines);
+    j += ",\"lines_lost\":" + std::to_string(rec.lines_lost) + ",\"bytes_in_dir\":" + std::to_string(rec.bytes_in_dir);
+    j += ",\"segments_deleted\":" + std::to_string(rec.segments_deleted) + ",\"error\":" + json_string(rec.error_text) + "}";
+  }
+  j += ",\"sync\":{\"clock_steps\":" + std::to_string(r.sync.clock_steps) +
+       ",\"unplaced_stamps\":" + std::to_string(r.sync.unplaced_stamps) + "}";
+  j += ",\"warnings\":[";
+  for (std::size_t i = 0; i < r.warnings.size(); ++i) j += (i ? "," : "") + json_string(r.warnings[i]);
+  return j + "]}\n";
+}
+
+}  // namespace roadload::firmware

@@ -1,0 +1,76 @@
+# shellcheck shell=bash
+# Helpers for the scripts that run the real roadloadd inside uml-run. Sourced after j1939-lib.sh.
+
+# Starts roadloadd in the background on vcan0 with its files under $1; sets $daemon to its pid.
+# Extra arguments go to roadloadd.
+start_daemon() {
+  local dir=$1
+  shift
+  "$roadloadd" --can vcan0 --no-gnss --data-dir "$dir/rec" --status "$dir/status.log" \
+    --status-json "$dir/status.jsonl" "$@" 2>"$dir/daemon.err" &
+  daemon=$!
+  wait_status_lines "$dir" 1
+}
+
+# Waits until the status log holds at least N status lines (the start line does not count).
+wait_status_lines() {
+  local dir=$1 n=$2 i
+  for ((i = 0; i < 300; i++)); do
+    if [[ -f $dir/status.jsonl ]] && (($(wc -l <"$dir/status.jsonl") >= n)); then return 0; fi
+    kill -0 "$daemon" 2>/dev/null || die "roadloadd exited early: $(cat "$dir/daemon.err")"
+    sleep 0.1
+  done
+  die "roadloadd wrote fewer than $n status lines in 30 s"
+}
+
+# A numeric field of the last JSON status line, first occurrence (e.g. "lines_lost", "dropped").
+last_status_field() {
+  local dir=$1 field=$2 line
+  line=$(tail -n 1 "$dir/status.jsonl")
+  line=${line#*\"$field\":}
+  echo "${line%%[,\}]*}"
+}
+
+# The frames of a candump -L log without their stamps and interface: ID#DATA, one per line.
+frames_of() {
+  cut -d' ' -f3 "$@"
+}
+
+# SIGTERM and wait; returns the daemon's exit status.
+stop_daemon() {
+  kill -TERM "$daemon"
+  local rc=0
+  wait "$daemon" || rc=$?
+  return "$rc"
+}
+
+# A candump -L log of N extended frames SPACING_US apart whose payloads count up from FIRST.
+gen_frames() {
+  local n=$1 spacing_us=$2 first=${3:-0}
+  awk -v n="$n" -v s="$spacing_us" -v f="$first" 'BEGIN {
+    for (i = 0; i < n; i++) {
+      t = i * s
+      printf "(%d.%06d) can0 %08X#%08X%08X\n", 1000 + int(t / 1e6), t % 1000000, 419299328 + (f + i) % 65536, f + i, (f + i) * 7 % 4294967296
+    }
+  }'
+}
+
+# Every frame the daemon recorded so far, across its segments, in order.
+recorded_frames() {
+  local dir=$1
+  shopt -s nullglob
+  local logs=("$dir"/rec/*/can.log)
+  shopt -u nullglob
+  ((${#logs[@]})) && cat "${logs[@]}" | frames_of
+  return 0
+}
+
+# Waits (up to 20 s) until the status log's newest line matches the extended regex.
+wait_status_match() {
+  local dir=$1 pattern=$2 i
+  for ((i = 0; i < 200; i++)); do
+    tail -n 1 "$dir/status.log" | grep -Eq -- "$pattern" && return 0
+    sleep 0.1
+  done
+  die "no status line matching '$pattern' within 20 s; last: $(tail -n 1 "$dir/status.log")"
+}

@@ -1,0 +1,132 @@
+// roadload replay: plays a recording's CAN frames onto a (virtual) CAN interface with their
+// recorded spacing, N times faster, or as fast as the interface takes them, so that a running
+// roadloadd hears the drive as a truck would send it.
+#include <time.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "options.hpp"
+#include "roadload/can/socketcan_sender.hpp"
+#include "roadload/recording/reader.hpp"
+
+namespace roadload::cli {
+namespace {
+
+constexpr const char* kHelp =
+    "usage: roadload replay <recording | can.log> [options]\n\n"
+    "Sends the recording's CAN frames onto a CAN interface, in order, with their recorded spacing\n"
+    "divided by the rate. Meant for vcan on a bench: it transmits, which a logger on a truck never does.\n\n"
+    "  --iface IFACE   interface to send on (default vcan0)\n"
+    "  --rate R        1 real time (default), N times faster, or max (as fast as the interface takes)\n"
+    "  -q, --quiet     no progress on standard error\n"
+    "  -h, --help      this text\n";
+
+std::int64_t mono_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+void sleep_until_ns(std::int64_t t) {
+  const timespec ts{static_cast<time_t>(t / 1'000'000'000), static_cast<long>(t % 1'000'000'000)};
+  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
+}
+
+}  // namespace
+
+int run_replay(Args args) {
+  OptionParser p("replay", args);
+  std::string input, iface = "vcan0";
+  double rate = 1.0;  // 0: max
+  bool quiet = false;
+  while (p.more()) {
+    if (p.flag("-h", "--help")) {
+      std::fputs(kHelp, stdout);
+      return kExitOk;
+    }
+    if (p.flag("-q", "--quiet")) {
+      quiet = true;
+    } else if (auto v = p.value("--iface")) {
+      iface = *v;
+    } else if (auto r = p.value("--rate")) {
+      if (*r == "max") {
+        rate = 0;
+      } else {
+        char* end = nullptr;
+        const std::string text(*r);
+        rate = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !(rate > 0 && rate <= 1e6)) {
+          return p.fail("--rate: '" + text + "' is not 1, a positive factor or max");
+        }
+      }
+    } else if (auto pos = p.positional()) {
+      if (!input.empty()) return p.fail("one recording at a time");
+      input = *pos;
+    } else {
+      return p.fail_unknown();
+    }
+  }
+  if (p.failed()) return kExitUsage;
+  if (input.empty()) return p.fail("a recording is required (see --help)");
+
+  auto reader = recording::RecordingReader::open(input, recording::kCanStream);
+  if (!reader) {
+    std::fprintf(stderr, "roadload replay: %s\n", reader.error().to_string().c_str());
+    return kExitNoInput;
+  }
+  auto sender = can::SocketCanSender::open(iface);
+  if (!sender) {
+    std::fprintf(stderr, "roadload replay: %s\n", sender.error().to_string().c_str());
+    return kExitCantCreate;
+  }
+  std::vector<CanFrame> batch;
+  batch.reserve(can::SocketCanSender::kBatch);
+  const std::int64_t start_ns = mono_ns();
+  std::int64_t first_ns = -1, next_progress_ns = start_ns + 1'000'000'000;
+  auto flush = [&]() {
+    const bool ok = sender.value()->send(batch);
+    batch.clear();
+    return ok;
+  };
+  while (const recording::Record* r = reader.value().next()) {
+    const auto* f = std::get_if<CanFrame>(r);
+    if (f == nullptr) continue;
+    if (first_ns < 0) first_ns = to_ns(f->t);
+    if (rate > 0) {
+      const std::int64_t due = start_ns + static_cast<std::int64_t>(static_cast<double>(to_ns(f->t) - first_ns) / rate);
+      if (due > mono_ns()) {
+        if (!batch.empty() && !flush()) break;
+        sleep_until_ns(due);
+      }
+    }
+    batch.push_back(*f);
+    if (batch.size() == can::SocketCanSender::kBatch && !flush()) break;
+    if (!quiet && mono_ns() >= next_progress_ns) {
+      std::fprintf(stderr, "replay: %llu frames sent\n", static_cast<unsigned long long>(sender.value()->sent()));
+      next_progress_ns += 1'000'000'000;
+    }
+  }
+  if (sender.value()->error().empty() && !batch.empty()) flush();
+  const double wall_s = static_cast<double>(mono_ns() - start_ns) * 1e-9;
+  const auto sent = sender.value()->sent();
+  if (!quiet || !sender.value()->error().empty()) {
+    std::fprintf(stderr, "replay: %llu frames onto %s in %.3f s (%.0f frames/s, queue full %llu times)%s%s\n",
+                 static_cast<unsigned long long>(sent), iface.c_str(), wall_s,
+                 wall_s > 0 ? static_cast<double>(sent) / wall_s : 0.0,
+                 static_cast<unsigned long long>(sender.value()->waits()),
+                 sender.value()->error().empty() ? "" : "; stopped: ", sender.value()->error().c_str());
+  }
+  if (!sender.value()->error().empty()) return kExitCantCreate;
+  if (reader.value().errors().count() > 0) {
+    const auto& e = reader.value().errors();
+    std::fprintf(stderr, "roadload replay: %llu malformed lines skipped, first: %s\n",
+                 static_cast<unsigned long long>(e.count()), e.kept().front().to_string().c_str());
+    return kExitDataErr;
+  }
+  return kExitOk;
+}
+
+}  // namespace roadload::cli
