@@ -8,7 +8,7 @@ namespace roadload::firmware {
 
 namespace {
 
-constexpr Nanoseconds kIdleSleep{2'000'000};
+constexpr Nanoseconds kIdleSleep{10'000'000};
 constexpr std::size_t kWriteBatch = 4096;
 constexpr Nanoseconds kPowerWindow{5'000'000'000};
 

@@ -1,5 +1,6 @@
 #include "roadload/firmware/sources.hpp"
 
+#include "roadload/accel/adxl355_source.hpp"
 #include "roadload/can/socketcan_source.hpp"
 #include "roadload/io/replay_source.hpp"
 
@@ -74,6 +75,15 @@ Parsed<BuiltSources> build_sources(const DaemonConfig& c, io::WaitClock& clock, 
     return b;
   }
   if (c.accelerometers.empty()) notes.push_back("accelerometers: none configured, skipped");
+  // A part that cannot be opened costs its own stream, not the CAN recording: named and skipped.
+  for (const AccelConfig& a : c.accelerometers) {
+    auto src = accel::open_adxl355(a.spidev, a.gpiochip, a.line, a.id, static_cast<int>(a.range_g), a.odr_hz);
+    if (!src) {
+      notes.push_back("accelerometer " + a.name + ": " + src.error().to_string() + "; skipped");
+      continue;
+    }
+    b.sources.accel.push_back(std::make_unique<AccelChannel>(std::move(src.value()), SourceKind::accelerometer, a.name));
+  }
   if (!c.gnss.enabled) notes.push_back("gnss: disabled, skipped");
   notes.push_back("weather: no station driver on this gateway, skipped");
   return b;

@@ -20,9 +20,11 @@
 
 namespace roadload::firmware {
 
-// Ring sizes: about a second of a full bus at ten times its rate, and four seconds of a 4 kHz part.
+// Ring sizes: about a second of a full bus at ten times its rate, two seconds of a 4 kHz part. The
+// writer and the estimator wake every 10 ms at most, so a ring drops only if one of them stalls
+// for seconds.
 using CanChannel = Channel<CanFrame, 1 << 15>;
-using AccelChannel = Channel<AccelSample, 1 << 14>;
+using AccelChannel = Channel<AccelSample, 1 << 13>;
 using GnssChannel = Channel<GnssFix, 1 << 8>;
 using WeatherChannel = Channel<WeatherSample, 1 << 8>;
 

@@ -1,0 +1,80 @@
+#pragma once
+// A simulated drive in memory and a daemon wired to replay it from memory sources: the same
+// threads, rings, recorder and live estimator as roadloadd, without devices.
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "memory_source.hpp"
+#include "roadload/firmware/daemon.hpp"
+#include "roadload/recording/vehicle_setup.hpp"
+#include "sim_fixture.hpp"
+
+namespace roadload::firmware::test {
+
+struct SimulatedDrive {
+  explicit SimulatedDrive(double duration_s) : db(sim::test::core_database()) {
+    scenario = sim::test::builtin("mnroad-mainline-30mph");
+    scenario.duration_s = duration_s;
+    sim::Simulation s(scenario, 7, db);
+    meta = s.metadata();
+    s.run(sink, nullptr);
+  }
+  j1939::Database db;
+  sim::Scenario scenario;
+  recording::Metadata meta;
+  sim::test::MemorySink sink;
+};
+
+// Every stream of the drive gated at `gate_fraction` of its items (1: no gate).
+inline DaemonSources memory_sources(const SimulatedDrive& d, const std::atomic<bool>& gate, double gate_fraction) {
+  auto at = [&](std::size_t n) { return static_cast<std::size_t>(static_cast<double>(n) * gate_fraction); };
+  const Pace pace{std::chrono::steady_clock::now(), d.sink.frames.front().t, 20};
+  DaemonSources s;
+  s.can.push_back(std::make_unique<CanChannel>(
+      std::make_unique<MemorySource<CanFrame>>(d.sink.frames, gate, at(d.sink.frames.size()), "can0", pace), SourceKind::can, "can0"));
+  s.accel.push_back(std::make_unique<AccelChannel>(
+      std::make_unique<MemorySource<AccelSample>>(d.sink.accels, gate, at(d.sink.accels.size()), "accel", pace),
+      SourceKind::accelerometer, "accel"));
+  s.gnss = std::make_unique<GnssChannel>(
+      std::make_unique<MemorySource<GnssFix>>(d.sink.fixes, gate, at(d.sink.fixes.size()), "gnss", pace), SourceKind::gnss, "gnss");
+  s.weather = std::make_unique<WeatherChannel>(
+      std::make_unique<MemorySource<WeatherSample>>(d.sink.weather_samples, gate, at(d.sink.weather_samples.size()), "weather", pace),
+      SourceKind::weather, "weather");
+  return s;
+}
+
+inline DaemonSetup daemon_setup(const SimulatedDrive& d, const std::string& data_dir) {
+  DaemonSetup setup;
+  RecorderConfig rc;
+  rc.data_dir = data_dir;
+  setup.recording = rc;
+  setup.metadata = d.meta;
+  setup.interfaces = {"can0"};
+  setup.buses = {CanBusInfo{}};
+  setup.db = &d.db;
+  setup.route = *RouteGeometry::build(d.scenario.route.points);
+  setup.cells = sim::test::cell_spans(d.scenario);
+  setup.analyzer = recording::config_from_vehicle(d.meta.vehicle, std::nullopt);
+  setup.layout = recording::axle_layout(d.meta, "simulation").layout;
+  setup.accelerometers = recording::accelerometers(d.meta);
+  const PavementGroups groups = sim::test::pavement_groups(d.scenario);
+  setup.cell_group = groups.cell_group;
+  setup.group_count = groups.names.size();
+  return setup;
+}
+
+inline void wait_for(Daemon& daemon) {
+  for (int i = 0; i < 6000 && !daemon.replays_finished(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+}
+
+inline std::string temp_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / (name + "-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
+}  // namespace roadload::firmware::test

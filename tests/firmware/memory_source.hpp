@@ -1,0 +1,75 @@
+#pragma once
+// A source that hands out samples held in memory, a batch at a time, and can hold back at a gate:
+// the tests let the daemon settle, open an allocation counter, then let the rest through.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+#include "roadload/io/replay_clock.hpp"
+#include "roadload/io/source.hpp"
+
+namespace roadload::firmware::test {
+
+// The drive's time runs `speedup` times faster than the wall clock from `start`, shared by every
+// source of a test so that streams arrive together, as devices would deliver them.
+struct Pace {
+  std::chrono::steady_clock::time_point start;
+  CaptureTime drive_start{};
+  double speedup = 20;
+  CaptureTime now() const {
+    const auto wall = std::chrono::steady_clock::now() - start;
+    return drive_start + Nanoseconds{static_cast<std::int64_t>(static_cast<double>(wall.count()) * speedup)};
+  }
+};
+
+template <typename T>
+class MemorySource final : public io::Source<T> {
+ public:
+  // Items after index `gate_at` wait until `gate` is open.
+  MemorySource(std::vector<T> items, const std::atomic<bool>& gate, std::size_t gate_at, const char* name, Pace pace)
+      : items_(std::move(items)), gate_(gate), gate_at_(gate_at), name_(name), pace_(pace) {
+    status_.state = io::SourceState::up;
+    status_.stamps = StampSource::recording;
+  }
+
+  std::size_t read(std::span<T> out, Nanoseconds) override {
+    if (next_ == items_.size()) {
+      status_.state = io::SourceState::ended;
+      return 0;
+    }
+    std::size_t limit = std::min(items_.size(), next_ + out.size());
+    if (!gate_.load()) limit = std::min(limit, gate_at_);
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+    const CaptureTime due = pace_.now();
+    std::size_t n = 0;
+    while (next_ < limit && items_[next_].t <= due) out[n++] = items_[next_++];
+    status_.items += n;
+    return n;
+  }
+  const io::SourceStatus& status() const override { return status_; }
+  const char* name() const override { return name_; }
+
+ private:
+  std::vector<T> items_;
+  const std::atomic<bool>& gate_;
+  std::size_t gate_at_;
+  const char* name_;
+  Pace pace_;
+  std::size_t next_ = 0;
+  io::SourceStatus status_;
+};
+
+// The monotonic clock moved far ahead of every sample: the estimator takes whatever the rings
+// hold, and the recorder still sees its flush and fsync intervals go by.
+class FarFutureClock final : public io::WaitClock {
+ public:
+  CaptureTime now() const override { return mono_.now() + Nanoseconds{std::int64_t{1} << 59}; }
+  void sleep_until(CaptureTime, Nanoseconds) override { std::this_thread::sleep_for(std::chrono::milliseconds(1)); }
+
+ private:
+  io::MonotonicClock mono_;
+};
+
+}  // namespace roadload::firmware::test

@@ -1,0 +1,72 @@
+// roadloadd's settings: the shipped config/roadloadd.toml states the built-in defaults, bad values
+// are refused with the file, line and key, and the command line overrides the file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "roadload/firmware/command_line.hpp"
+#include "roadload/firmware/config.hpp"
+
+namespace roadload::firmware {
+namespace {
+
+std::string body(const DaemonConfig& c) {
+  const std::string text = format_config(c);
+  return text.substr(text.find('\n') + 1);  // without the "settings from" line
+}
+
+std::string write_temp(const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("roadloadd-config-" + std::to_string(::getpid()) + ".toml");
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(DaemonConfig, ShippedFileStatesTheBuiltInDefaults) {
+  auto c = load_config(std::string(ROADLOAD_CONFIG_DIR) + "/roadloadd.toml");
+  ASSERT_TRUE(c.ok()) << c.error().to_string();
+  EXPECT_EQ(body(c.value()), body(DaemonConfig{}));
+}
+
+TEST(DaemonConfig, UnknownKeyIsRefusedWithItsLine) {
+  auto c = load_config(write_temp("[recording]\nfsync_interval_s = 2\nfsync_intervall_s = 3\n"));
+  ASSERT_FALSE(c.ok());
+  EXPECT_EQ(c.error().line, 3);
+  EXPECT_EQ(c.error().field, "recording.fsync_intervall_s");
+}
+
+TEST(DaemonConfig, OutOfRangeValueNamesTheField) {
+  auto c = load_config(write_temp("[[can]]\ninterface = \"can0\"\n[[can]]\ninterface = \"can0\"\n"));
+  ASSERT_FALSE(c.ok());
+  EXPECT_EQ(c.error().field, "can[1].interface");
+  auto q = load_config(write_temp("[recording]\nsegment_max_mib = 100\nquota_mib = 150\n"));
+  ASSERT_FALSE(q.ok());
+  EXPECT_EQ(q.error().field, "recording.quota_mib");
+}
+
+TEST(DaemonConfig, CommandLineOverridesTheFile) {
+  const std::string file = write_temp("[[can]]\ninterface = \"can1\"\n[recording]\ndata_dir = \"/data\"\n");
+  auto cl = parse_command_line({"--data-dir", "/tmp/x", "--config", file, "--can", "vcan0", "--can", "vcan1"});
+  ASSERT_TRUE(cl.ok()) << cl.error().to_string();
+  const DaemonConfig& c = cl.value().config;
+  ASSERT_EQ(c.can.size(), 2u);
+  EXPECT_EQ(c.can[0].interface, "vcan0");
+  EXPECT_EQ(c.can[1].interface, "vcan1");
+  EXPECT_EQ(c.recording.data_dir, "/tmp/x");
+  EXPECT_EQ(c.source, file);
+}
+
+TEST(DaemonConfig, CommandLineErrorsNameTheOption) {
+  auto bad = parse_command_line({"--replay-rate", "fast"});
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().field, "--replay-rate");
+  auto unknown = parse_command_line({"--cann", "vcan0"});
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_EQ(unknown.error().field, "--cann");
+  auto needs = parse_command_line({"--replay-can"});
+  ASSERT_FALSE(needs.ok());
+  EXPECT_EQ(needs.error().field, "replay.can");
+}
+
+}  // namespace
+}  // namespace roadload::firmware

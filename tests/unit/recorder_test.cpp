@@ -1,0 +1,144 @@
+// The daemon's recorder: segments that read back as recordings, rotation by size, the quota, and a
+// write failure (the disk full) reported, survived and recovered from with every line accounted for.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
+
+#include <filesystem>
+#include <vector>
+
+#include "roadload/firmware/recorder.hpp"
+#include "roadload/recording/reader.hpp"
+
+namespace roadload::firmware {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string fresh_dir(const char* name) {
+  const auto dir = fs::temp_directory_path() / (std::string(name) + "-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir.string();
+}
+
+CanFrame frame(std::int64_t i) {
+  CanFrame f;
+  f.t = capture_time_from_ns(1'000'000'000 + i * 250'000);
+  f.id = 0x18FEF100u | static_cast<std::uint32_t>(i & 0xFF);
+  f.len = 8;
+  for (std::size_t b = 0; b < 8; ++b) f.data[b] = static_cast<std::uint8_t>(i >> (8 * (b % 4)));
+  return f;
+}
+
+std::vector<fs::path> segments(const std::string& dir) {
+  std::vector<fs::path> out(fs::directory_iterator(dir), {});
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::size_t frames_in(const fs::path& segment) {
+  auto r = recording::RecordingReader::open(segment.string());
+  EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().to_string());
+  std::size_t n = 0;
+  while (r.value().next() != nullptr) ++n;
+  EXPECT_EQ(r.value().errors().count(), 0u);
+  return n;
+}
+
+TEST(Recorder, SegmentsRotateBySizeAndReadBackWhole) {
+  RecorderConfig c;
+  c.data_dir = fresh_dir("recorder-rotate");
+  c.segment_max_bytes = 200'000;
+  Recorder rec(c, recording::Metadata{}, {"can0"});
+  CaptureTime now = capture_time_from_ns(0);
+  rec.tick(now);
+  for (std::int64_t i = 0; i < 20'000; ++i) {
+    rec.write(frame(i));
+    if (i % 100 == 0) rec.tick(now += Nanoseconds{25'000'000});
+  }
+  rec.end_segment();
+  const auto segs = segments(c.data_dir);
+  ASSERT_GE(segs.size(), 4u);
+  std::size_t total = 0;
+  for (const auto& s : segs) {
+    EXPECT_TRUE(fs::exists(s / "meta.toml"));
+    total += frames_in(s);
+  }
+  EXPECT_EQ(total, 20'000u);
+  EXPECT_EQ(rec.status().lines, 20'000u);
+  EXPECT_EQ(rec.status().lines_lost, 0u);
+}
+
+TEST(Recorder, QuotaDeletesTheOldestSegments) {
+  RecorderConfig c;
+  c.data_dir = fresh_dir("recorder-quota");
+  c.segment_max_bytes = 100'000;
+  c.quota_bytes = 300'000;
+  Recorder rec(c, recording::Metadata{}, {"can0"});
+  CaptureTime now = capture_time_from_ns(0);
+  for (std::int64_t i = 0; i < 40'000; ++i) {
+    rec.write(frame(i));
+    if (i % 100 == 0) rec.tick(now += Nanoseconds{25'000'000});
+  }
+  rec.end_segment();
+  rec.tick(now);
+  std::uint64_t bytes = 0;
+  for (const auto& e : fs::recursive_directory_iterator(c.data_dir))
+    if (e.is_regular_file()) bytes += e.file_size();
+  EXPECT_LE(bytes, c.quota_bytes + 50'000);  // plus the new segment's meta.toml and headers
+  EXPECT_GT(rec.status().segments_deleted, 0u);
+  // The newest segments stay: the last frame written is on disk.
+  const auto segs = segments(c.data_dir);
+  ASSERT_FALSE(segs.empty());
+  EXPECT_EQ(segs.front().filename().string().substr(0, 6) > "000001", true);
+}
+
+// RLIMIT_FSIZE makes writes past a size fail as a full disk would (EFBIG instead of ENOSPC).
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &old_);
+    signal(SIGXFSZ, SIG_IGN);
+    rlimit l = old_;
+    l.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &l);
+  }
+  ~FileSizeLimit() { setrlimit(RLIMIT_FSIZE, &old_); }
+
+ private:
+  rlimit old_{};
+};
+
+TEST(Recorder, WriteFailureIsReportedAndEveryLineAccountedFor) {
+  RecorderConfig c;
+  c.data_dir = fresh_dir("recorder-full");
+  Recorder rec(c, recording::Metadata{}, {"can0"});
+  CaptureTime now = capture_time_from_ns(0);
+  rec.tick(now);
+  constexpr std::int64_t kFrames = 30'000;  // 1.5 MB of lines: more than the buffer holds
+  std::int64_t i = 0;
+  {
+    const FileSizeLimit limit(100'000);
+    for (; i < kFrames / 2; ++i) {
+      rec.write(frame(i));
+      if (i % 100 == 0) rec.tick(now += Nanoseconds{25'000'000});
+    }
+    EXPECT_NE(rec.status().error, 0);
+    EXPECT_NE(rec.status().error_text.find("can.log"), std::string::npos) << rec.status().error_text;
+  }
+  for (; i < kFrames; ++i) {
+    rec.write(frame(i));
+    if (i % 100 == 0) rec.tick(now += Nanoseconds{25'000'000});
+  }
+  rec.tick(now += Nanoseconds{2'000'000'000});
+  EXPECT_EQ(rec.status().error, 0) << rec.status().error_text;
+  rec.end_segment();
+  const auto segs = segments(c.data_dir);
+  ASSERT_EQ(segs.size(), 1u);
+  const std::size_t on_disk = frames_in(segs[0]);
+  EXPECT_GT(rec.status().lines_lost, 0u);
+  EXPECT_EQ(on_disk + rec.status().lines_lost, static_cast<std::size_t>(kFrames));
+}
+
+}  // namespace
+}  // namespace roadload::firmware
