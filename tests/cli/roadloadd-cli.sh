@@ -41,6 +41,28 @@ tail -n 1 "$work/status.jsonl" | grep -q '"lines_lost":0' || fail "the last JSON
 /usr/bin/python3 -c 'import json,sys; [json.loads(l) for l in open(sys.argv[1])]' "$work/status.jsonl" ||
   fail "status.jsonl has a line that is not JSON"
 
+# SIGHUP (logrotate): the status files are reopened by name and a new segment begins; SIGTERM
+# flushes and exits cleanly with everything recorded.
+"$roadloadd" --replay "$work/sim" --replay-can --data-dir "$work/rec2" --status "$work/s.log" --status-json '' 2>/dev/null &
+pid=$!
+for _ in $(seq 50); do [[ -s $work/s.log ]] && (($(wc -l <"$work/s.log") >= 2)) && break; sleep 0.1; done
+mv "$work/s.log" "$work/s.log.1"
+kill -HUP "$pid"
+for _ in $(seq 30); do [[ -s $work/s.log ]] && break; sleep 0.1; done
+[[ -s $work/s.log ]] || fail "after SIGHUP no new status log was opened"
+sleep 1.2
+kill -TERM "$pid"
+rc=0
+wait "$pid" || rc=$?
+((rc == 0)) || fail "roadloadd exited $rc on SIGTERM"
+grep -q '^roadloadd stopped: [0-9]* lines recorded, 0 lost' "$work/s.log" || fail "no clean stop line: $(tail -n 1 "$work/s.log")"
+segs=("$work"/rec2/*/)
+((${#segs[@]} == 2)) || fail "SIGHUP should start a second segment; found ${#segs[@]}"
+frames=$(cat "$work"/rec2/*/can.log | wc -l)
+((frames > 0)) || fail "nothing recorded across the SIGHUP"
+cmp -s <(cat "$work"/rec2/*/can.log | cut -d' ' -f3) <(head -n "$frames" "$work/sim/can.log" | cut -d' ' -f3) ||
+  fail "the two segments together are not the drive's first $frames frames"
+
 # The unit file, with ExecStart pointing at this build, passes systemd's own checks.
 if command -v systemd-analyze >/dev/null; then
   sed "s|/usr/sbin/roadloadd|$roadloadd|" "$unit" >"$work/roadloadd.service"
