@@ -95,6 +95,16 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
   }
 }
 
+// A TOML basic string: paths may hold quotes or backslashes.
+std::string quoted(const std::string& v) {
+  std::string out = "\"";
+  for (const char ch : v) {
+    if (ch == '"' || ch == '\\') out += '\\';
+    out += ch;
+  }
+  return out + "\"";
+}
+
 ParseError field_error(std::string field, std::string message) {
   return ParseError{"config", 0, std::move(field), std::move(message)};
 }
@@ -160,25 +170,25 @@ std::string format_config(const DaemonConfig& c) {
   std::ostringstream o;
   o << "# roadloadd settings from " << c.source << "\n";
   for (const CanBusConfig& b : c.can) {
-    o << "\n[[can]]\ninterface = \"" << b.interface << "\"\nj1939_only = " << (b.j1939_only ? "true" : "false")
+    o << "\n[[can]]\ninterface = " << quoted(b.interface) << "\nj1939_only = " << (b.j1939_only ? "true" : "false")
       << "\nbitrate_bps = " << b.bitrate_bps << "\nreceive_buffer_kib = " << b.receive_buffer_kib << "\n";
   }
   for (const AccelConfig& a : c.accelerometers) {
-    o << "\n[[accelerometer]]\nid = " << int{a.id} << "\nname = \"" << a.name << "\"\nposition = \"" << a.position
-      << "\"\nspidev = \"" << a.spidev << "\"\ngpiochip = \"" << a.gpiochip << "\"\nline = " << a.line
+    o << "\n[[accelerometer]]\nid = " << int{a.id} << "\nname = " << quoted(a.name) << "\nposition = " << quoted(a.position)
+      << "\nspidev = " << quoted(a.spidev) << "\ngpiochip = " << quoted(a.gpiochip) << "\nline = " << a.line
       << "\nrange_g = " << a.range_g << "\nodr_hz = " << a.odr_hz << "\n";
   }
-  o << "\n[gnss]\nenabled = " << (c.gnss.enabled ? "true" : "false") << "\nhost = \"" << c.gnss.host
-    << "\"\nport = \"" << c.gnss.port << "\"\n";
+  o << "\n[gnss]\nenabled = " << (c.gnss.enabled ? "true" : "false") << "\nhost = " << quoted(c.gnss.host)
+    << "\nport = " << quoted(c.gnss.port) << "\n";
   const RecordingConfig& r = c.recording;
-  o << "\n[recording]\nenabled = " << (r.enabled ? "true" : "false") << "\ndata_dir = \"" << r.data_dir
-    << "\"\nfsync_interval_s = " << r.fsync_interval_s << "\nsegment_max_s = " << r.segment_max_s
+  o << "\n[recording]\nenabled = " << (r.enabled ? "true" : "false") << "\ndata_dir = " << quoted(r.data_dir)
+    << "\nfsync_interval_s = " << r.fsync_interval_s << "\nsegment_max_s = " << r.segment_max_s
     << "\nsegment_max_mib = " << r.segment_max_mib << "\nquota_mib = " << r.quota_mib << "\n";
-  o << "\n[status]\ntext_file = \"" << c.status.text_file << "\"\njson_file = \"" << c.status.json_file
-    << "\"\ninterval_s = " << c.status.interval_s << "\n";
-  o << "\n[replay]\nrecording = \"" << c.replay.recording << "\"\nrate = " << c.replay.rate
+  o << "\n[status]\ntext_file = " << quoted(c.status.text_file) << "\njson_file = " << quoted(c.status.json_file)
+    << "\ninterval_s = " << c.status.interval_s << "\n";
+  o << "\n[replay]\nrecording = " << quoted(c.replay.recording) << "\nrate = " << c.replay.rate
     << "\ncan = " << (c.replay.can ? "true" : "false") << "\n";
-  o << "\n[estimator]\nroute = \"" << c.estimator.route << "\"\n";
+  o << "\n[estimator]\nroute = " << quoted(c.estimator.route) << "\n";
   return o.str();
 }
 
