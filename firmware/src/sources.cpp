@@ -2,6 +2,7 @@
 
 #include "roadload/accel/adxl355_source.hpp"
 #include "roadload/can/socketcan_source.hpp"
+#include "roadload/gnss/gpsd_source.hpp"
 #include "roadload/io/replay_source.hpp"
 
 namespace roadload::firmware {
@@ -84,7 +85,14 @@ Parsed<BuiltSources> build_sources(const DaemonConfig& c, io::WaitClock& clock, 
     }
     b.sources.accel.push_back(std::make_unique<AccelChannel>(std::move(src.value()), SourceKind::accelerometer, a.name));
   }
-  if (!c.gnss.enabled) notes.push_back("gnss: disabled, skipped");
+  if (!c.gnss.enabled) {
+    notes.push_back("gnss: disabled, skipped");
+  } else if (auto gps = gnss::GpsdSource::open(c.gnss.host, c.gnss.port)) {
+    // An unreachable gpsd is not fatal: the source reconnects on its own and says so in the status.
+    b.sources.gnss = std::make_unique<GnssChannel>(std::move(gps.value()), SourceKind::gnss, "gnss");
+  } else {
+    notes.push_back("gnss: " + gps.error().to_string() + "; skipped");
+  }
   notes.push_back("weather: no station driver on this gateway, skipped");
   return b;
 }

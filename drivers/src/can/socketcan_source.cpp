@@ -159,7 +159,15 @@ std::size_t SocketCanSource::read(std::span<CanFrame> out, Nanoseconds timeout) 
   const int ready = poll(&p, 1, ms);
   if (ready < 0) return 0;  // EINTR: the caller loops
   if (ready == 0) return 0;
-  return receive(out);
+  // Once the queue has been drained, let a batch gather before reading again: one wake-up per
+  // batch instead of one per frame. The kernel stamps the frames; the wait only delays reading.
+  if (last_batch_ < kBatch && config_.coalesce_ns > 0) {
+    const timespec pause{0, static_cast<long>(config_.coalesce_ns)};
+    nanosleep(&pause, nullptr);
+  }
+  const std::size_t n = receive(out);
+  last_batch_ = n;
+  return n;
 }
 
 std::size_t SocketCanSource::receive(std::span<CanFrame> out) {

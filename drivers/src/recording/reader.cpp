@@ -119,7 +119,7 @@ FieldError to_gnss(std::span<const std::string_view> row, GnssFix& s) {
   s.speed_mps = f.f64(5);
   s.course_deg = f.f64(6);
   s.mode = static_cast<GnssFixMode>(f.small(7, 5));
-  s.hdop = f.f64(8);
+  s.hdop = f.f64_or_nan(8);  // gpsd reports HDOP only with satellites in view
   if (!f.error() && (s.lat_deg < -90 || s.lat_deg > 90)) return std::make_pair(std::size_t{2}, std::string("latitude out of range"));
   if (!f.error() && (s.lon_deg < -180 || s.lon_deg > 180)) return std::make_pair(std::size_t{3}, std::string("longitude out of range"));
   return f.error();

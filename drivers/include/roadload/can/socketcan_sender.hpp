@@ -14,7 +14,7 @@ namespace roadload::can {
 
 class SocketCanSender {
  public:
-  static constexpr std::size_t kBatch = 64;
+  static constexpr std::size_t kBatch = 256;
 
   static Parsed<std::unique_ptr<SocketCanSender>> open(const std::string& interface);
   ~SocketCanSender();

@@ -30,6 +30,7 @@ struct SocketCanConfig {
   std::uint8_t iface_index = 0;    // CanFrame::iface of this bus's frames
   bool j1939_only = true;          // 29-bit data frames (and error frames) only
   int receive_buffer_bytes = 1 << 21;  // room for a second of a full bus at 10x its rate
+  std::int64_t coalesce_ns = 1'000'000;  // wait after a drained queue: at most 64 frames per read anyway
 };
 
 struct SocketCanCounters {
@@ -41,7 +42,7 @@ struct SocketCanCounters {
 
 class SocketCanSource final : public io::Source<CanFrame> {
  public:
-  static constexpr std::size_t kBatch = 64;  // frames per recvmmsg
+  static constexpr std::size_t kBatch = 256;  // frames per recvmmsg
 
   // Fails only on a configuration that can never work (a name too long for an interface).
   // A missing interface is not an error here: the source starts `down` and waits for it.
@@ -67,7 +68,8 @@ class SocketCanSource final : public io::Source<CanFrame> {
   SocketCanConfig config_;
   int fd_ = -1;
   std::int64_t next_open_mono_ns_ = 0;
-  std::uint32_t kernel_drops_ = 0;  // SO_RXQ_OVFL's running count on this socket
+  std::uint32_t kernel_drops_ = 0;
+  std::size_t last_batch_ = 0;  // SO_RXQ_OVFL's running count on this socket
   clock::RealtimeMap map_;
   io::SourceStatus status_;
   SocketCanCounters counters_;

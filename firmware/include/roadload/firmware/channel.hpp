@@ -62,7 +62,7 @@ class Channel {
   bool is_replay() const { return source_->status().stamps == StampSource::recording; }
 
  private:
-  static constexpr std::size_t kBatch = 64;
+  static constexpr std::size_t kBatch = 256;
   static constexpr Nanoseconds kReadTimeout{100'000'000};
 
   void run(const std::atomic<bool>& stop) {
