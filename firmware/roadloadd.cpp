@@ -111,6 +111,9 @@ int run(const CommandLine& cl) {
   setup.metadata = metadata(c, built.value());
   setup.interfaces = built.value().interfaces;
   setup.buses = built.value().buses;
+  if (built.value().replaying && built.value().timing.paced() && built.value().timing.rate != 1.0) {
+    setup.timeline = built.value().timing;
+  }
   // The force balance needs the route's grade: without one the daemon records and reports only.
   setup.db = c.estimator.route.empty() ? nullptr : &est.db;
   if (setup.db == nullptr) notes.push_back("estimator: no route configured, CRR not estimated");
@@ -139,6 +142,9 @@ int run(const CommandLine& cl) {
   serve(daemon, log, cl, signals);
   sd_notify(0, "STOPPING=1");
   daemon.stop();
+  if (!c.estimator.results_dir.empty()) {
+    if (auto e = daemon.write_results(c.estimator.results_dir)) log.text("results: " + e->to_string() + "\n");
+  }
   const StatusReport last = daemon.report();
   log.text(format_text(last));
   log.json(format_json(last));

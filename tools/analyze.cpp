@@ -159,8 +159,8 @@ int run_analyze(Args args) {
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   const VibrationAnalysis* va = vibration ? &*vibration : nullptr;
-  for (auto err : {write_cells_csv(out + "/cells.csv", results, axle_names, va),
-                   write_trip_json(out + "/trip.json", trip, spectra ? vibration_json(*spectra) : std::string()),
+  for (auto err : {results::write_cells_csv(out + "/cells.csv", results, axle_names, va),
+                   results::write_trip_json(out + "/trip.json", trip, spectra ? vibration_json(*spectra) : std::string()),
                    va ? write_psd_files(out, *va, groups) : std::nullopt}) {
     if (err) {
       std::fprintf(stderr, "roadload analyze: %s\n", err->to_string().c_str());

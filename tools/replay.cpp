@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "options.hpp"
 #include "roadload/can/socketcan_sender.hpp"
+#include "roadload/io/replay_origin.hpp"
 #include "roadload/recording/reader.hpp"
 
 namespace roadload::cli {
@@ -21,6 +22,8 @@ constexpr const char* kHelp =
     "divided by the rate. Meant for vcan on a bench: it transmits, which a logger on a truck never does.\n\n"
     "  --iface IFACE   interface to send on (default vcan0)\n"
     "  --rate R        1 real time (default), N times faster, or max (as fast as the interface takes)\n"
+    "  --origin FILE   write FILE as the first frame goes out (its recorded and capture time, the rate):\n"
+    "                  roadloadd --replay REC --replay-origin FILE plays the sensor streams in step\n"
     "  -q, --quiet     no progress on standard error\n"
     "  -h, --help      this text\n";
 
@@ -39,7 +42,7 @@ void sleep_until_ns(std::int64_t t) {
 
 int run_replay(Args args) {
   OptionParser p("replay", args);
-  std::string input, iface = "vcan0";
+  std::string input, iface = "vcan0", origin;
   double rate = 1.0;  // 0: max
   bool quiet = false;
   while (p.more()) {
@@ -51,6 +54,8 @@ int run_replay(Args args) {
       quiet = true;
     } else if (auto v = p.value("--iface")) {
       iface = *v;
+    } else if (auto o = p.value("--origin")) {
+      origin = *o;
     } else if (auto r = p.value("--rate")) {
       if (*r == "max") {
         rate = 0;
@@ -94,7 +99,16 @@ int run_replay(Args args) {
   while (const recording::Record* r = reader.value().next()) {
     const auto* f = std::get_if<CanFrame>(r);
     if (f == nullptr) continue;
-    if (first_ns < 0) first_ns = to_ns(f->t);
+    if (first_ns < 0) {
+      first_ns = to_ns(f->t);
+      if (!origin.empty()) {
+        const io::ReplayTiming timing{f->t, capture_time_from_ns(start_ns), rate};
+        if (auto e = io::write_replay_origin(origin, timing)) {
+          std::fprintf(stderr, "roadload replay: %s\n", e->to_string().c_str());
+          return kExitCantCreate;
+        }
+      }
+    }
     if (rate > 0) {
       const std::int64_t due = start_ns + static_cast<std::int64_t>(static_cast<double>(to_ns(f->t) - first_ns) / rate);
       if (due > mono_ns()) {

@@ -24,7 +24,11 @@ DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std
       filter_(filter_config(config, !cells_.empty())),
       smoother_(config.keep_history ? 36000 : 0) {
   if (const auto* m = db_.find_name("CCVS1")) ccvs1_pgn_ = m->pgn;
-  if (config_.keep_history) filter_.attach(&smoother_);
+  if (config_.keep_history) {
+    filter_.attach(&smoother_);
+  } else {
+    live_cells_.resize(cells_.size());
+  }
   for (const CellSpan& c : cells_) {
     boundaries_m_.push_back(c.start_m);
     boundaries_m_.push_back(c.end_m);
@@ -139,6 +143,7 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
     ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, why, upd.accepted ? upd.nis : std::nan(""),
                       smoother_.size(), power, in.air_density_kgpm3, in.headwind_mps, in.grade_rad});
   }
+  if (!config_.keep_history) note_live_cell(s_front, s_cg, wheel_speed_mps, in.usable, why);
   live_ = {t, true, wheel_speed_mps, s_front, cell_at(s_cg), filter_.crr(), 0, 0, filter_.crr_identified(), in.usable};
   live_.crr_lo = live_.crr - config_.interval_z * filter_.crr_sigma();
   live_.crr_hi = live_.crr + config_.interval_z * filter_.crr_sigma();
@@ -267,8 +272,58 @@ void DriveAnalyzer::finish() {
   nis_statistics();
 }
 
+// A cell longer than the truck is read while the whole truck is on it; a shorter one while its
+// centre of gravity is.
+bool DriveAnalyzer::inside(const CellSpan& c, double s_front_m, double s_cg_m) const {
+  const double len = truck_length_m();
+  return c.end_m - c.start_m > len ? s_front_m - len >= c.start_m && s_front_m < c.end_m
+                                   : s_cg_m >= c.start_m && s_cg_m < c.end_m;
+}
+
+void DriveAnalyzer::note_live_cell(double s_front_m, double s_cg_m, double speed_mps, bool usable, Unusable why) {
+  for (std::size_t i = 0; i < cells_.size(); ++i) {
+    if (!inside(cells_[i], s_front_m, s_cg_m)) continue;
+    LiveCell& c = live_cells_[i];
+    ++c.seen;
+    ++c.why[static_cast<std::size_t>(why)];
+    if (!usable) continue;
+    c.crr = filter_.crr();
+    c.crr_sigma = filter_.crr_sigma();
+    c.speed_sum_mps += speed_mps;
+    ++c.samples;
+  }
+}
+
+CellResult DriveAnalyzer::live_cell_result(std::size_t i) const {
+  const LiveCell& l = live_cells_[i];
+  CellResult r;
+  r.id = cells_[i].id;
+  r.start_m = cells_[i].start_m;
+  r.end_m = cells_[i].end_m;
+  r.samples = l.samples;
+  if (l.samples == 0) {
+    const auto worst = static_cast<std::size_t>(std::max_element(l.why.begin() + 1, l.why.end()) - l.why.begin());
+    r.reason = l.seen == 0 ? std::string("not driven")
+                           : std::string("no usable force balance: ") + to_string(static_cast<Unusable>(worst));
+    return r;
+  }
+  r.crr = l.crr;
+  r.crr_sigma = l.crr_sigma;
+  r.crr_lo = r.crr - config_.interval_z * r.crr_sigma;
+  r.crr_hi = r.crr + config_.interval_z * r.crr_sigma;
+  r.speed_mps = l.speed_sum_mps / static_cast<double>(l.samples);
+  r.roll_force_n = r.crr * config_.filter.truck.mass_kg * model::kGravity_mps2;
+  r.identified = r.crr_sigma <= config_.filter.identified_crr_sigma;
+  if (!r.identified) r.reason = "CRR not identified: its uncertainty exceeds the configured limit";
+  return r;
+}
+
 std::vector<CellResult> DriveAnalyzer::cells() const {
   std::vector<CellResult> out;
+  if (!config_.keep_history) {
+    for (std::size_t i = 0; i < cells_.size(); ++i) out.push_back(live_cell_result(i));
+    return out;
+  }
   const double weight = config_.filter.truck.mass_kg * model::kGravity_mps2;
   for (std::size_t i = 0; i < cells_.size(); ++i) {
     const CellSpan& c = cells_[i];
@@ -281,15 +336,8 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
     double crr = 0, sigma = 0, speed = 0;
     std::size_t seen = 0;
     std::array<std::size_t, kUnusableCount> why{};
-    // A cell longer than the truck is read while the whole truck is on it; a shorter one while its
-    // centre of gravity is.
-    const bool whole = c.end_m - c.start_m > truck_length_m();
-    auto inside = [&](const Tick& k) {
-      return whole ? k.s_front_m - truck_length_m() >= c.start_m && k.s_front_m < c.end_m
-                   : k.s_cg_m >= c.start_m && k.s_cg_m < c.end_m;
-    };
     for (const Tick& k : ticks_) {
-      if (!inside(k)) continue;
+      if (!inside(c, k.s_front_m, k.s_cg_m)) continue;
       ++seen;
       ++why[static_cast<std::size_t>(k.why)];
       if (!k.usable) continue;

@@ -18,10 +18,12 @@ const char* const kUsage =
     "  --status FILE        status text, one line per interval (status.text_file)\n"
     "  --status-json FILE   status as JSON lines; '' for none (status.json_file)\n"
     "  --route R            route file or built-in route name: cells for the live CRR\n"
+    "  --results DIR        at exit, DIR/cells.csv and DIR/trip.json from the live filter\n"
     "  --no-gnss            do not connect to gpsd\n"
     "  --replay REC         accelerometer, GNSS and weather streams from recording REC\n"
     "  --replay-rate R      their pace: 1 real time, N times faster, 0 as fast as read\n"
     "  --replay-can         CAN from the recording too, instead of the buses\n"
+    "  --replay-origin FILE wait for `roadload replay --origin FILE` and replay in step with its CAN\n"
     "  --exit-when-done     exit once every replayed stream has ended\n"
     "  --print-config       print the effective settings as TOML and exit\n"
     "  --version            print the version and exit\n"
@@ -67,6 +69,8 @@ Parsed<CommandLine> parse_command_line(const std::vector<std::string>& args) {
       cl.exit_when_done = true;
     } else if (a == "--no-record") {
       cl.config.recording.enabled = false;
+    } else if (a == "--replay-origin") {
+      if (!value(cl.config.replay.origin_file)) return arg_error(a, "needs a file");
     } else if (a == "--replay-can") {
       cl.config.replay.can = true;
     } else if (a == "--no-gnss") {
@@ -88,6 +92,8 @@ Parsed<CommandLine> parse_command_line(const std::vector<std::string>& args) {
       if (!value(cl.config.status.json_file)) return arg_error(a, "needs a file ('' for none)");
     } else if (a == "--route") {
       if (!value(cl.config.estimator.route)) return arg_error(a, "needs a route file or name");
+    } else if (a == "--results") {
+      if (!value(cl.config.estimator.results_dir)) return arg_error(a, "needs a directory");
     } else if (a == "--replay") {
       if (!value(cl.config.replay.recording)) return arg_error(a, "needs a recording folder");
     } else if (a == "--replay-rate") {

@@ -84,14 +84,16 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
     c.status.interval_s = f.number(*t, "interval_s", "status.", c.status.interval_s);
   }
   if (const toml::table* t = f.table(root, "replay")) {
-    f.only(*t, {"recording", "rate", "can"}, "replay.");
+    f.only(*t, {"recording", "rate", "can", "origin_file"}, "replay.");
+    c.replay.origin_file = f.text(*t, "origin_file", "replay.").value_or("");
     c.replay.recording = f.text(*t, "recording", "replay.").value_or("");
     c.replay.rate = f.number(*t, "rate", "replay.", c.replay.rate);
     c.replay.can = f.flag(*t, "can", "replay.").value_or(c.replay.can);
   }
   if (const toml::table* t = f.table(root, "estimator")) {
-    f.only(*t, {"route"}, "estimator.");
+    f.only(*t, {"route", "results_dir"}, "estimator.");
     c.estimator.route = f.text(*t, "route", "estimator.").value_or("");
+    c.estimator.results_dir = f.text(*t, "results_dir", "estimator.").value_or("");
   }
 }
 
@@ -163,6 +165,7 @@ std::optional<ParseError> validate(const DaemonConfig& c) {
   if (!(c.status.interval_s >= 0.1 && c.status.interval_s <= 60)) return field_error("status.interval_s", "expected 0.1 to 60");
   if (!(c.replay.rate >= 0 && c.replay.rate <= 1000)) return field_error("replay.rate", "expected 0 (as fast as read) to 1000");
   if (c.replay.can && c.replay.recording.empty()) return field_error("replay.can", "needs replay.recording");
+  if (!c.replay.origin_file.empty() && c.replay.recording.empty()) return field_error("replay.origin_file", "needs replay.recording");
   return std::nullopt;
 }
 
@@ -187,8 +190,9 @@ std::string format_config(const DaemonConfig& c) {
   o << "\n[status]\ntext_file = " << quoted(c.status.text_file) << "\njson_file = " << quoted(c.status.json_file)
     << "\ninterval_s = " << c.status.interval_s << "\n";
   o << "\n[replay]\nrecording = " << quoted(c.replay.recording) << "\nrate = " << c.replay.rate
-    << "\ncan = " << (c.replay.can ? "true" : "false") << "\n";
-  o << "\n[estimator]\nroute = " << quoted(c.estimator.route) << "\n";
+    << "\ncan = " << (c.replay.can ? "true" : "false") << "\norigin_file = " << quoted(c.replay.origin_file) << "\n";
+  o << "\n[estimator]\nroute = " << quoted(c.estimator.route) << "\nresults_dir = " << quoted(c.estimator.results_dir)
+    << "\n";
   return o.str();
 }
 

@@ -2,7 +2,10 @@
 
 #include <time.h>
 
+#include <filesystem>
 #include <limits>
+
+#include "roadload/results/results_files.hpp"
 
 namespace roadload::firmware {
 
@@ -151,7 +154,9 @@ bool Daemon::estimate_next(CaptureTime horizon) {
   if (sources_.weather) consider(sources_.weather->to_estimator(), 3, 0);
   auto take = [this](auto& ring) {
     typename std::remove_reference_t<decltype(ring)>::value_type item;
-    if (ring.try_pop(item)) analyzer_->push(item);
+    if (!ring.try_pop(item)) return;
+    if (setup_.timeline) item.t = setup_.timeline->recorded(item.t);
+    analyzer_->push(item);
   };
   switch (kind) {
     case 0: take(sources_.can[index]->to_estimator()); return true;
@@ -235,6 +240,20 @@ StatusReport Daemon::report() {
   }
   r.warnings = warnings_for(r);
   return r;
+}
+
+std::optional<ParseError> Daemon::write_results(const std::string& dir) const {
+  if (!analyzer_) return std::nullopt;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return ParseError{dir, 0, "folder", ec.message()};
+  std::vector<std::string> axles;
+  if (setup_.layout) {
+    for (const AxleContact& a : setup_.layout->axles) axles.push_back(a.name);
+  }
+  const VibrationAnalysis* va = vibration_ ? &*vibration_ : nullptr;
+  if (auto e = results::write_cells_csv(dir + "/cells.csv", analyzer_->cells(), va ? axles : std::vector<std::string>{}, va)) return e;
+  return results::write_trip_json(dir + "/trip.json", analyzer_->trip(), "  \"estimate\": \"live filter\"");
 }
 
 }  // namespace roadload::firmware

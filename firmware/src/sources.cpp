@@ -1,19 +1,36 @@
 #include "roadload/firmware/sources.hpp"
 
+#include <filesystem>
+
 #include "roadload/accel/adxl355_source.hpp"
 #include "roadload/can/socketcan_source.hpp"
 #include "roadload/gnss/gpsd_source.hpp"
+#include "roadload/io/replay_origin.hpp"
 #include "roadload/io/replay_source.hpp"
 
 namespace roadload::firmware {
 
 namespace {
 
-// The recording's first stamp maps to now: the replay starts as the daemon does.
+constexpr int kOriginWaitS = 60;
+
+// The timeline `roadload replay --origin` writes as it starts sending; waited for.
+Parsed<io::ReplayTiming> wait_for_origin(const std::string& path, io::WaitClock& clock) {
+  for (int i = 0; i < kOriginWaitS * 100 && !std::filesystem::exists(path); ++i) {
+    clock.sleep_until(clock.now() + Nanoseconds{10'000'000}, Nanoseconds{10'000'000});
+  }
+  if (!std::filesystem::exists(path)) {
+    return ParseError{path, 0, "replay.origin_file", "no replay started within " + std::to_string(kOriginWaitS) + " s"};
+  }
+  return io::read_replay_origin(path);
+}
+
+// Without an origin file the recording's first stamp maps to now: the replay starts as the daemon does.
 Parsed<io::ReplayTiming> replay_timing(const ReplayConfig& r, io::WaitClock& clock, recording::Metadata& meta) {
   auto reader = recording::RecordingReader::open(r.recording);
   if (!reader) return reader.error();
   meta = reader.value().metadata();
+  if (!r.origin_file.empty()) return wait_for_origin(r.origin_file, clock);
   const recording::Record* first = reader.value().next();
   if (first == nullptr) return ParseError{r.recording, 0, "", "the recording holds no samples"};
   io::ReplayTiming t;
@@ -59,6 +76,7 @@ Parsed<BuiltSources> build_sources(const DaemonConfig& c, io::WaitClock& clock, 
     auto timing = replay_timing(c.replay, clock, b.replayed);
     if (!timing) return timing.error();
     b.replaying = true;
+    b.timing = timing.value();
     if (can_replayed) {
       std::unique_ptr<CanChannel> can;
       add_replay<CanFrame>(c.replay.recording, timing.value(), clock, SourceKind::can, "can", can, notes);

@@ -47,8 +47,9 @@ struct AnalyzerConfig {
   double max_gnss_offset_m = 30.0;      // fixes farther from the route are not on it
   double interval_z = 1.645;            // 90 % two-sided
   double survey_elevation_sigma_m = 0.0;  // the route survey's height error (0: taken as exact)
-  // Offline, every tick is kept for the smoother and the cells; live (roadloadd), only the
-  // filter runs, in fixed memory, and cells() and finish() have nothing to smooth.
+  // Offline, every tick is kept for the smoother and the cells; live (roadloadd), only the filter
+  // runs, in fixed memory, and cells() gives each cell the filter's estimate at the last usable
+  // tick in it: everything the cell taught the filter, without the data after it.
   bool keep_history = true;
 };
 
@@ -155,6 +156,15 @@ class DriveAnalyzer {
   ekf::RtsSmoother<CrrState::count> smoother_;
   std::vector<Tick> ticks_;
   std::vector<FuelBreakdown> cell_fuel_;
+  struct LiveCell {
+    double crr = 0, crr_sigma = 0, speed_sum_mps = 0;
+    std::size_t samples = 0, seen = 0;
+    std::array<std::size_t, kUnusableCount> why{};
+  };
+  std::vector<LiveCell> live_cells_;  // live mode only, one per cell, sized at construction
+  void note_live_cell(double s_front_m, double s_cg_m, double speed_mps, bool usable, Unusable why);
+  CellResult live_cell_result(std::size_t i) const;
+  bool inside(const CellSpan& c, double s_front_m, double s_cg_m) const;
   ContactForces* contact_ = nullptr;
   VibrationAnalysis* vibration_ = nullptr;
   TripResult trip_;

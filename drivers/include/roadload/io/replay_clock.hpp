@@ -36,6 +36,12 @@ struct ReplayTiming {
     if (rate <= 0.0 || rate == 1.0) return capture_origin + since;
     return capture_origin + Nanoseconds{static_cast<std::int64_t>(static_cast<double>(since.count()) / rate)};
   }
+  // The inverse, for a paced replay: where on the recording's timeline a capture time falls.
+  CaptureTime recorded(CaptureTime capture) const {
+    const auto since = capture - capture_origin;
+    if (rate <= 0.0 || rate == 1.0) return recorded_origin + since;
+    return recorded_origin + Nanoseconds{static_cast<std::int64_t>(static_cast<double>(since.count()) * rate)};
+  }
   bool paced() const { return rate > 0.0; }
 };
 

@@ -64,23 +64,32 @@ class Channel {
  private:
   static constexpr std::size_t kBatch = 256;
   static constexpr Nanoseconds kReadTimeout{100'000'000};
+  static constexpr int kDrainReads = 1024;
 
   void run(const std::atomic<bool>& stop) {
     std::array<T, kBatch> batch{};
-    std::uint64_t bits = 0;
     while (!stop.load(std::memory_order_relaxed)) {
-      const std::size_t n = source_->read(batch, kReadTimeout);
-      for (std::size_t i = 0; i < n; ++i) {
-        to_writer_.try_push(batch[i]);
-        if (feed_estimator_) to_estimator_.try_push(batch[i]);
-        if constexpr (std::is_same_v<T, CanFrame>) bits += can_frame_bits(batch[i]);
-      }
-      bits_.store(bits, std::memory_order_relaxed);
-      publish();
+      pass_on(batch, source_->read(batch, kReadTimeout));
       if (source_->status().state == io::SourceState::ended) break;
+    }
+    // On the way out, what the device already holds (frames queued in the socket) is still taken.
+    for (int i = 0; i < kDrainReads && source_->status().state != io::SourceState::ended; ++i) {
+      const std::size_t n = source_->read(batch, Nanoseconds{0});
+      if (n == 0) break;
+      pass_on(batch, n);
     }
     publish();
     finished_.store(true, std::memory_order_release);
+  }
+
+  void pass_on(const std::array<T, kBatch>& batch, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      to_writer_.try_push(batch[i]);
+      if (feed_estimator_) to_estimator_.try_push(batch[i]);
+      if constexpr (std::is_same_v<T, CanFrame>) bits_seen_ += can_frame_bits(batch[i]);
+    }
+    bits_.store(bits_seen_, std::memory_order_relaxed);
+    publish();
   }
 
   void publish() {
@@ -96,6 +105,7 @@ class Channel {
   std::mutex mutex_;
   io::SourceStatus published_;
   std::atomic<std::uint64_t> bits_{0};
+  std::uint64_t bits_seen_ = 0;  // the source thread's own count
   std::atomic<bool> finished_{false};
   bool feed_estimator_ = true;
   std::thread thread_;

@@ -54,10 +54,12 @@ struct ReplayConfig {
   std::string recording;   // empty: devices
   double rate = 1.0;       // 0: as fast as read
   bool can = false;        // CAN from the recording too, instead of the buses (benches, no vcan)
+  std::string origin_file; // written by `roadload replay --origin`: the timeline of the CAN it plays
 };
 
 struct EstimatorConfig {
   std::string route;       // route file or built-in name; empty: no cells
+  std::string results_dir; // cells.csv and trip.json written here at exit; empty: none
 };
 
 struct DaemonConfig {

@@ -56,6 +56,10 @@ struct DaemonSetup {
   // Items are handed to the estimator once every source has moved past them or this long after
   // their capture time, so streams with different latencies merge in order.
   Nanoseconds merge_delay{200'000'000};
+  // A replay faster than real time: the estimator sees every stamp mapped back onto the
+  // recording's timeline, so the force balance keeps its real time steps. The recorder keeps the
+  // stamps as they came.
+  std::optional<io::ReplayTiming> timeline;
 };
 
 class Daemon {
@@ -74,6 +78,10 @@ class Daemon {
   void rotate_recording() { rotate_.store(true, std::memory_order_relaxed); }
   // The status now; rates are over the time since the previous call.
   StatusReport report();
+  // After stop(): DIR/cells.csv and DIR/trip.json from the live filter, in `roadload analyze`'s
+  // format (each cell's CRR is the filter's at the last usable tick in it). Nothing without an
+  // estimator.
+  std::optional<ParseError> write_results(const std::string& dir) const;
 
  private:
   void write_loop();

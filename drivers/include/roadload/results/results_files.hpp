@@ -1,0 +1,24 @@
+#pragma once
+// The results files of a drive, written by `roadload analyze` from the smoother and by roadloadd
+// from its live filter, so both read alike: RESULTS/cells.csv and RESULTS/trip.json.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadload/drive_analyzer.hpp"
+#include "roadload/parse_error.hpp"
+#include "roadload/vibration.hpp"
+
+namespace roadload::results {
+
+// One row per cell; per axle (named as the contact-force layout names them) the mean and standard
+// deviation of the contact force and the standard deviation of its dynamic part.
+// With `vibration`, each cell also gets its dynamic rolling resistance: damper_power_w and
+// tire_power_w (named as the simulator's truth), tire_eq27_power_w, and dynamic_energy_j,
+// dynamic_l, dynamic_l_per_100km of the dampers and tires together.
+std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells,
+                                          const std::vector<std::string>& axle_names, const VibrationAnalysis* vibration);
+// `extra`: further members of the top-level object, already formatted (may be empty).
+std::optional<ParseError> write_trip_json(const std::string& path, const TripResult& trip, const std::string& extra);
+
+}  // namespace roadload::results

@@ -1,0 +1,82 @@
+#include "roadload/results/results_files.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include "roadload/recording/writer.hpp"
+#include "roadload/spectra/dynamic_power.hpp"
+
+namespace roadload::results {
+namespace {
+
+constexpr std::size_t kUses = kFuelUseCount;
+
+FuelUse use(std::size_t i) { return static_cast<FuelUse>(i); }
+
+}  // namespace
+
+std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells,
+                                          const std::vector<std::string>& axle_names, const VibrationAnalysis* vibration) {
+  auto csv = recording::OutputFile::create(path);
+  if (!csv) return csv.error();
+  std::string header = "cell,start_m,end_m,samples,crr,crr_lo,crr_hi,crr_sigma,identified,speed_mps,roll_force_n,fuel_l";
+  for (std::size_t i = 0; i < kUses; ++i) header += std::string(",") + to_string(use(i)) + "_l";
+  for (const std::string& a : axle_names) header += ",fz_" + a + "_mean_n,fz_" + a + "_std_n,fz_" + a + "_dynamic_std_n";
+  if (vibration) header += ",damper_power_w,tire_power_w,tire_eq27_power_w,dynamic_energy_j,dynamic_l,dynamic_l_per_100km";
+  csv.value().write(header + ",reason\n");
+  recording::LineBuilder line;
+  const double nan = std::nan("");
+  for (std::size_t row = 0; row < cells.size(); ++row) {
+    const CellResult& c = cells[row];
+    line.clear();
+    line.text(c.id).sep().num(c.start_m, 1).sep().num(c.end_m, 1).sep().num(static_cast<std::int64_t>(c.samples)).sep();
+    const bool have = c.samples > 0;
+    line.num(have ? c.crr : nan, 6).sep().num(have ? c.crr_lo : nan, 6).sep().num(have ? c.crr_hi : nan, 6).sep();
+    line.num(have ? c.crr_sigma : nan, 6).sep().num(std::int64_t{c.identified ? 1 : 0}).sep();
+    line.num(have ? c.speed_mps : nan, 3).sep().num(have ? c.roll_force_n : nan, 1).sep();
+    const bool driven = c.fuel.distance_m > 0;
+    line.num(driven ? c.fuel.fuel_l : nan, 5).sep();
+    for (std::size_t i = 0; i < kUses; ++i) line.num(driven ? c.fuel.liters(use(i)) : nan, 5).sep();
+    for (std::size_t a = 0; a < axle_names.size(); ++a) {
+      const bool have_fz = a < c.contact.size() && c.contact[a].fz.count > 1;
+      line.num(have_fz ? c.contact[a].fz.mean_n : nan, 1).sep().num(have_fz ? c.contact[a].fz.std_n : nan, 1).sep();
+      line.num(have_fz ? c.contact[a].dynamic.std_n : nan, 1).sep();
+    }
+    if (vibration) {
+      const DynamicPower p = vibration->cell_power(row);
+      const bool measured = p.segments > 0;
+      const spectra::StretchCost cost = spectra::stretch_cost(p.total_w(), c.fuel.time_s, c.fuel.time_s > 0 ? c.fuel.distance_m / c.fuel.time_s : 0.0, kDieselEnergy_jpl);
+      line.num(measured ? p.damper_w : nan, 2).sep().num(measured ? p.tire_w : nan, 2).sep().num(measured ? p.tire_eq27_w : nan, 2).sep();
+      line.num(measured && driven ? cost.energy_j : nan, 1).sep().num(measured && driven ? cost.diesel_l : nan, 6).sep();
+      line.num(measured && driven ? cost.l_per_100km : nan, 4).sep();
+    }
+    line.text(c.reason);
+    csv.value().write(line.finish());
+  }
+  return csv.value().close();
+}
+
+std::optional<ParseError> write_trip_json(const std::string& path, const TripResult& trip, const std::string& extra) {
+  std::ofstream json(path);
+  json << "{\n  \"crr\": " << trip.crr << ",\n  \"crr_sigma\": " << trip.crr_sigma << ",\n  \"crr_identified\": "
+       << (trip.identified ? "true" : "false") << ",\n  \"cda_m2\": " << trip.cda_m2 << ",\n  \"ticks\": " << trip.ticks
+       << ",\n  \"usable_ticks\": " << trip.usable_ticks << ",\n  \"unusable\": {";
+  for (std::size_t i = 1; i < trip.unusable.size(); ++i) {
+    json << (i > 1 ? ", " : "") << "\"" << to_string(static_cast<Unusable>(i)) << "\": " << trip.unusable[i];
+  }
+  json << "},\n  \"gnss_used\": " << trip.gnss_used << ",\n  \"gnss_off_route\": " << trip.gnss_off_route
+       << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << trip.mean_nis << ",\n  \"mean_nis_95\": " << 1.96 * trip.mean_nis_se
+       << ",\n  \"torque_bias_sigma_nm\": " << trip.torque_bias_sigma_nm << ",\n  \"fuel\": {\n    \"measured_l\": "
+       << trip.fuel.fuel_l << ",\n    \"unsplit_l\": " << trip.fuel.unsplit_l << ",\n    \"diesel_energy_mj_per_l\": " << kDieselEnergy_jpl / 1e6
+       << ",\n    \"closure\": " << trip.fuel.closure() << ",\n    \"distance_m\": " << trip.fuel.distance_m
+       << ",\n    \"ticks_without_fuel_rate\": " << trip.no_fuel_rate;
+  for (std::size_t i = 0; i < kUses; ++i) json << ",\n    \"" << to_string(use(i)) << "_l\": " << trip.fuel.liters(use(i));
+  json << "\n  }";
+  if (!extra.empty()) json << ",\n" << extra;
+  json << "\n}\n";
+  json.close();
+  if (!json) return ParseError{path, 0, "file", "could not be written"};
+  return std::nullopt;
+}
+
+}  // namespace roadload::results

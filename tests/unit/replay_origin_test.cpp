@@ -1,0 +1,48 @@
+// The timeline `roadload replay --origin` hands to roadloadd: written and read back exactly, and a
+// capture time mapped back onto the recording's timeline where it came from.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "roadload/io/replay_origin.hpp"
+
+namespace roadload::io {
+namespace {
+
+std::string temp_path(const char* name) {
+  return (std::filesystem::temp_directory_path() / (std::string(name) + std::to_string(::getpid()) + ".toml")).string();
+}
+
+TEST(ReplayOrigin, WrittenAndReadBackExactly) {
+  const ReplayTiming t{capture_time_from_ns(1'413'817'200'123'456'789), capture_time_from_ns(987'654'321'012), 20};
+  const std::string path = temp_path("origin");
+  ASSERT_FALSE(write_replay_origin(path, t).has_value());
+  auto back = read_replay_origin(path);
+  ASSERT_TRUE(back.ok()) << back.error().to_string();
+  EXPECT_EQ(back.value().recorded_origin, t.recorded_origin);
+  EXPECT_EQ(back.value().capture_origin, t.capture_origin);
+  EXPECT_EQ(back.value().rate, 20);
+}
+
+TEST(ReplayOrigin, MalformedFileNamesTheKey) {
+  const std::string path = temp_path("origin-bad");
+  std::ofstream(path) << "recorded_origin_ns = 1.5\ncapture_origin_ns = 2\nrate = 1\n";
+  auto r = read_replay_origin(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().field, "recorded_origin_ns");
+  EXPECT_EQ(r.error().line, 1);
+}
+
+TEST(ReplayTiming, CaptureTimeMapsBackOntoTheRecording) {
+  const ReplayTiming t{capture_time_from_ns(5'000'000'000), capture_time_from_ns(77'000'000'000), 20};
+  for (std::int64_t ms : {0, 1, 250, 3'600'000}) {
+    const CaptureTime recorded = t.recorded_origin + Nanoseconds{ms * 1'000'000};
+    EXPECT_NEAR(static_cast<double>(to_ns(t.recorded(t.capture(recorded)))), static_cast<double>(to_ns(recorded)), 20.0) << ms;
+  }
+  EXPECT_EQ(to_ns(t.capture(t.recorded_origin + Nanoseconds{20'000'000'000})), 78'000'000'000);
+}
+
+}  // namespace
+}  // namespace roadload::io
