@@ -104,13 +104,41 @@ bool Daemon::replays_finished() {
   return replays > 0 && ended == replays;
 }
 
-bool Daemon::write_pending(std::size_t max_items) {
+// One file per stream holds several sources (buses, accelerometers), and a recording's streams
+// are in time order: the oldest head across the rings goes first, once nothing older can still
+// come (every live ring has an item) or it is older than the horizon.
+template <typename Channels, typename Fn>
+std::size_t merge(Channels& channels, CaptureTime horizon, std::size_t max, Fn&& fn) {
+  std::size_t n = 0;
+  while (n < max) {
+    std::size_t best = channels.size();
+    bool complete = true;
+    for (std::size_t i = 0; i < channels.size(); ++i) {
+      const auto* head = channels[i]->to_writer().peek();
+      if (head == nullptr) {
+        complete = complete && channels[i]->finished();
+        continue;
+      }
+      if (best == channels.size() || head->t < channels[best]->to_writer().peek()->t) best = i;
+    }
+    if (best == channels.size()) break;
+    auto& ring = channels[best]->to_writer();
+    if (!complete && ring.peek()->t > horizon) break;
+    typename std::remove_reference_t<decltype(ring)>::value_type item;
+    ring.try_pop(item);
+    fn(item);
+    ++n;
+  }
+  return n;
+}
+
+bool Daemon::write_pending(std::size_t max_items, CaptureTime horizon) {
   std::size_t n = 0;
   auto write = [this](const auto& item) {
     if (recorder_) recorder_->write(item);
   };
-  for (auto& c : sources_.can) n += drain(c->to_writer(), max_items, write);
-  for (auto& c : sources_.accel) n += drain(c->to_writer(), max_items, write);
+  n += merge(sources_.can, horizon, max_items, write);
+  n += merge(sources_.accel, horizon, max_items, write);
   if (sources_.gnss) n += drain(sources_.gnss->to_writer(), max_items, write);
   if (sources_.weather) n += drain(sources_.weather->to_writer(), max_items, write);
   return n > 0;
@@ -119,7 +147,7 @@ bool Daemon::write_pending(std::size_t max_items) {
 void Daemon::write_loop() {
   for (;;) {
     const bool stopping = stop_workers_.load();
-    const bool wrote = write_pending(kWriteBatch);
+    const bool wrote = write_pending(kWriteBatch, stopping ? CaptureTime::max() : clock_.now() - setup_.merge_delay);
     if (recorder_) {
       if (rotate_.exchange(false)) recorder_->end_segment();
       recorder_->tick(clock_.now());

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <thread>
@@ -29,16 +30,28 @@ struct SimulatedDrive {
   sim::test::MemorySink sink;
 };
 
-// Every stream of the drive gated at `gate_fraction` of its items (1: no gate).
-inline DaemonSources memory_sources(const SimulatedDrive& d, const std::atomic<bool>& gate, double gate_fraction) {
+// The drive runs this many times faster than real time: fast for a test, slow enough that the
+// writer and estimator keep up on a loaded CI machine without a ring filling.
+inline constexpr double kPace = 5;
+
+// Every stream of the drive gated at `gate_fraction` of its items (1: no gate); one accelerometer
+// source per sensor, as the daemon has one per part.
+inline Pace start_pace(const SimulatedDrive& d) { return {std::chrono::steady_clock::now(), d.sink.frames.front().t, kPace}; }
+
+inline DaemonSources memory_sources(const SimulatedDrive& d, const Pace& pace, const std::atomic<bool>& gate,
+                                    double gate_fraction) {
   auto at = [&](std::size_t n) { return static_cast<std::size_t>(static_cast<double>(n) * gate_fraction); };
-  const Pace pace{std::chrono::steady_clock::now(), d.sink.frames.front().t, 20};
   DaemonSources s;
   s.can.push_back(std::make_unique<CanChannel>(
       std::make_unique<MemorySource<CanFrame>>(d.sink.frames, gate, at(d.sink.frames.size()), "can0", pace), SourceKind::can, "can0"));
-  s.accel.push_back(std::make_unique<AccelChannel>(
-      std::make_unique<MemorySource<AccelSample>>(d.sink.accels, gate, at(d.sink.accels.size()), "accel", pace),
-      SourceKind::accelerometer, "accel"));
+  std::map<std::uint8_t, std::vector<AccelSample>> per_sensor;
+  for (const AccelSample& a : d.sink.accels) per_sensor[a.sensor].push_back(a);
+  for (auto& [id, samples] : per_sensor) {
+    const std::size_t gate_at = at(samples.size());
+    s.accel.push_back(std::make_unique<AccelChannel>(
+        std::make_unique<MemorySource<AccelSample>>(std::move(samples), gate, gate_at, "accel", pace), SourceKind::accelerometer,
+        "accel" + std::to_string(id)));
+  }
   s.gnss = std::make_unique<GnssChannel>(
       std::make_unique<MemorySource<GnssFix>>(d.sink.fixes, gate, at(d.sink.fixes.size()), "gnss", pace), SourceKind::gnss, "gnss");
   s.weather = std::make_unique<WeatherChannel>(

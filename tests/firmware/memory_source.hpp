@@ -61,15 +61,19 @@ class MemorySource final : public io::Source<T> {
   io::SourceStatus status_;
 };
 
-// The monotonic clock moved far ahead of every sample: the estimator takes whatever the rings
-// hold, and the recorder still sees its flush and fsync intervals go by.
-class FarFutureClock final : public io::WaitClock {
+// The drive's own time at the test's pace: the daemon's horizons and intervals pass as they would
+// on a truck, only faster.
+class PaceClock final : public io::WaitClock {
  public:
-  CaptureTime now() const override { return mono_.now() + Nanoseconds{std::int64_t{1} << 59}; }
-  void sleep_until(CaptureTime, Nanoseconds) override { std::this_thread::sleep_for(std::chrono::milliseconds(1)); }
+  explicit PaceClock(const Pace& pace) : pace_(pace) {}
+  CaptureTime now() const override { return pace_.now(); }
+  void sleep_until(CaptureTime t, Nanoseconds limit) override {
+    const auto wait = std::min(t - now(), limit);
+    if (wait.count() > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(static_cast<std::int64_t>(static_cast<double>(wait.count()) / pace_.speedup)));
+  }
 
  private:
-  io::MonotonicClock mono_;
+  Pace pace_;
 };
 
 }  // namespace roadload::firmware::test

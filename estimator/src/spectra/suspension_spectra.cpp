@@ -28,6 +28,10 @@ SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::siz
       delayed_(bin_count(transform_.config())),
       delayed_velocity_(bin_count(transform_.config())),
       response_(bin_count(transform_.config()), 1.0),
+      scratch_uu_(bin_count(transform_.config())),
+      scratch_ss_(bin_count(transform_.config())),
+      scratch_us_(bin_count(transform_.config())),
+      scratch_density_(bin_count(transform_.config())),
       schedule_(config.nperseg, config.nperseg - config.noverlap, config.lag_samples) {
   for (std::size_t k = 1; k < response_.size(); ++k)
     response_[k] = grid.velocity_response_ratio(static_cast<double>(k) * bin_hz(transform_.config()));
@@ -94,11 +98,11 @@ void SuspensionSpectra::delay(std::span<const std::complex<double>> in, double t
   for (std::size_t k = 0; k < in.size(); ++k) out[k] = in[k] * std::polar(1.0, step * static_cast<double>(k));
 }
 
-std::vector<double> SuspensionSpectra::density(const Sums& sums, std::size_t axle, AxleDensity which) const {
+void SuspensionSpectra::density(const Sums& sums, std::size_t axle, AxleDensity which, std::span<double> out) const {
   const bool velocity = which == AxleDensity::axle_velocity || which == AxleDensity::relative_velocity;
   const Pair& p = velocity ? sums.velocity : sums.accel;
   const std::size_t bins = p.uu.bins();
-  std::vector<std::complex<double>> uu(bins), ss(bins), us(bins);
+  std::span<std::complex<double>> uu(scratch_uu_.data(), bins), ss(scratch_ss_.data(), bins), us(scratch_us_.data(), bins);
   const double scale = transform_.density_scale();
   p.uu.density(scale, uu);
   p.ss.density(scale, ss);
@@ -107,7 +111,6 @@ std::vector<double> SuspensionSpectra::density(const Sums& sums, std::size_t axl
   // The trapezoid's zero at Nyquist: above ~0.37 fs (75 Hz on the 200 Hz grid) its response falls
   // below 0.2 and dividing it out would lift noise; the anti-alias filter has taken those bins down.
   const auto usable = [&](std::size_t k) { return k > 0 && response_[k] >= 0.2; };
-  std::vector<double> out(bins);
   for (std::size_t k = 0; k < bins; ++k) {
     const double rel = uu[k].real() + ss[k].real() - 2.0 * us[k].real();
     switch (which) {
@@ -119,7 +122,6 @@ std::vector<double> SuspensionSpectra::density(const Sums& sums, std::size_t axl
       case AxleDensity::relative_velocity: out[k] = usable(k) ? rel / response_[k] : 0.0; break;
     }
   }
-  return out;
 }
 
 AxlePower SuspensionSpectra::power(const Sums& s, std::size_t axle) const {
@@ -128,16 +130,22 @@ AxlePower SuspensionSpectra::power(const Sums& s, std::size_t axle) const {
   if (p.segments <= 0) return p;
   const SuspensionAxle& a = axles_[axle];
   const double df = bin_hz(transform_.config());
-  p.damper_w = dashpot_velocity_power_w(a.damper_nspm, density(s, axle, AxleDensity::relative_velocity), df, config_.band);
-  p.damper_accel_w = dashpot_power_w(a.damper_nspm, density(s, axle, AxleDensity::relative), df, config_.band);
-  p.tire_eq27_w = dashpot_velocity_power_w(a.tire_damping_nspm, density(s, axle, AxleDensity::axle_velocity), df, config_.band);
-  p.tire_deflection_w = tire_deflection_power_w(a.tire_damping_nspm, a.tire_stiffness_npm,
-                                                density(s, axle, AxleDensity::force), df, config_.band);
+  const std::span<double> d(scratch_density_);
+  density(s, axle, AxleDensity::relative_velocity, d);
+  p.damper_w = dashpot_velocity_power_w(a.damper_nspm, d, df, config_.band);
+  density(s, axle, AxleDensity::relative, d);
+  p.damper_accel_w = dashpot_power_w(a.damper_nspm, d, df, config_.band);
+  density(s, axle, AxleDensity::axle_velocity, d);
+  p.tire_eq27_w = dashpot_velocity_power_w(a.tire_damping_nspm, d, df, config_.band);
+  density(s, axle, AxleDensity::force, d);
+  p.tire_deflection_w = tire_deflection_power_w(a.tire_damping_nspm, a.tire_stiffness_npm, d, df, config_.band);
   return p;
 }
 
 std::vector<double> SuspensionSpectra::trip_density(std::size_t axle, AxleDensity which) const {
-  return density(trip_[axle], axle, which);
+  std::vector<double> out(trip_[axle].accel.uu.bins());
+  density(trip_[axle], axle, which, out);
+  return out;
 }
 
 }  // namespace roadload::spectra

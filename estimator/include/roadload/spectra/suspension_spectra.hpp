@@ -98,7 +98,9 @@ class SuspensionSpectra {
     explicit Sums(std::size_t bins) : accel(bins), velocity(bins) {}
     Pair accel, velocity;
   };
-  std::vector<double> density(const Sums& s, std::size_t axle, AxleDensity which) const;
+  // Into `out` (one value per bin) through the scratch spectra below: no heap, so a live status
+  // can ask for the window's power.
+  void density(const Sums& s, std::size_t axle, AxleDensity which, std::span<double> out) const;
   AxlePower power(const Sums& s, std::size_t axle) const;
   void take(const SensorGrid& grid, const PlacementHistory& history, std::int64_t end);
   void delay(std::span<const std::complex<double>> in, double tau_s, std::span<std::complex<double>> out) const;
@@ -113,6 +115,9 @@ class SuspensionSpectra {
   std::vector<bool> slot_ok_;
   std::vector<std::complex<double>> delayed_, delayed_velocity_;
   std::vector<double> response_;  // the grid integrator's power response per bin
+  // Scratch of density() and power(), sized at construction; one thread uses an instance.
+  mutable std::vector<std::complex<double>> scratch_uu_, scratch_ss_, scratch_us_;
+  mutable std::vector<double> scratch_density_;
   SegmentSchedule schedule_;
   SuspensionCounters counters_;
 };

@@ -53,8 +53,9 @@ struct DaemonSetup {
   std::vector<VibrationSensor> accelerometers;
   std::vector<int> cell_group;  // per cell, for spectra per pavement
   std::size_t group_count = 0;
-  // Items are handed to the estimator once every source has moved past them or this long after
-  // their capture time, so streams with different latencies merge in order.
+  // Items are handed to the estimator, and written to a stream's file shared by several sources,
+  // once every source has moved past them or this long after their capture time, so streams with
+  // different latencies merge in order.
   Nanoseconds merge_delay{200'000'000};
   // A replay faster than real time: the estimator sees every stamp mapped back onto the
   // recording's timeline, so the force balance keeps its real time steps. The recorder keeps the
@@ -86,7 +87,7 @@ class Daemon {
  private:
   void write_loop();
   void estimate_loop();
-  bool write_pending(std::size_t max_items);
+  bool write_pending(std::size_t max_items, CaptureTime horizon);
   bool estimate_next(CaptureTime horizon);
 
   DaemonSetup setup_;
