@@ -5,6 +5,7 @@
 // published under a mutex a few times a second for the status thread; the data path takes no lock.
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -31,6 +32,7 @@ class Channel {
   // Without an estimator its ring stays empty rather than filling up and counting drops.
   void start(const std::atomic<bool>& stop, bool feed_estimator) {
     feed_estimator_ = feed_estimator;
+    replay_ = is_replay();
     thread_ = std::thread([this, &stop] { run(stop); });
   }
   void join() {
@@ -69,23 +71,38 @@ class Channel {
   void run(const std::atomic<bool>& stop) {
     std::array<T, kBatch> batch{};
     while (!stop.load(std::memory_order_relaxed)) {
-      pass_on(batch, source_->read(batch, kReadTimeout));
+      pass_on(batch, source_->read(batch, kReadTimeout), stop);
       if (source_->status().state == io::SourceState::ended) break;
     }
     // On the way out, what the device already holds (frames queued in the socket) is still taken.
     for (int i = 0; i < kDrainReads && source_->status().state != io::SourceState::ended; ++i) {
       const std::size_t n = source_->read(batch, Nanoseconds{0});
       if (n == 0) break;
-      pass_on(batch, n);
+      pass_on(batch, n, stop);
     }
     publish();
     finished_.store(true, std::memory_order_release);
   }
 
-  void pass_on(const std::array<T, kBatch>& batch, std::size_t n) {
+  // A device cannot wait, so a full ring drops and counts; a replay can, so it waits for room.
+  void push(SpscRing<T, RingCapacity>& ring, const T& item, const std::atomic<bool>& stop) {
+    if (!replay_) {
+      ring.try_push(item);
+      return;
+    }
+    while (!ring.try_push(item, false)) {
+      if (stop.load(std::memory_order_relaxed)) {
+        ring.try_push(item);
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
+
+  void pass_on(const std::array<T, kBatch>& batch, std::size_t n, const std::atomic<bool>& stop) {
     for (std::size_t i = 0; i < n; ++i) {
-      to_writer_.try_push(batch[i]);
-      if (feed_estimator_) to_estimator_.try_push(batch[i]);
+      push(to_writer_, batch[i], stop);
+      if (feed_estimator_) push(to_estimator_, batch[i], stop);
       if constexpr (std::is_same_v<T, CanFrame>) bits_seen_ += can_frame_bits(batch[i]);
     }
     bits_.store(bits_seen_, std::memory_order_relaxed);
@@ -108,6 +125,7 @@ class Channel {
   std::uint64_t bits_seen_ = 0;  // the source thread's own count
   std::atomic<bool> finished_{false};
   bool feed_estimator_ = true;
+  bool replay_ = false;
   std::thread thread_;
 };
 

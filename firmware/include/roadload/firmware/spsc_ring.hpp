@@ -21,13 +21,13 @@ class SpscRing {
   using value_type = T;
   static constexpr std::size_t capacity() { return Capacity; }
 
-  // Producer side.
-  bool try_push(const T& item) {
+  // Producer side. A refused item is counted as dropped unless the producer means to retry it.
+  bool try_push(const T& item, bool count_drop = true) {
     const std::uint64_t head = head_.load(std::memory_order_relaxed);
     if (head - tail_seen_ == Capacity) {
       tail_seen_ = tail_.load(std::memory_order_acquire);
       if (head - tail_seen_ == Capacity) {
-        dropped_.fetch_add(1, std::memory_order_relaxed);
+        if (count_drop) dropped_.fetch_add(1, std::memory_order_relaxed);
         return false;
       }
     }
