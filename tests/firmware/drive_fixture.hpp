@@ -77,6 +77,9 @@ inline DaemonSetup daemon_setup(const SimulatedDrive& d, const std::string& data
   const PavementGroups groups = sim::test::pavement_groups(d.scenario);
   setup.cell_group = groups.cell_group;
   setup.group_count = groups.names.size();
+  // At 5x, the daemon's 200 ms would be 40 ms of wall time: less than a loaded CI machine may
+  // starve a source thread, and a sample that late would be written out of order.
+  setup.merge_delay = Nanoseconds{2'000'000'000};
   return setup;
 }
 
