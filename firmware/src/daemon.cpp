@@ -3,7 +3,6 @@
 #include <time.h>
 
 #include <filesystem>
-#include <limits>
 
 #include "roadload/results/results_files.hpp"
 
