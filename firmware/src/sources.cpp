@@ -45,12 +45,13 @@ void add_replay(const std::string& folder, const io::ReplayTiming& timing, io::W
                                      SourceKind kind, const char* name, std::unique_ptr<ChannelT>& out,
                                      std::vector<std::string>& notes) {
   auto src = io::ReplaySource<Sample>::open(folder, timing, clock, name);
+  std::string note = name;
   if (!src) {
-    notes.push_back(std::string(name) + ": none in " + folder + ", skipped");
+    notes.push_back(note.append(": none in ").append(folder).append(", skipped"));
     return;
   }
   out = std::make_unique<ChannelT>(std::move(src.value()), kind, name);
-  notes.push_back(std::string(name) + ": replayed from " + folder);
+  notes.push_back(note.append(": replayed from ").append(folder));
 }
 
 }  // namespace

@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
     return 64;
   }
   j1939::Database db;
-  if (auto err = load_dbc_file(db, std::string(ROADLOAD_CONFIG_DIR) + "/j1939-core.dbc")) {
+  if (auto err = load_dbc_file(db, std::string(ROADLOAD_CONFIG_DIR "/j1939-core.dbc"))) {
     std::fprintf(stderr, "bench_accuracy: %s\n", err->to_string().c_str());
     return 66;
   }

@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   }
   sc.value().duration_s = duration_s;
   roadload::j1939::Database db;
-  if (auto e = roadload::load_dbc_file(db, std::string(ROADLOAD_CONFIG_DIR) + "/j1939-core.dbc")) return 1;
+  if (auto e = roadload::load_dbc_file(db, std::string(ROADLOAD_CONFIG_DIR "/j1939-core.dbc"))) return 1;
 
   const std::string folder = (std::filesystem::temp_directory_path() / "roadload-bench-simulate").string();
   std::filesystem::remove_all(folder);

@@ -64,8 +64,8 @@ TEST(Iso8608, RandomProfileHasTheClassPsd) {
     const ProfileSegment seg{0.0, 20000.0, gd, {}};
     const auto p = RoadProfile::generate({&seg, 1}, 0.0, 20000.0, static_cast<std::uint64_t>(cls));
     const auto fit = fit_loglog(test::welch(p.raw_samples(), 1.0 / p.dx_m(), 4096), 0.05, 1.0);
-    RecordProperty(std::string("class_") + cls + "_level_ratio", std::to_string(fit.level_at_n0 / gd));
-    RecordProperty(std::string("class_") + cls + "_slope", std::to_string(fit.slope));
+    RecordProperty(std::string("class_X_level_ratio").replace(6, 1, 1, cls), std::to_string(fit.level_at_n0 / gd));
+    RecordProperty(std::string("class_X_slope").replace(6, 1, 1, cls), std::to_string(fit.slope));
     EXPECT_NEAR(fit.level_at_n0 / gd, 1.0, 0.10) << cls;
     EXPECT_NEAR(fit.slope, -2.0, 0.1) << cls;
   }

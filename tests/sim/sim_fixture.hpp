@@ -21,7 +21,7 @@ inline Scenario builtin(const std::string& name) {
 
 inline j1939::Database core_database() {
   j1939::Database db;
-  const auto err = load_dbc_file(db, std::string(ROADLOAD_CONFIG_DIR) + "/j1939-core.dbc");
+  const auto err = load_dbc_file(db, std::string(ROADLOAD_CONFIG_DIR "/j1939-core.dbc"));
   EXPECT_FALSE(err.has_value());
   return db;
 }

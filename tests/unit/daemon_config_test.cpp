@@ -23,7 +23,7 @@ std::string write_temp(const std::string& text) {
 }
 
 TEST(DaemonConfig, ShippedFileStatesTheBuiltInDefaults) {
-  auto c = load_config(std::string(ROADLOAD_CONFIG_DIR) + "/roadloadd.toml");
+  auto c = load_config(std::string(ROADLOAD_CONFIG_DIR "/roadloadd.toml"));
   ASSERT_TRUE(c.ok()) << c.error().to_string();
   EXPECT_EQ(body(c.value()), body(DaemonConfig{}));
 }

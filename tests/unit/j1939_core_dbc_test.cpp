@@ -28,7 +28,7 @@ using roadload::j1939::SignalState;
 
 constexpr double kExact = 1e-9;  // for factors such as 0.05 or 0.4 that binary floating point rounds
 
-const std::string kCorePath = std::string(ROADLOAD_CONFIG_DIR) + "/j1939-core.dbc";
+const std::string kCorePath = std::string(ROADLOAD_CONFIG_DIR "/j1939-core.dbc");
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -23,7 +23,7 @@ class KernelJ1939Capture : public testing::TestWithParam<KernelCase> {};
 
 TEST_P(KernelJ1939Capture, ReassemblesByteExact) {
   const KernelCase& c = GetParam();
-  const std::string base = std::string(ROADLOAD_TEST_DATA) + "/j1939-kernel/" + c.name;
+  const std::string base = std::string(ROADLOAD_TEST_DATA "/j1939-kernel/") + c.name;
   std::ifstream bin(base + ".bin", std::ios::binary);
   const std::vector<std::uint8_t> expected((std::istreambuf_iterator<char>(bin)), std::istreambuf_iterator<char>());
   ASSERT_FALSE(expected.empty()) << base << ".bin";
