@@ -19,6 +19,7 @@ int run_analyze(Args args);
 int run_grade(Args args);
 int run_psd(Args args);
 int run_replay(Args args);
+int run_report(Args args);
 
 // Exit codes, as sysexits.h names them.
 inline constexpr int kExitOk = 0;
@@ -26,5 +27,6 @@ inline constexpr int kExitDataErr = 65;  // input was read but some of it was ma
 inline constexpr int kExitUsage = 64;
 inline constexpr int kExitNoInput = 66;
 inline constexpr int kExitCantCreate = 73;  // an output file could not be written
+inline constexpr int kExitNoPerm = 77;      // an operation needed a privilege the process lacks
 
 }  // namespace roadload::cli

@@ -17,6 +17,7 @@ constexpr Command kCommands[] = {
      roadload::cli::run_psd},
     {"replay", "play a recording's CAN frames onto a (virtual) CAN interface, in real time or faster",
      roadload::cli::run_replay},
+    {"report", "draw a drive's results as one self-contained HTML page (figures and tables)", roadload::cli::run_report},
     {"simulate", "drive the simulated truck over a simulated road; write a recording and its ground truth",
      roadload::cli::run_simulate},
 };

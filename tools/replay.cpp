@@ -3,7 +3,10 @@
 // roadloadd hears the drive as a truck would send it.
 #include <time.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,7 +14,10 @@
 #include "options.hpp"
 #include "roadload/can/socketcan_sender.hpp"
 #include "roadload/io/replay_origin.hpp"
+#include "replay_injector.hpp"
+#include "roadload/recording/candump.hpp"
 #include "roadload/recording/reader.hpp"
+#include "roadload/recording/writer.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -24,8 +30,26 @@ constexpr const char* kHelp =
     "  --rate R        1 real time (default), N times faster, or max (as fast as the interface takes)\n"
     "  --origin FILE   write FILE as the first frame goes out (its recorded and capture time, the rate):\n"
     "                  roadloadd --replay REC --replay-origin FILE plays the sensor streams in step\n"
+    "  --faults SPEC   inject faults on the way, comma-separated; T and D in seconds since the first frame:\n"
+    "                  drop=P dup=P seed=N  lose or repeat each frame with probability P\n"
+    "                  error@T              a CAN error frame\n"
+    "                  busoff@T+D           bus-off: error frame, D s of silence, restarted frame\n"
+    "                  tp-truncate@T        the next transport session loses its last packet\n"
+    "                  gnss-outage@T+D      no GNSS fix for D s        (in roadloadd, through --origin)\n"
+    "                  accel-overflow@T     an accelerometer FIFO overflow (in roadloadd, through --origin)\n"
+    "                  clock-step@T=S       step the wall clock by S s (needs CAP_SYS_TIME)\n"
+    "  --sent FILE     write what went onto the bus, faults included, as a candump -L log\n"
     "  -q, --quiet     no progress on standard error\n"
     "  -h, --help      this text\n";
+
+// Steps CLOCK_REALTIME as an NTP daemon stepping a gateway's clock would.
+bool step_wall_clock(Nanoseconds by) {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  const std::int64_t ns = static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec + by.count();
+  ts = {static_cast<time_t>(ns / 1'000'000'000), static_cast<long>(ns % 1'000'000'000)};
+  return clock_settime(CLOCK_REALTIME, &ts) == 0;
+}
 
 std::int64_t mono_ns() {
   timespec ts{};
@@ -42,7 +66,8 @@ void sleep_until_ns(std::int64_t t) {
 
 int run_replay(Args args) {
   OptionParser p("replay", args);
-  std::string input, iface = "vcan0", origin;
+  std::string input, iface = "vcan0", origin, sent_log;
+  io::ReplayFaults faults;
   double rate = 1.0;  // 0: max
   bool quiet = false;
   while (p.more()) {
@@ -56,6 +81,12 @@ int run_replay(Args args) {
       iface = *v;
     } else if (auto o = p.value("--origin")) {
       origin = *o;
+    } else if (auto f = p.value("--faults")) {
+      auto parsed = io::parse_replay_faults(*f);
+      if (!parsed) return p.fail(parsed.error().to_string());
+      faults = std::move(parsed.value());
+    } else if (auto sl = p.value("--sent")) {
+      sent_log = *sl;
     } else if (auto r = p.value("--rate")) {
       if (*r == "max") {
         rate = 0;
@@ -87,12 +118,28 @@ int run_replay(Args args) {
     std::fprintf(stderr, "roadload replay: %s\n", sender.error().to_string().c_str());
     return kExitCantCreate;
   }
-  std::vector<CanFrame> batch;
+  std::optional<recording::OutputFile> sent_file;
+  if (!sent_log.empty()) {
+    auto f = recording::OutputFile::create(sent_log);
+    if (!f) {
+      std::fprintf(stderr, "roadload replay: %s\n", f.error().to_string().c_str());
+      return kExitCantCreate;
+    }
+    sent_file.emplace(std::move(f.value()));
+  }
+  std::vector<CanFrame> batch, out;
   batch.reserve(can::SocketCanSender::kBatch);
   const std::int64_t start_ns = mono_ns();
   std::int64_t first_ns = -1, next_progress_ns = start_ns + 1'000'000'000;
+  std::optional<FaultInjector> injector;
+  char line[recording::kMaxLineChars + 1];
   auto flush = [&]() {
     const bool ok = sender.value()->send(batch);
+    for (std::size_t i = 0; sent_file && i < batch.size(); ++i) {
+      const std::size_t n = recording::format_candump_line(batch[i], iface, line);
+      line[n] = '\n';
+      sent_file->write(std::string_view(line, n + 1));
+    }
     batch.clear();
     return ok;
   };
@@ -101,9 +148,10 @@ int run_replay(Args args) {
     if (f == nullptr) continue;
     if (first_ns < 0) {
       first_ns = to_ns(f->t);
+      injector.emplace(faults, f->t);
       if (!origin.empty()) {
         const io::ReplayTiming timing{f->t, capture_time_from_ns(start_ns), rate};
-        if (auto e = io::write_replay_origin(origin, timing)) {
+        if (auto e = io::write_replay_origin(origin, {timing, faults})) {
           std::fprintf(stderr, "roadload replay: %s\n", e->to_string().c_str());
           return kExitCantCreate;
         }
@@ -116,8 +164,20 @@ int run_replay(Args args) {
         sleep_until_ns(due);
       }
     }
-    batch.push_back(*f);
-    if (batch.size() == can::SocketCanSender::kBatch && !flush()) break;
+    if (const auto step = injector->clock_step_due(f->t)) {
+      if (!batch.empty() && !flush()) break;
+      if (!step_wall_clock(*step)) {
+        std::fprintf(stderr, "roadload replay: clock-step: %s (stepping the wall clock needs CAP_SYS_TIME)\n", std::strerror(errno));
+        return kExitNoPerm;
+      }
+    }
+    out.clear();
+    injector->process(*f, out);
+    for (const CanFrame& o : out) {
+      batch.push_back(o);
+      if (batch.size() == can::SocketCanSender::kBatch && !flush()) break;
+    }
+    if (!sender.value()->error().empty()) break;
     if (!quiet && mono_ns() >= next_progress_ns) {
       std::fprintf(stderr, "replay: %llu frames sent\n", static_cast<unsigned long long>(sender.value()->sent()));
       next_progress_ns += 1'000'000'000;
@@ -132,6 +192,19 @@ int run_replay(Args args) {
                  wall_s > 0 ? static_cast<double>(sent) / wall_s : 0.0,
                  static_cast<unsigned long long>(sender.value()->waits()),
                  sender.value()->error().empty() ? "" : "; stopped: ", sender.value()->error().c_str());
+  }
+  if (injector && !faults.empty()) {
+    const InjectedCounts& c = injector->counts();
+    std::fprintf(stderr, "replay: faults: %llu dropped, %llu duplicated, %llu error frames, %llu silenced by bus-off, %llu transport packets withheld\n",
+                 static_cast<unsigned long long>(c.dropped), static_cast<unsigned long long>(c.duplicated),
+                 static_cast<unsigned long long>(c.error_frames), static_cast<unsigned long long>(c.silenced),
+                 static_cast<unsigned long long>(c.truncated));
+  }
+  if (sent_file) {
+    if (auto e = sent_file->close()) {
+      std::fprintf(stderr, "roadload replay: %s\n", e->to_string().c_str());
+      return kExitCantCreate;
+    }
   }
   if (!sender.value()->error().empty()) return kExitCantCreate;
   if (reader.value().errors().count() > 0) {

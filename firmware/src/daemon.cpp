@@ -3,6 +3,7 @@
 #include <time.h>
 
 #include <filesystem>
+#include <type_traits>
 
 #include "roadload/results/results_files.hpp"
 
@@ -183,6 +184,7 @@ bool Daemon::estimate_next(CaptureTime horizon) {
     typename std::remove_reference_t<decltype(ring)>::value_type item;
     if (!ring.try_pop(item)) return;
     if (setup_.timeline) item.t = setup_.timeline->recorded(item.t);
+    if constexpr (std::is_same_v<decltype(item), CanFrame>) cadence_.push(item);
     analyzer_->push(item);
   };
   switch (kind) {
@@ -215,6 +217,10 @@ void Daemon::estimate_loop() {
       std::lock_guard lock(mutex_);
       estimate_ = analyzer_->live();
       if (window_w > -2) dynamic_power_w_ = window_w;
+      const j1939::TpCounters& tp = analyzer_->transport();
+      j1939_.cadence = cadence_.counters();
+      j1939_.tp_completed = tp.completed;
+      j1939_.tp_incomplete = tp.timed_out + tp.superseded + tp.aborted;
     }
     if (stopping && n == 0) break;
     if (n == 0) clock_.sleep_until(clock_.now() + kIdleSleep, kIdleSleep);
@@ -233,7 +239,12 @@ StatusReport Daemon::report() {
     r.recording = recorder_status_;
     r.estimate = estimate_;
     r.dynamic_power_w = dynamic_power_w_;
+    r.j1939 = j1939_;
   }
+  r.j1939.gaps_recent = r.j1939.cadence.gaps - last_j1939_.cadence.gaps;
+  r.j1939.repeats_recent = r.j1939.cadence.repeats - last_j1939_.cadence.repeats;
+  r.j1939.tp_incomplete_recent = r.j1939.tp_incomplete - last_j1939_.tp_incomplete;
+  last_j1939_ = r.j1939;
   r.recording_enabled = recorder_.has_value();
   if (r.estimate.cell >= 0 && static_cast<std::size_t>(r.estimate.cell) < setup_.cells.size()) {
     r.cell = setup_.cells[static_cast<std::size_t>(r.estimate.cell)].id;
@@ -249,6 +260,7 @@ StatusReport Daemon::report() {
   const std::size_t n = r.sources.size();
   last_items_.resize(n, 0);
   last_dropped_.resize(n, 0);
+  last_errors_.resize(n, 0);
   last_bits_.resize(bits.size(), 0);
   for (std::size_t i = 0; i < n; ++i) {
     SourceReport& s = r.sources[i];
@@ -257,6 +269,8 @@ StatusReport Daemon::report() {
     s.dropped_recent = dropped - last_dropped_[i];
     last_items_[i] = s.status.items;
     last_dropped_[i] = dropped;
+    s.errors_recent = s.status.errors - last_errors_[i];
+    last_errors_[i] = s.status.errors;
     r.sync.clock_steps += s.status.clock_steps;
     r.sync.unplaced_stamps += s.status.userspace_stamps;
     if (i < bits.size()) {

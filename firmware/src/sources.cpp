@@ -15,7 +15,7 @@ namespace {
 constexpr int kOriginWaitS = 60;
 
 // The timeline `roadload replay --origin` writes as it starts sending; waited for.
-Parsed<io::ReplayTiming> wait_for_origin(const std::string& path, io::WaitClock& clock) {
+Parsed<io::ReplayOrigin> wait_for_origin(const std::string& path, io::WaitClock& clock) {
   for (int i = 0; i < kOriginWaitS * 100 && !std::filesystem::exists(path); ++i) {
     clock.sleep_until(clock.now() + Nanoseconds{10'000'000}, Nanoseconds{10'000'000});
   }
@@ -26,25 +26,24 @@ Parsed<io::ReplayTiming> wait_for_origin(const std::string& path, io::WaitClock&
 }
 
 // Without an origin file the recording's first stamp maps to now: the replay starts as the daemon does.
-Parsed<io::ReplayTiming> replay_timing(const ReplayConfig& r, io::WaitClock& clock, recording::Metadata& meta) {
+Parsed<io::ReplayOrigin> replay_origin(const ReplayConfig& r, io::WaitClock& clock, recording::Metadata& meta) {
   auto reader = recording::RecordingReader::open(r.recording);
   if (!reader) return reader.error();
   meta = reader.value().metadata();
   if (!r.origin_file.empty()) return wait_for_origin(r.origin_file, clock);
   const recording::Record* first = reader.value().next();
   if (first == nullptr) return ParseError{r.recording, 0, "", "the recording holds no samples"};
-  io::ReplayTiming t;
-  t.recorded_origin = std::visit([](const auto& s) { return s.t; }, *first);
-  t.capture_origin = clock.now();
-  t.rate = r.rate;
-  return t;
+  io::ReplayOrigin o;
+  o.timing.recorded_origin = std::visit([](const auto& s) { return s.t; }, *first);
+  o.timing.capture_origin = clock.now();
+  o.timing.rate = r.rate;
+  return o;
 }
 
 template <typename Sample, typename ChannelT>
-void add_replay(const std::string& folder, const io::ReplayTiming& timing, io::WaitClock& clock,
-                                     SourceKind kind, const char* name, std::unique_ptr<ChannelT>& out,
-                                     std::vector<std::string>& notes) {
-  auto src = io::ReplaySource<Sample>::open(folder, timing, clock, name);
+void add_replay(const std::string& folder, const io::ReplayOrigin& origin, io::WaitClock& clock, SourceKind kind,
+                const char* name, std::unique_ptr<ChannelT>& out, std::vector<std::string>& notes) {
+  auto src = io::ReplaySource<Sample>::open(folder, origin.timing, clock, name, origin.faults);
   std::string note = name;
   if (!src) {
     notes.push_back(note.append(": none in ").append(folder).append(", skipped"));
@@ -74,23 +73,23 @@ Parsed<BuiltSources> build_sources(const DaemonConfig& c, io::WaitClock& clock, 
   if (c.can.empty() && !can_replayed) notes.push_back("can: no bus configured, skipped");
 
   if (!c.replay.recording.empty()) {
-    auto timing = replay_timing(c.replay, clock, b.replayed);
-    if (!timing) return timing.error();
+    auto origin = replay_origin(c.replay, clock, b.replayed);
+    if (!origin) return origin.error();
     b.replaying = true;
-    b.timing = timing.value();
+    b.timing = origin.value().timing;
     if (can_replayed) {
       std::unique_ptr<CanChannel> can;
-      add_replay<CanFrame>(c.replay.recording, timing.value(), clock, SourceKind::can, "can", can, notes);
+      add_replay<CanFrame>(c.replay.recording, origin.value(), clock, SourceKind::can, "can", can, notes);
       if (can) b.sources.can.push_back(std::move(can));
       b.interfaces = b.replayed.can_interfaces;
       if (b.interfaces.empty()) b.interfaces.push_back("can0");
       b.buses.push_back({});
     }
     std::unique_ptr<AccelChannel> accel;
-    add_replay<AccelSample>(c.replay.recording, timing.value(), clock, SourceKind::accelerometer, "accel", accel, notes);
+    add_replay<AccelSample>(c.replay.recording, origin.value(), clock, SourceKind::accelerometer, "accel", accel, notes);
     if (accel) b.sources.accel.push_back(std::move(accel));
-    add_replay<GnssFix>(c.replay.recording, timing.value(), clock, SourceKind::gnss, "gnss", b.sources.gnss, notes);
-    add_replay<WeatherSample>(c.replay.recording, timing.value(), clock, SourceKind::weather, "weather",
+    add_replay<GnssFix>(c.replay.recording, origin.value(), clock, SourceKind::gnss, "gnss", b.sources.gnss, notes);
+    add_replay<WeatherSample>(c.replay.recording, origin.value(), clock, SourceKind::weather, "weather",
                               b.sources.weather, notes);
     return b;
   }

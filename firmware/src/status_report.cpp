@@ -58,8 +58,14 @@ std::vector<std::string> warnings_for(const StatusReport& r) {
   if (r.recording_enabled && r.recording.error != 0) w.push_back("recording: " + r.recording.error_text);
   for (const SourceReport& s : r.sources) {
     if (s.status.state == io::SourceState::down) w.push_back(s.name + " down: " + s.status.detail);
+    if (s.status.state == io::SourceState::waiting && s.status.items > 0) w.push_back(s.name + " waiting: " + s.status.detail);
     if (s.dropped_recent > 0) w.push_back(s.name + " dropped " + std::to_string(s.dropped_recent));
+    if (s.errors_recent > 0) w.push_back(s.name + " " + std::to_string(s.errors_recent) + " errors (" + s.status.detail + ")");
   }
+  const J1939Report& j = r.j1939;
+  if (j.gaps_recent > 0) w.push_back("j1939: " + std::to_string(j.gaps_recent) + " gaps in periodic messages (frames lost before the gateway)");
+  if (j.repeats_recent > 0) w.push_back("j1939: " + std::to_string(j.repeats_recent) + " frames repeated");
+  if (j.tp_incomplete_recent > 0) w.push_back("j1939: " + std::to_string(j.tp_incomplete_recent) + " transport sessions incomplete");
   if (r.sync.clock_steps > 0) w.push_back("wall clock stepped " + std::to_string(r.sync.clock_steps) + "x (data unaffected)");
   if (r.estimate.started && !r.estimate.identified) w.push_back("CRR not identified yet");
   return w;
@@ -85,6 +91,11 @@ std::string format_text(const StatusReport& r) {
     line += " | rec " + (r.recording.segment.empty() ? std::string("none") : r.recording.segment) + " " +
             fmt("%.1f", static_cast<double>(r.recording.bytes_in_dir) / (1 << 20)) + " MiB lost " +
             std::to_string(r.recording.lines_lost);
+  }
+  const J1939Report& j = r.j1939;
+  if (j.cadence.gaps + j.cadence.repeats + j.tp_incomplete > 0) {
+    line += " | j1939 gaps " + std::to_string(j.cadence.gaps) + " repeats " + std::to_string(j.cadence.repeats) +
+            " tp-incomplete " + std::to_string(j.tp_incomplete);
   }
   line += r.sync.clock_steps == 0 && r.sync.unplaced_stamps == 0 ? " | sync ok" : " | sync degraded";
   for (const std::string& w : r.warnings) line += " | WARN " + w;
@@ -121,6 +132,9 @@ std::string format_json(const StatusReport& r) {
   }
   j += ",\"sync\":{\"clock_steps\":" + std::to_string(r.sync.clock_steps) +
        ",\"unplaced_stamps\":" + std::to_string(r.sync.unplaced_stamps) + "}";
+  j += ",\"j1939\":{\"gaps\":" + std::to_string(r.j1939.cadence.gaps) + ",\"repeats\":" + std::to_string(r.j1939.cadence.repeats) +
+       ",\"untracked\":" + std::to_string(r.j1939.cadence.untracked) + ",\"too_fast\":" + std::to_string(r.j1939.cadence.too_fast) + ",\"tp_completed\":" + std::to_string(r.j1939.tp_completed) +
+       ",\"tp_incomplete\":" + std::to_string(r.j1939.tp_incomplete) + "}";
   j += ",\"warnings\":[";
   for (std::size_t i = 0; i < r.warnings.size(); ++i) j += (i ? "," : "") + json_string(r.warnings[i]);
   return j + "]}\n";

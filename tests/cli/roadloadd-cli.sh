@@ -17,6 +17,12 @@ expect_status 0 "$roadloadd" --print-config --can vcan0 --can vcan1 --data-dir /
 grep -c '^interface = "vcan' "$work/out" | grep -qx 2 || fail "--print-config does not show both --can buses"
 grep -q '^data_dir = "/srv/rec"' "$work/out" || fail "--print-config does not show --data-dir"
 
+# roadload replay refuses a bad fault before touching any interface, naming the item.
+expect_status 64 "$roadload" replay "$work/none" --faults 'drop=0.01,meteor@5'
+grep -q -- '--faults: meteor@5: unknown fault' "$work/err" || fail "bad --faults: $(cat "$work/err")"
+expect_status 64 "$roadload" replay "$work/none" --faults 'busoff@20'
+grep -q -- '--faults: busoff@20: expected a time and a positive duration' "$work/err" || fail "bad --faults: $(cat "$work/err")"
+
 expect_status 2 "$roadloadd" --can
 grep -q 'command line: --can: needs an interface name' "$work/err" || fail "bad --can: $(cat "$work/err")"
 printf '[status]\ninterval_s = 0\n' >"$work/bad.toml"

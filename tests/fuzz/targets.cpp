@@ -13,6 +13,7 @@
 #include "roadload/recording/candump.hpp"
 #include "roadload/recording/metadata.hpp"
 #include "roadload/recording/reader.hpp"
+#include "roadload/results/json.hpp"
 
 namespace roadload::fuzz {
 namespace {
@@ -82,6 +83,17 @@ void recording(const std::uint8_t* data, std::size_t size) {
   std::size_t n = 0;
   while (rec.value().next() != nullptr) ++n;
   require(n <= size, "no more records than bytes");
+}
+
+// A results file (trip.json) read back by `roadload report`; the paths it asks for are walked.
+void json(const std::uint8_t* data, std::size_t size) {
+  const auto doc = results::parse_json(text(data, size), "fuzz");
+  if (!doc) {
+    require(!doc.error().message.empty(), "an error says what is wrong");
+    return;
+  }
+  (void)doc.value().number_at("fuel.rolling_l");
+  if (const results::JsonValue* groups = doc.value().find("groups")) require(groups->items().size() <= size, "items bounded by input");
 }
 
 // Each 12-byte chunk is a frame: 4 bytes id, 1 byte length, 7 bytes of payload prefix; stamps

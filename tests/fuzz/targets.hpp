@@ -9,6 +9,7 @@ namespace roadload::fuzz {
 
 void candump_line(const std::uint8_t* data, std::size_t size);
 void dbc(const std::uint8_t* data, std::size_t size);
+void json(const std::uint8_t* data, std::size_t size);
 void metadata(const std::uint8_t* data, std::size_t size);
 void recording(const std::uint8_t* data, std::size_t size);
 void transport(const std::uint8_t* data, std::size_t size);
@@ -19,8 +20,8 @@ struct Target {
 };
 
 inline constexpr Target kTargets[] = {
-    {"candump_line", candump_line}, {"dbc", dbc}, {"metadata", metadata},
-    {"recording", recording},       {"transport", transport},
+    {"candump_line", candump_line}, {"dbc", dbc},             {"json", json},
+    {"metadata", metadata},         {"recording", recording}, {"transport", transport},
 };
 
 }  // namespace roadload::fuzz

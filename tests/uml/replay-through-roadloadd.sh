@@ -15,27 +15,14 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 # shellcheck source=j1939-lib.sh source-path=SCRIPTDIR
 . "$here/j1939-lib.sh"
+# shellcheck source=roadloadd-lib.sh source-path=SCRIPTDIR
+. "$here/roadloadd-lib.sh"
 readonly route=mnroad-mainline-westbound rate=5 duration_s=180
 
 if [[ ${1:-} == --kernel-part ]]; then
   work=${2:?} roadloadd=${3:?} roadload=${4:?}
   require_vcan vcan0
-  "$roadloadd" --can vcan0 --no-gnss --replay "$work/sim" --replay-origin "$work/origin.toml" --route "$route" \
-    --results "$work/live" --data-dir "$work/rec" --status "$work/status.log" --status-json "$work/status.jsonl" \
-    2>"$work/daemon.err" &
-  daemon=$!
-  # The daemon reads the recording's metadata and opens vcan0 before it waits for the origin.
-  sleep 1
-  "$roadload" replay "$work/sim" --iface vcan0 --rate "$rate" --origin "$work/origin.toml" -q ||
-    die "roadload replay failed with status $?"
-  # The sensor streams end with the recording: wait for the status to say so, then stop.
-  for _ in $(seq 300); do
-    tail -n 1 "$work/status.jsonl" | grep -q '"name":"accel","kind":"accelerometer","state":"ended"' && break
-    sleep 0.2
-  done
-  sleep 1
-  kill -TERM "$daemon"
-  wait "$daemon" || die "roadloadd exited with status $?: $(cat "$work/daemon.err")"
+  replay_into_daemon "$work" "$route" "$rate"
   exit 0
 fi
 
@@ -93,7 +80,12 @@ last=$(grep -E '^[0-9]{4}-' "$work/status.log" | tail -n 1)
 # The drive is over: the bus was heard, the replayed streams have ended, the segment is closed and
 # nothing was lost; the clocks never stepped.
 [[ $last == *"| vcan0 up "* && $last == *"| accel ended "*"drop 0 err 0"* && $last == *"| rec none "*"lost 0"* &&
-  $last == *"| sync ok" ]] || die "(c) last status line: $last"
+  $last == *"| sync ok"* ]] || die "(c) last status line: $last"
+# No frame was lost or repeated. UML's one CPU delays and bunches some replayed frames, which the
+# cadence monitor may read as a gap or a repeat now and then: at most one per thousand frames.
+read -r gaps repeats < <(tail -n 1 "$work/status.jsonl" | grep -o '"gaps":[0-9]*,"repeats":[0-9]*' | tr -c '0-9\n' ' ')
+cadence=$((gaps + repeats))
+((cadence * 1000 <= sent)) || die "(c) $cadence gaps and repeats reported in a clean drive of $sent frames"
 grep -Eq '\| rec 000001-[0-9]{8}T[0-9]{6}Z ' "$work/status.log" || die "(c) no status line named the recording segment"
 grep -q '"lines_lost":0' <(tail -n 1 "$work/status.jsonl") || die "(c) lines lost in the last JSON status"
 grep -q '^roadloadd stopped: [0-9]* lines recorded, 0 lost$' "$work/status.log" || die "(c) no clean stop line"

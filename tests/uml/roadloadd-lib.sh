@@ -74,3 +74,28 @@ wait_status_match() {
   done
   die "no status line matching '$pattern' within 20 s; last: $(tail -n 1 "$dir/status.log")"
 }
+
+# A drive replayed into roadloadd as a truck would deliver it: roadloadd on vcan0 with the sensor
+# streams of $1/sim through its replay drivers, `roadload replay` sending the CAN frames at RATE
+# (extra arguments go to roadload replay), then a clean stop once the replayed accelerometer stream
+# has ended. Results in $1/live, recording in $1/rec, status in $1/status.log.
+replay_into_daemon() {
+  local work=$1 replay_route=$2 replay_rate=$3
+  shift 3
+  "$roadloadd" --can vcan0 --no-gnss --replay "$work/sim" --replay-origin "$work/origin.toml" --route "$replay_route" \
+    --results "$work/live" --data-dir "$work/rec" --status "$work/status.log" --status-json "$work/status.jsonl" \
+    2>"$work/daemon.err" &
+  daemon=$!
+  # The daemon reads the recording's metadata and opens vcan0 before it waits for the origin.
+  sleep 1
+  "$roadload" replay "$work/sim" --iface vcan0 --rate "$replay_rate" --origin "$work/origin.toml" -q "$@" 2>"$work/replay.err" ||
+    die "roadload replay failed with status $?: $(cat "$work/replay.err")"
+  local i
+  for ((i = 0; i < 300; i++)); do
+    tail -n 1 "$work/status.jsonl" | grep -q '"name":"accel","kind":"accelerometer","state":"ended"' && break
+    sleep 0.2
+  done
+  sleep 1
+  kill -0 "$daemon" || die "roadloadd is gone before the end of the drive: $(cat "$work/daemon.err")"
+  stop_daemon || die "roadloadd exited with status $?: $(cat "$work/daemon.err")"
+}

@@ -136,6 +136,14 @@ void SocketCanSource::go_down(int err) {
   next_open_mono_ns_ = clock_ns(CLOCK_MONOTONIC) + kReopenPeriodNs;
 }
 
+void SocketCanSource::back_on_bus(const char* how) {
+  if (!bus_off_) return;
+  bus_off_ = false;
+  ++status_.restarts;
+  status_.state = io::SourceState::up;
+  std::snprintf(status_.detail, sizeof status_.detail, "%s", how);
+}
+
 void SocketCanSource::observe_clocks() {
   clock::ClockReading r;
   r.mono_before_ns = clock_ns(CLOCK_MONOTONIC);
@@ -240,9 +248,13 @@ bool SocketCanSource::convert(const mmsghdr& m, const canfd_frame& f, std::int64
     ++status_.errors;
     if ((f.can_id & CAN_ERR_BUSOFF) != 0) {
       ++counters_.bus_off;
+      bus_off_ = true;
+      status_.state = io::SourceState::down;
       std::snprintf(status_.detail, sizeof status_.detail, "bus-off");
     } else if ((f.can_id & CAN_ERR_RESTARTED) != 0) {
-      std::snprintf(status_.detail, sizeof status_.detail, "restarted after bus-off");
+      back_on_bus("restarted after bus-off");
+    } else if ((f.can_id & CAN_ERR_PROT) != 0) {
+      std::snprintf(status_.detail, sizeof status_.detail, "protocol violation");
     } else if ((f.can_id & CAN_ERR_CRTL) != 0) {
       ++counters_.controller_problems;
     }
@@ -254,6 +266,7 @@ bool SocketCanSource::convert(const mmsghdr& m, const canfd_frame& f, std::int64
     out.kind = CanFrameKind::remote;
     out.id = f.can_id & (out.id29 ? CAN_EFF_MASK : CAN_SFF_MASK);
   } else {
+    if (bus_off_) back_on_bus("receiving after bus-off");
     out.kind = out.id29 ? CanFrameKind::extended : CanFrameKind::standard;
     out.id = f.can_id & (out.id29 ? CAN_EFF_MASK : CAN_SFF_MASK);
   }

@@ -113,6 +113,7 @@ class DriveAnalyzer {
   std::vector<CellResult> cells() const;
   TripResult trip() const;
   LiveEstimate live() const { return live_; }
+  const j1939::TpCounters& transport() const { return assembler_.transport().counters(); }
   const std::vector<CellSpan>& cell_spans() const { return cells_; }
 
  private:

@@ -61,6 +61,7 @@ class SocketCanSource final : public io::Source<CanFrame> {
   explicit SocketCanSource(SocketCanConfig config);
   bool try_open();  // sets status_.detail with the reason when it cannot
   void go_down(int err);
+  void back_on_bus(const char* how);
   void observe_clocks();
   std::size_t receive(std::span<CanFrame> out);
   bool convert(const ::mmsghdr& m, const ::canfd_frame& f, std::int64_t read_mono_ns, CanFrame& out);
@@ -73,6 +74,7 @@ class SocketCanSource final : public io::Source<CanFrame> {
   clock::RealtimeMap map_;
   io::SourceStatus status_;
   SocketCanCounters counters_;
+  bool bus_off_ = false;  // the controller reported bus-off and has not been heard since
 
   struct Buffers;
   std::unique_ptr<Buffers> buf_;  // recvmmsg's, allocated once at open

@@ -3,12 +3,18 @@
 // the daemon's capture clock through a ReplayTiming. Paced, a sample is handed out no earlier than
 // its capture time, so the daemon sees the drive as a truck would deliver it; unpaced, as fast as
 // it is read. The recording's malformed lines are counted as errors, as a live device's would be.
+// Faults a bench replay asks for are applied here as the device would show them: a GNSS outage
+// withholds fixes and leaves the source waiting for one; an accelerometer FIFO overflow loses a
+// FIFO's worth of each sensor's samples and counts them as dropped.
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <memory>
 #include <string>
 #include <type_traits>
 
 #include "roadload/io/replay_clock.hpp"
+#include "roadload/io/replay_faults.hpp"
 #include "roadload/io/source.hpp"
 #include "roadload/recording/reader.hpp"
 
@@ -23,10 +29,19 @@ class ReplaySource final : public Source<Sample> {
                                                                           : recording::kCanStream;
 
   static Parsed<std::unique_ptr<ReplaySource>> open(const std::string& folder, const ReplayTiming& timing,
-                                                    WaitClock& clock, const char* name) {
+                                                    WaitClock& clock, const char* name, const ReplayFaults& faults = {}) {
     auto reader = recording::RecordingReader::open(folder, kMask);
     if (!reader) return reader.error();
-    return std::unique_ptr<ReplaySource>(new ReplaySource(std::move(reader.value()), timing, clock, name));
+    auto src = std::unique_ptr<ReplaySource>(new ReplaySource(std::move(reader.value()), timing, clock, name));
+    // Fault times count from the replay's origin (its first CAN frame) on the recording's timeline.
+    if constexpr (std::is_same_v<Sample, GnssFix>) {
+      for (const FaultWindow& w : faults.gnss_outages) src->withheld_.push_back({timing.recorded_origin + w.at, timing.recorded_origin + w.at + w.length});
+    }
+    if constexpr (std::is_same_v<Sample, AccelSample>) {
+      for (const Nanoseconds at : faults.accel_overflows) src->overflows_.push_back(timing.recorded_origin + at);
+      std::sort(src->overflows_.begin(), src->overflows_.end());
+    }
+    return src;
   }
 
   std::size_t read(std::span<Sample> out, Nanoseconds timeout) override {
@@ -44,6 +59,7 @@ class ReplaySource final : public Source<Sample> {
       }
       out[n++] = pending_;
       has_pending_ = false;
+      if (status_.state == SourceState::waiting) set_state(SourceState::up, "");
     }
     status_.items += n;
     status_.errors = reader_.errors().count();
@@ -58,12 +74,41 @@ class ReplaySource final : public Source<Sample> {
       : reader_(std::move(reader)), timing_(timing), clock_(clock), name_(name) {
     status_.state = SourceState::up;
     status_.stamps = StampSource::recording;
-    std::snprintf(status_.detail, sizeof status_.detail, "replay x%.3g", timing.rate);
+    set_state(SourceState::up, "");
+  }
+
+  void set_state(SourceState state, const char* why) {
+    status_.state = state;
+    std::snprintf(status_.detail, sizeof status_.detail, "replay x%.3g%s", timing_.rate, why);
+  }
+
+  // A GNSS fix inside an outage is withheld; an accelerometer sample lost to a FIFO overflow is
+  // counted as dropped.
+  bool faulted(const Sample& s) {
+    for (const auto& [from, to] : withheld_) {
+      if (s.t >= from && s.t < to) {
+        set_state(SourceState::waiting, ", no fix (outage replayed)");
+        return true;
+      }
+    }
+    if constexpr (std::is_same_v<Sample, AccelSample>) {
+      while (next_overflow_ < overflows_.size() && s.t >= overflows_[next_overflow_]) {
+        ++next_overflow_;
+        fifo_loss_.fill(kAccelFifoSamples);
+      }
+      if (s.sensor < fifo_loss_.size() && fifo_loss_[s.sensor] > 0) {
+        --fifo_loss_[s.sensor];
+        ++status_.dropped;
+        return true;
+      }
+    }
+    return false;
   }
 
   bool pull() {
     while (const recording::Record* r = reader_.next()) {
       if (const auto* s = std::get_if<Sample>(r)) {
+        if (faulted(*s)) continue;
         pending_ = *s;
         pending_.t = timing_.capture(s->t);
         has_pending_ = true;
@@ -81,6 +126,10 @@ class ReplaySource final : public Source<Sample> {
   Sample pending_{};
   bool has_pending_ = false;
   SourceStatus status_;
+  std::vector<std::pair<CaptureTime, CaptureTime>> withheld_;
+  std::vector<CaptureTime> overflows_;
+  std::size_t next_overflow_ = 0;
+  std::array<std::size_t, 16> fifo_loss_{};  // samples still to lose, per sensor index
 };
 
 }  // namespace roadload::io

@@ -104,9 +104,13 @@ class Daemon {
   std::mutex mutex_;
   RecorderStatus recorder_status_;
   LiveEstimate estimate_;
+  J1939Report j1939_;
+  // Estimator thread's own.
+  j1939::CadenceMonitor cadence_;
   // Status thread's own memory of the previous report, for rates.
   CaptureTime last_report_{};
-  std::vector<std::uint64_t> last_items_, last_bits_, last_dropped_;
+  std::vector<std::uint64_t> last_items_, last_bits_, last_dropped_, last_errors_;
+  J1939Report last_j1939_;
   bool running_ = false;
 };
 

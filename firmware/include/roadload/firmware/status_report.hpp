@@ -8,6 +8,8 @@
 
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/firmware/recorder.hpp"
+#include "roadload/j1939/cadence.hpp"
+#include "roadload/j1939/transport.hpp"
 #include "roadload/io/source.hpp"
 
 namespace roadload::firmware {
@@ -23,6 +25,16 @@ struct SourceReport {
   double bus_load = 0;        // CAN: fraction of the bit rate, unstuffed bits as canbusload counts them
   std::uint64_t ring_dropped = 0;  // lost because a consumer fell behind
   std::uint64_t dropped_recent = 0;  // source + ring drops in the last interval
+  std::uint64_t errors_recent = 0;   // device or bus errors in the last interval
+};
+
+// What the decoded J1939 traffic says about frames lost or mangled before the gateway.
+struct J1939Report {
+  j1939::CadenceCounters cadence;
+  std::uint64_t tp_completed = 0;
+  std::uint64_t tp_incomplete = 0;  // timed out, superseded by a new announcement, or aborted
+  // In the last interval.
+  std::uint64_t gaps_recent = 0, repeats_recent = 0, tp_incomplete_recent = 0;
 };
 
 struct SyncReport {
@@ -41,6 +53,7 @@ struct StatusReport {
   RecorderStatus recording;
   bool recording_enabled = true;
   SyncReport sync;
+  J1939Report j1939;
   std::vector<std::string> warnings;
 };
 
