@@ -16,9 +16,9 @@
 
 #include "roadload/definitions.hpp"
 #include "roadload/firmware/daemon.hpp"
-#include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/sim/scenario.hpp"
 #include "roadload/sim/simulation.hpp"
+#include "daemon_setup.hpp"
 #include "simulated_drive.hpp"
 
 namespace {
@@ -144,24 +144,7 @@ Run run(const sim::Scenario& sc, const std::vector<CanFrame>& drive, const recor
     sources.accel.push_back(std::make_unique<AccelChannel>(
         std::make_unique<AccelGenerator>(static_cast<std::uint8_t>(i), start), SourceKind::accelerometer, "accel"));
   }
-  DaemonSetup setup;
-  RecorderConfig rc;
-  rc.data_dir = dir.string();
-  setup.recording = rc;
-  setup.metadata = meta;
-  setup.interfaces = {"can0"};
-  setup.buses = {CanBusInfo{}};
-  if (estimate) {
-    setup.db = &db;
-    setup.route = *RouteGeometry::build(sc.route.points);
-    setup.cells = sim::test::cell_spans(sc);
-    setup.analyzer = recording::config_from_vehicle(meta.vehicle, std::nullopt);
-    setup.layout = recording::axle_layout(meta, "bench").layout;
-    setup.accelerometers = recording::accelerometers(meta);
-    const PavementGroups groups = sim::test::pavement_groups(sc);
-    setup.cell_group = groups.cell_group;
-    setup.group_count = groups.names.size();
-  }
+  DaemonSetup setup = test::simulated_daemon_setup(sc, meta, db, dir.string(), estimate);
   Daemon daemon(std::move(setup), std::move(sources), clock);
   const double cpu0 = cpu_s();
   timespec w0{};

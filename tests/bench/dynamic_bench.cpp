@@ -17,6 +17,7 @@
 #include "roadload/sim/truth.hpp"
 #include "roadload/spectra/modes.hpp"
 #include "simulated_drive.hpp"
+#include "roadload/recording/vehicle_setup.hpp"
 
 namespace {
 
@@ -42,7 +43,7 @@ void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database&
   auto route = RouteGeometry::build(sc.route.points);
   if (!route) std::exit(1);
   const PavementGroups groups = sim::test::pavement_groups(sc);
-  VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), sim::test::vibration_sensors(sim.metadata()),
+  VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()),
                        sc.route.cells.size(), groups.cell_group, groups.names.size());
   DriveAnalyzer analyzer(db, *route, sim::test::cell_spans(sc), AnalyzerConfig{});
   analyzer.attach(&va);

@@ -9,9 +9,9 @@
 #include <string>
 #include <thread>
 
+#include "daemon_setup.hpp"
 #include "memory_source.hpp"
 #include "roadload/firmware/daemon.hpp"
-#include "roadload/recording/vehicle_setup.hpp"
 #include "sim_fixture.hpp"
 
 namespace roadload::firmware::test {
@@ -61,22 +61,7 @@ inline DaemonSources memory_sources(const SimulatedDrive& d, const Pace& pace, c
 }
 
 inline DaemonSetup daemon_setup(const SimulatedDrive& d, const std::string& data_dir) {
-  DaemonSetup setup;
-  RecorderConfig rc;
-  rc.data_dir = data_dir;
-  setup.recording = rc;
-  setup.metadata = d.meta;
-  setup.interfaces = {"can0"};
-  setup.buses = {CanBusInfo{}};
-  setup.db = &d.db;
-  setup.route = *RouteGeometry::build(d.scenario.route.points);
-  setup.cells = sim::test::cell_spans(d.scenario);
-  setup.analyzer = recording::config_from_vehicle(d.meta.vehicle, std::nullopt);
-  setup.layout = recording::axle_layout(d.meta, "simulation").layout;
-  setup.accelerometers = recording::accelerometers(d.meta);
-  const PavementGroups groups = sim::test::pavement_groups(d.scenario);
-  setup.cell_group = groups.cell_group;
-  setup.group_count = groups.names.size();
+  DaemonSetup setup = simulated_daemon_setup(d.scenario, d.meta, d.db, data_dir, true);
   // At 5x, the daemon's 200 ms would be 40 ms of wall time: less than a loaded CI machine may
   // starve a source thread, and a sample that late would be written out of order.
   setup.merge_delay = Nanoseconds{2'000'000'000};

@@ -14,6 +14,7 @@
 #include "roadload/spectra/modes.hpp"
 #include "roadload/vibration.hpp"
 #include "sim_fixture.hpp"
+#include "roadload/recording/vehicle_setup.hpp"
 
 namespace roadload::sim {
 namespace {
@@ -113,7 +114,7 @@ DriveResult run_drive(const std::string& scenario, std::uint64_t seed, double jo
   const auto& cells = sim.route().def().cells;
   DriveResult r;
   r.groups = test::pavement_groups(sc);
-  VibrationAnalysis va(test::axle_layout(sim.metadata()), test::vibration_sensors(sim.metadata()), cells.size(),
+  VibrationAnalysis va(test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()), cells.size(),
                        r.groups.cell_group, r.groups.names.size());
   VibrationSink sink(sim, va);
   sim.run(sink, nullptr);

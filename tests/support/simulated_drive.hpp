@@ -53,13 +53,6 @@ inline AxleLayout axle_layout(const recording::Metadata& m) {
   return l.value();
 }
 
-inline std::vector<VibrationSensor> vibration_sensors(const recording::Metadata& m) {
-  std::vector<VibrationSensor> out;
-  for (const auto& s : m.sensors)
-    if (s.kind == "accelerometer") out.push_back({static_cast<std::uint8_t>(s.id), s.name, s.rate_hz});
-  return out;
-}
-
 // The pavement groups of a scenario's cells.
 inline PavementGroups pavement_groups(const Scenario& sc) {
   std::vector<PavementKey> keys;

@@ -1,6 +1,7 @@
 #include "report_figures.hpp"
 
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "roadload/fuel_breakdown.hpp"
@@ -131,7 +132,8 @@ Figure spectrum(const results::Spectrum& s, const results::JsonValue& trip) {
   std::string caption = "Power spectral density of each accelerometer";
   const results::JsonValue* groups = trip.find("dynamic_rolling") ? trip.find("dynamic_rolling")->find("groups") : nullptr;
   const results::JsonValue* group = nullptr;
-  for (const results::JsonValue& g : groups ? groups->items() : std::vector<results::JsonValue>{}) {
+  for (std::size_t i = 0; groups && i < groups->items().size(); ++i) {
+    const results::JsonValue& g = groups->items()[i];
     if (g.find("name") && g.find("name")->string() == s.group) group = &g;
   }
   if (group) {
