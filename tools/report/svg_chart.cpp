@@ -179,15 +179,22 @@ class Canvas {
     if (!path.empty()) out_ += "<path class=\"datum\" fill=\"none\" stroke-width=\"1.3\" d=\"" + path + "\"/>";
   }
 
+  // Series `s`'s place among the series drawn in its style, and how many there are: series of one
+  // style share each category's band.
+  std::pair<std::size_t, std::size_t> place_among_style(std::size_t s) const {
+    std::size_t index = 0, count = 0;
+    for (std::size_t k = 0; k < c_.series.size(); ++k) {
+      if (c_.series[k].style != c_.series[s].style) continue;
+      if (k == s) index = count;
+      ++count;
+    }
+    return {index, count};
+  }
+
   // Bars side by side within each category, or stacked (positive parts up, negative down).
   void bars(std::size_t s) {
     const Series& sr = c_.series[s];
-    std::size_t nbars = 0, index = 0;
-    for (std::size_t k = 0; k < c_.series.size(); ++k) {
-      if (c_.series[k].style != Series::Style::bars) continue;
-      if (k == s) index = nbars;
-      ++nbars;
-    }
+    const auto [index, nbars] = place_among_style(s);
     const double width = c_.stacked ? band() * 0.7 : band() * 0.8 / static_cast<double>(nbars);
     for (std::size_t i = 0; i < sr.y.size() && i < c_.categories.size(); ++i) {
       if (!std::isfinite(sr.y[i])) continue;
@@ -209,12 +216,7 @@ class Canvas {
   // Points with their intervals; several series side by side within a category.
   void points(std::size_t s) {
     const Series& sr = c_.series[s];
-    std::size_t npoints = 0, index = 0;
-    for (std::size_t k = 0; k < c_.series.size(); ++k) {
-      if (c_.series[k].style != Series::Style::points) continue;
-      if (k == s) index = npoints;
-      ++npoints;
-    }
+    const auto [index, npoints] = place_among_style(s);
     for (std::size_t i = 0; i < sr.y.size(); ++i) {
       if (!drawable(sr.y[i])) continue;
       double x = 0;
