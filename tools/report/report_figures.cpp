@@ -33,6 +33,11 @@ FuelUse use(std::size_t i) { return static_cast<FuelUse>(i); }
 
 }  // namespace
 
+const results::JsonValue* pavement_groups(const results::JsonValue& trip) {
+  const results::JsonValue* dynamic = trip.find("dynamic_rolling");
+  return dynamic ? dynamic->find("groups") : nullptr;
+}
+
 std::vector<std::string> cell_ids(const NumberTable& cells) {
   std::vector<std::string> ids;
   const std::size_t c = *cells.column("cell");
@@ -130,7 +135,7 @@ Figure spectrum(const results::Spectrum& s, const results::JsonValue& trip) {
     c.series.push_back({s.sensors[k], Series::Style::line, s.x, s.psd[k], {}, {}});
   }
   std::string caption = "Power spectral density of each accelerometer";
-  const results::JsonValue* groups = trip.find("dynamic_rolling") ? trip.find("dynamic_rolling")->find("groups") : nullptr;
+  const results::JsonValue* groups = pavement_groups(trip);
   const results::JsonValue* group = nullptr;
   for (std::size_t i = 0; groups && i < groups->items().size(); ++i) {
     const results::JsonValue& g = groups->items()[i];

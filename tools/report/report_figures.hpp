@@ -28,5 +28,7 @@ Figure spectrum(const results::Spectrum& s, const results::JsonValue& trip);
 // Axle names as cells.csv spells its fz_<axle>_mean_n columns.
 std::vector<std::string> axle_names(const results::NumberTable& cells);
 std::vector<std::string> cell_ids(const results::NumberTable& cells);
+// trip.json's dynamic_rolling.groups (one per pavement group); nullptr without accelerometers.
+const results::JsonValue* pavement_groups(const results::JsonValue& trip);
 
 }  // namespace roadload::report

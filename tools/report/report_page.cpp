@@ -82,15 +82,16 @@ std::string trip_fuel_table(const JsonValue& trip) {
 }
 
 std::string dynamic_table(const JsonValue& trip) {
-  const JsonValue* groups = trip.find("dynamic_rolling") ? trip.find("dynamic_rolling")->find("groups") : nullptr;
+  const JsonValue* groups = pavement_groups(trip);
   if (!groups) return "";
   std::vector<std::vector<std::string>> rows;
   for (const JsonValue& g : groups->items()) {
     const JsonValue* found = g.find("joint_line") ? g.find("joint_line")->find("found") : nullptr;
+    const double inventory_m = g.number_at("joint_line.inventory_panel_m").value_or(0);  // 0: no panels (bituminous)
     rows.push_back({g.find("name") ? g.find("name")->string() : "?", format_number(g.number_at("damper_power_w").value_or(NAN), 4),
                     format_number(g.number_at("tire_power_w").value_or(NAN), 4), format_number(g.number_at("speed_mps").value_or(NAN), 3),
                     found && found->boolean() ? format_number(g.number_at("joint_line.panel_m").value_or(NAN), 3) + " m" : "none found",
-                    format_number(g.number_at("joint_line.inventory_panel_m").value_or(0) > 0 ? g.number_at("joint_line.inventory_panel_m").value_or(NAN) : NAN, 3)});
+                    format_number(inventory_m > 0 ? inventory_m : NAN, 3)});
   }
   return table_html({"pavement group", "dampers (W)", "tires (W)", "speed (m/s)", "joint line", "inventory panel (m)"}, rows);
 }
