@@ -68,10 +68,10 @@ void Daemon::start() {
   // The first segment exists before the first item arrives.
   if (recorder_) recorder_->tick(started_);
   const bool feed = analyzer_.has_value();
-  for (auto& c : sources_.can) c->start(stop_sources_, feed);
-  for (auto& c : sources_.accel) c->start(stop_sources_, feed);
-  if (sources_.gnss) sources_.gnss->start(stop_sources_, feed);
-  if (sources_.weather) sources_.weather->start(stop_sources_, feed);
+  for (auto& c : sources_.can) c->start(stop_sources_, feed, clock_);
+  for (auto& c : sources_.accel) c->start(stop_sources_, feed, clock_);
+  if (sources_.gnss) sources_.gnss->start(stop_sources_, feed, clock_);
+  if (sources_.weather) sources_.weather->start(stop_sources_, feed, clock_);
   writer_ = std::thread([this] { write_loop(); });
   estimator_ = std::thread([this] { estimate_loop(); });
 }
@@ -102,6 +102,20 @@ bool Daemon::replays_finished() {
   if (sources_.gnss) count(sources_.gnss);
   if (sources_.weather) count(sources_.weather);
   return replays > 0 && ended == replays;
+}
+
+// Items up to here can be merged: every source has delivered what it stamped before it, less the
+// merge delay for stamps that reach their thread late (a FIFO read, a kernel queue), and at most
+// the longest merge wait behind now.
+CaptureTime Daemon::merge_horizon(CaptureTime now) const {
+  CaptureTime through = CaptureTime::max();
+  auto lower = [&](const auto& c) { through = std::min(through, c->delivered_through()); };
+  for (const auto& c : sources_.can) lower(c);
+  for (const auto& c : sources_.accel) lower(c);
+  if (sources_.gnss) lower(sources_.gnss);
+  if (sources_.weather) lower(sources_.weather);
+  if (through == CaptureTime::max()) return through;
+  return std::max(now - setup_.max_merge_wait, through - setup_.merge_delay);
 }
 
 // One file per stream holds several sources (buses, accelerometers), and a recording's streams
@@ -147,7 +161,7 @@ bool Daemon::write_pending(std::size_t max_items, CaptureTime horizon) {
 void Daemon::write_loop() {
   for (;;) {
     const bool stopping = stop_workers_.load();
-    const bool wrote = write_pending(kWriteBatch, stopping ? CaptureTime::max() : clock_.now() - setup_.merge_delay);
+    const bool wrote = write_pending(kWriteBatch, stopping ? CaptureTime::max() : merge_horizon(clock_.now()));
     if (recorder_) {
       if (rotate_.exchange(false)) recorder_->end_segment();
       recorder_->tick(clock_.now());
@@ -202,7 +216,7 @@ void Daemon::estimate_loop() {
   for (;;) {
     const bool stopping = stop_workers_.load();
     const CaptureTime now = clock_.now();
-    const CaptureTime horizon = stopping ? CaptureTime::max() : now - setup_.merge_delay;
+    const CaptureTime horizon = stopping ? CaptureTime::max() : merge_horizon(now);
     std::size_t n = 0;
     while (n < kWriteBatch && estimate_next(horizon)) ++n;
     // The dynamic power over the last few seconds: spectra need several segments to mean much.
@@ -261,6 +275,7 @@ StatusReport Daemon::report() {
   last_items_.resize(n, 0);
   last_dropped_.resize(n, 0);
   last_errors_.resize(n, 0);
+  last_restarts_.resize(n, 0);
   last_bits_.resize(bits.size(), 0);
   for (std::size_t i = 0; i < n; ++i) {
     SourceReport& s = r.sources[i];
@@ -271,6 +286,8 @@ StatusReport Daemon::report() {
     last_dropped_[i] = dropped;
     s.errors_recent = s.status.errors - last_errors_[i];
     last_errors_[i] = s.status.errors;
+    s.restarts_recent = s.status.restarts - last_restarts_[i];
+    last_restarts_[i] = s.status.restarts;
     r.sync.clock_steps += s.status.clock_steps;
     r.sync.unplaced_stamps += s.status.userspace_stamps;
     if (i < bits.size()) {

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <ctime>
 
+#include "roadload/results/json.hpp"
+
 namespace roadload::firmware {
 
 namespace {
@@ -14,23 +16,6 @@ std::string utc_text(std::int64_t utc_ns) {
   char buf[32] = "1970-01-01T00:00:00Z";
   if (gmtime_r(&s, &tm) != nullptr) std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
-}
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\u%04x", c);
-      out += esc;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 std::string fmt(const char* f, double v) {
@@ -61,6 +46,10 @@ std::vector<std::string> warnings_for(const StatusReport& r) {
     if (s.status.state == io::SourceState::waiting && s.status.items > 0) w.push_back(s.name + " waiting: " + s.status.detail);
     if (s.dropped_recent > 0) w.push_back(s.name + " dropped " + std::to_string(s.dropped_recent));
     if (s.errors_recent > 0) w.push_back(s.name + " " + std::to_string(s.errors_recent) + " errors (" + s.status.detail + ")");
+    // A source that went down and came back between two lines would otherwise never show it.
+    if (s.restarts_recent > 0 && s.status.state != io::SourceState::down) {
+      w.push_back(s.name + " recovered " + std::to_string(s.restarts_recent) + "x (" + s.status.detail + ")");
+    }
   }
   const J1939Report& j = r.j1939;
   if (j.gaps_recent > 0) w.push_back("j1939: " + std::to_string(j.gaps_recent) + " gaps in periodic messages (frames lost before the gateway)");
@@ -104,10 +93,10 @@ std::string format_text(const StatusReport& r) {
 
 std::string format_json(const StatusReport& r) {
   const LiveEstimate& e = r.estimate;
-  std::string j = "{\"time\":" + json_string(utc_text(r.utc_ns)) + ",\"uptime_s\":" + fmt("%.1f", r.uptime_s);
+  std::string j = "{\"time\":" + results::json_quote(utc_text(r.utc_ns)) + ",\"uptime_s\":" + fmt("%.1f", r.uptime_s);
   if (e.started) {
     j += ",\"speed_mps\":" + json_number(e.speed_mps) + ",\"s_m\":" + json_number(e.s_front_m, "%.1f");
-    j += ",\"cell\":" + (r.cell.empty() ? std::string("null") : json_string(r.cell));
+    j += ",\"cell\":" + (r.cell.empty() ? std::string("null") : results::json_quote(r.cell));
     j += ",\"crr\":" + json_number(e.crr) + ",\"crr_lo\":" + json_number(e.crr_lo) + ",\"crr_hi\":" + json_number(e.crr_hi);
     j += std::string(",\"crr_identified\":") + (e.identified ? "true" : "false");
   }
@@ -115,20 +104,20 @@ std::string format_json(const StatusReport& r) {
   j += ",\"sources\":[";
   for (std::size_t i = 0; i < r.sources.size(); ++i) {
     const SourceReport& s = r.sources[i];
-    j += (i ? ",{" : "{") + std::string("\"name\":") + json_string(s.name) + ",\"kind\":" + json_string(to_string(s.kind));
-    j += ",\"state\":" + json_string(io::to_string(s.status.state)) + ",\"items\":" + std::to_string(s.status.items);
+    j += (i ? ",{" : "{") + std::string("\"name\":") + results::json_quote(s.name) + ",\"kind\":" + results::json_quote(to_string(s.kind));
+    j += ",\"state\":" + results::json_quote(io::to_string(s.status.state)) + ",\"items\":" + std::to_string(s.status.items);
     j += ",\"rate_per_s\":" + json_number(s.rate_per_s, "%.1f");
     if (s.kind == SourceKind::can) j += ",\"bus_load\":" + json_number(s.bus_load, "%.4f");
     j += ",\"dropped\":" + std::to_string(s.status.dropped) + ",\"ring_dropped\":" + std::to_string(s.ring_dropped);
     j += ",\"errors\":" + std::to_string(s.status.errors) + ",\"restarts\":" + std::to_string(s.status.restarts);
-    j += ",\"detail\":" + json_string(s.status.detail) + "}";
+    j += ",\"detail\":" + results::json_quote(s.status.detail) + "}";
   }
   j += "]";
   if (r.recording_enabled) {
     const RecorderStatus& rec = r.recording;
-    j += ",\"recording\":{\"segment\":" + json_string(rec.segment) + ",\"lines\":" + std::to_string(rec.lines);
+    j += ",\"recording\":{\"segment\":" + results::json_quote(rec.segment) + ",\"lines\":" + std::to_string(rec.lines);
     j += ",\"lines_lost\":" + std::to_string(rec.lines_lost) + ",\"bytes_in_dir\":" + std::to_string(rec.bytes_in_dir);
-    j += ",\"segments_deleted\":" + std::to_string(rec.segments_deleted) + ",\"error\":" + json_string(rec.error_text) + "}";
+    j += ",\"segments_deleted\":" + std::to_string(rec.segments_deleted) + ",\"error\":" + results::json_quote(rec.error_text) + "}";
   }
   j += ",\"sync\":{\"clock_steps\":" + std::to_string(r.sync.clock_steps) +
        ",\"unplaced_stamps\":" + std::to_string(r.sync.unplaced_stamps) + "}";
@@ -136,7 +125,7 @@ std::string format_json(const StatusReport& r) {
        ",\"untracked\":" + std::to_string(r.j1939.cadence.untracked) + ",\"too_fast\":" + std::to_string(r.j1939.cadence.too_fast) + ",\"tp_completed\":" + std::to_string(r.j1939.tp_completed) +
        ",\"tp_incomplete\":" + std::to_string(r.j1939.tp_incomplete) + "}";
   j += ",\"warnings\":[";
-  for (std::size_t i = 0; i < r.warnings.size(); ++i) j += (i ? "," : "") + json_string(r.warnings[i]);
+  for (std::size_t i = 0; i < r.warnings.size(); ++i) j += (i ? "," : "") + results::json_quote(r.warnings[i]);
   return j + "]}\n";
 }
 

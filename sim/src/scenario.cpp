@@ -80,7 +80,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
   Scenario s;
   s.source = path.string();
   f.only(root, {"name", "description", "route", "speed_mph", "speed_mps", "start_m", "end_m", "duration_s", "start_utc",
-                "road_seed", "accel_rate_hz", "accelerometers", "gnss_rate_hz", "physics_rate_hz", "unsprung", "mode",
+                "road_seed", "load_scale", "accel_rate_hz", "accelerometers", "gnss_rate_hz", "physics_rate_hz", "unsprung", "mode",
                 "weather", "clocks", "effects"},
          "");
   s.name = f.required_text(root, "name", "");
@@ -108,6 +108,8 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
     if (!seed->is_integer() || *seed->value<std::int64_t>() < 0) f.fail(seed, "road_seed", "expected a non-negative integer");
     s.road_seed = static_cast<std::uint64_t>(*seed->value<std::int64_t>());
   }
+  s.load_scale = f.number(root, "load_scale", "", s.load_scale);
+  if (s.load_scale < 0.5 || s.load_scale > 1.5) f.fail(root.get("load_scale"), "load_scale", "outside 0.5-1.5");
   s.accel_rate_hz = f.number(root, "accel_rate_hz", "", s.accel_rate_hz);
   if (s.accel_rate_hz < 1 || s.accel_rate_hz > 4000) f.fail(root.get("accel_rate_hz"), "accel_rate_hz", "outside 1-4000 Hz");
   const double count = f.number(root, "accelerometers", "", 8.0);

@@ -35,7 +35,14 @@ Route build_route(const Scenario& s) {
   return std::move(r.value());
 }
 
-TruckParams scenario_truck(const Scenario& s) { return mnroad_truck(s.unsprung); }
+TruckParams scenario_truck(const Scenario& s) {
+  TruckParams t = mnroad_truck(s.unsprung);
+  for (auto& a : t.axles) {
+    a.vertical.sprung_kg += (s.load_scale - 1.0) * a.load_kg;
+    a.load_kg *= s.load_scale;
+  }
+  return t;
+}
 
 BusOptions bus_options(const ClockSpec& c) {
   BusOptions o;

@@ -24,6 +24,8 @@ WindField::Decay WindField::decay(double sigma, double tau_s, double dt_s) {
 
 void WindField::advance(double dt_s) {
   t_s_ += dt_s;
+  const auto& trace = spec_.wind_trace;
+  while (trace_at_ + 1 < trace.size() && trace[trace_at_ + 1].t_s <= t_s_) ++trace_at_;
   if (dt_s != dt_s_) {  // the step is fixed in a run: exp() once, not six times a step
     dt_s_ = dt_s;
     wander_ = decay(spec_.wander_mps, kWanderTau_s, dt_s);
@@ -40,11 +42,24 @@ void WindField::advance(double dt_s) {
   }
 }
 
+std::pair<double, double> WindField::mean_wind() const {
+  const auto& trace = spec_.wind_trace;
+  if (trace.empty()) {
+    // Wind "from" 270 blows toward the east: its velocity points opposite to where it comes from.
+    const double from = spec_.wind_from_deg * kDeg;
+    return {-spec_.wind_speed_mps * std::sin(from) + wander_east_, -spec_.wind_speed_mps * std::cos(from) + wander_north_};
+  }
+  const WindPoint& a = trace[trace_at_];
+  if (trace_at_ + 1 >= trace.size() || t_s_ <= a.t_s) return {a.east_mps, a.north_mps};
+  const WindPoint& b = trace[trace_at_ + 1];
+  const double w = (t_s_ - a.t_s) / (b.t_s - a.t_s);
+  return {a.east_mps + w * (b.east_mps - a.east_mps), a.north_mps + w * (b.north_mps - a.north_mps)};
+}
+
 Environment WindField::compose(double gust_east, double gust_north) const {
-  // Wind "from" 270 blows toward the east: its velocity points opposite to where it comes from.
-  const double from = spec_.wind_from_deg * kDeg;
-  const double east = -spec_.wind_speed_mps * std::sin(from) + wander_east_ + gust_east;
-  const double north = -spec_.wind_speed_mps * std::cos(from) + wander_north_ + gust_north;
+  const auto [mean_east, mean_north] = mean_wind();
+  const double east = mean_east + gust_east;
+  const double north = mean_north + gust_north;
   Environment e;
   e.air_temp_c = spec_.air_temp_c + spec_.temp_drift_c_per_h * t_s_ / 3600.0;
   e.pressure_pa = spec_.pressure_pa;

@@ -14,6 +14,24 @@ expect_status 66 "$roadload" report "$work/none" -o "$work/r.html"
 
 "$roadload" simulate --scenario mnroad-mainline-30mph --seed 3 --out "$work/rec" --truth "$work/truth" -q || fail "simulate failed"
 "$roadload" analyze "$work/rec" --route mnroad-mainline-westbound --out "$work/res" -q 2>/dev/null || fail "analyze failed"
+# The sim-to-real section's inputs as `roadload gap --json` and `roadload gap tables --json` write them.
+cat >"$work/res/gap.json" <<'JSON'
+{"effect": "brake-drag", "magnitude": 118.2, "unit": "N", "interval": [110.1, 126.3],
+ "effects": [{"name": "brake-drag", "magnitude": 118.2, "lo": 110.1, "hi": 126.3, "fitted_on_half0": 117.5, "unit": "N"}],
+ "where": [{"run": "rec30", "channel": "torque_nm", "features": 30, "excess_chi2": 2500.5, "sigma": 322.8, "worst": "4", "worst_z": 12.5}],
+ "residual_before": 7.8, "residual_after": 0.9, "held_out_features": 120,
+ "channels": [{"channel": "torque_nm", "features": 15, "before": 12.1, "after": 1.1},
+              {"channel": "fuel_lph", "features": 15, "before": 6.0, "after": 0.8}],
+ "candidates": [{"name": "brake-drag", "gain": 4100.2, "magnitude": 118.2}], "runs": ["run rec30: model mnroad-mainline-30mph"]}
+JSON
+cat >"$work/res/gap-tables.json" <<'JSON'
+{"rows": [{"pavement": "Mainline bituminous (Table 6.5)", "report_w": 442, "before_w": 300, "after_w": 300},
+          {"pavement": "Mainline concrete (Table 6.5)", "report_w": 652, "before_w": 310, "after_w": 444},
+          {"pavement": "TH 66 bituminous (Table 6.6)", "report_w": 6486, "before_w": 900, "after_w": 900},
+          {"pavement": "TH 10 concrete (Table 6.6)", "report_w": 9353, "before_w": 800, "after_w": 1250}],
+ "candidates": [{"effect": "joint-faulting", "reaches_mainline_ratio": true, "magnitude": 0.003, "highway_ratio": 1.39, "holdout_error": 0.04}],
+ "effect": "joint-faulting", "report_mainline_ratio": 1.475, "report_highway_ratio": 1.442}
+JSON
 expect_status 0 "$roadload" report "$work/res" --truth "$work/truth" -o "$work/report.html"
 page=$work/report.html
 ! grep -qi '<script' "$page" || fail "the page carries a script"
@@ -22,6 +40,14 @@ page=$work/report.html
 cells=$(($(wc -l <"$work/res/cells.csv") - 1))
 rows=$(sed -n '/id="crr"/,/<\/table>/p' "$page" | grep -c '<tr><td>' || true)
 ((rows == cells)) || fail "the CRR table has $rows rows for $cells cells"
+
+grep -q 'id="gap"' "$work/report.html" || fail "no sim-to-real section although gap.json is there"
+grep -q "brake-drag = 118.2 N" "$work/report.html" || fail "the gap section does not name the effect"
+cp "$work/res/gap.json" "$work/gap.json"
+sed -i '2s/"magnitude": 118.2/"magnitude": 118.2,,/' "$work/res/gap.json"
+expect_status 65 "$roadload" report "$work/res" -o "$work/bad.html"
+grep -q "gap.json:2" "$work/err" || fail "a bad gap.json is not named by file and line: $(cat "$work/err")"
+cp "$work/gap.json" "$work/res/gap.json"
 
 cp "$work/res/cells.csv" "$work/bad.csv"
 sed -i '3s/,0\.0[0-9]*,/,0.0x,/' "$work/bad.csv" && cp "$work/bad.csv" "$work/res/cells.csv"
@@ -52,7 +78,8 @@ echo "report-cli: drawn marks per figure: $drawn"
 import json, sys
 drawn, cells = json.loads(sys.argv[1]), int(sys.argv[2])
 want = {"crr-per-cell": cells, "rolling-fuel-per-cell": cells, "fuel-breakdown-per-cell": cells,
-        "trip-fuel-breakdown": 6, "contact-forces": cells, "dynamic-power-per-cell": cells, "psd-trip": 3}
+        "trip-fuel-breakdown": 6, "contact-forces": cells, "dynamic-power-per-cell": cells, "psd-trip": 3,
+        "gap-channels": 4, "gap-tables": 12}
 bad = [f"{k}: {drawn.get(k, 0)} marks, expected at least {n}" for k, n in want.items() if drawn.get(k, 0) < n]
 bad += [f"{k}: nothing drawn" for k, n in drawn.items() if n == 0]
 groups = [k for k in drawn if k.startswith("psd-") and k != "psd-trip"]

@@ -86,7 +86,11 @@ TEST(DaemonRecordsDrive, RecordingReadsBackAsTheDriveAndTheFilterTracksIt) {
     });
     return v;
   };
-  for (std::size_t i = 1; i < accels.size(); ++i) ASSERT_LE(accels[i - 1].t, accels[i].t) << "accel.csv row " << i;
+  for (std::size_t i = 1; i < accels.size(); ++i) {
+    ASSERT_LE(accels[i - 1].t, accels[i].t) << "accel.csv row " << i << ": sensor " << int{accels[i - 1].sensor} << " at "
+                                            << to_ns(accels[i - 1].t) << " ns, then sensor " << int{accels[i].sensor}
+                                            << " at " << to_ns(accels[i].t) << " ns";
+  }
   EXPECT_EQ(first_difference(rows(by_time_then_sensor(accels)), rows(by_time_then_sensor(drive.sink.accels))), "");
   EXPECT_EQ(first_difference(rows(fixes), rows(drive.sink.fixes)), "");
   EXPECT_EQ(reader.value().metadata().vehicle, drive.meta.vehicle);

@@ -60,11 +60,10 @@ inline DaemonSources memory_sources(const SimulatedDrive& d, const Pace& pace, c
   return s;
 }
 
+// The merge waits the wall second a truck's daemon would for a starved thread, at the test's pace.
 inline DaemonSetup daemon_setup(const SimulatedDrive& d, const std::string& data_dir) {
   DaemonSetup setup = simulated_daemon_setup(d.scenario, d.meta, d.db, data_dir, true);
-  // At 5x, the daemon's 200 ms would be 40 ms of wall time: less than a loaded CI machine may
-  // starve a source thread, and a sample that late would be written out of order.
-  setup.merge_delay = Nanoseconds{2'000'000'000};
+  setup.max_merge_wait = std::chrono::duration_cast<Nanoseconds>(std::chrono::duration<double>(kPace));
   return setup;
 }
 

@@ -167,32 +167,34 @@ double worst_cell_error(const DriveResult& r) {
 }
 
 // Seed report Sect. 6.3: damper power per cell within 5 % and per trip within 2 % of the plant's
-// true dissipation. The scenario's 0.5 mm faulting on the new Mainline concrete leaves the 15 ft
-// line below detection in one pass (printed; docs/spectra.md): the road's own roughness, the same
-// on every pass, is the background, so more passes do not help.
-TEST(VibrationFromSimulation, MainlineAt30MphDamperPower) {
+// true dissipation. The scenario's joints (3.3 mm faulting, fitted to Table 6.5 by the gap tool)
+// give the 15 ft line the report saw at 2.9 Hz: found blind, the panel within 3 %; the bituminous
+// cells between the concrete ones show none.
+TEST(VibrationFromSimulation, MainlineAt30MphDamperPowerAndThe15FtJoints) {
   const DriveResult r = run_drive("mnroad-mainline-30mph", 1);
   EXPECT_NEAR(r.trip_damper_ratio, 1.0, 0.02);
   EXPECT_GE(r.cell_ratio.size(), 25u);
   EXPECT_LT(worst_cell_error(r), 0.05);
+  bool fifteen_ft = false;
   for (std::size_t g = 0; g < r.groups.names.size(); ++g) {
     if (r.groups.panel_m[g] == 0) {
       EXPECT_FALSE(r.blind[g].found) << r.groups.names[g];
     }
-  }
-}
-
-// The same road with TH 10's 2 mm faulting: the 15 ft line found blind.
-TEST(VibrationFromSimulation, MainlineAt30MphWith2mmFaultingShowsThe15FtJoints) {
-  const DriveResult r = run_drive("mnroad-mainline-30mph", 1, 0.002);
-  for (std::size_t g = 0; g < r.groups.names.size(); ++g) {
     if (r.groups.panel_m[g] != 15 * kFtToM) continue;
+    fifteen_ft = true;
     ASSERT_TRUE(r.blind[g].found) << r.groups.names[g];
     EXPECT_NEAR(r.blind[g].panel_m, 15 * kFtToM, 0.03 * 15 * kFtToM);
   }
+  EXPECT_TRUE(fifteen_ft);
 }
 
-// TH 10's 43-year-old concrete (2 mm faulting, 28 ft panels): the line found blind.
+// Joints that neither fault nor curl do not excite the truck: no line anywhere, blind.
+TEST(VibrationFromSimulation, MainlineAt30MphWithoutFaultingShowsNoJointLine) {
+  const DriveResult r = run_drive("mnroad-mainline-30mph", 1, 0.0);
+  for (std::size_t g = 0; g < r.groups.names.size(); ++g) EXPECT_FALSE(r.blind[g].found) << r.groups.names[g];
+}
+
+// TH 10's 43-year-old concrete (3.3 mm faulting, 28 ft panels): the line found blind.
 TEST(VibrationFromSimulation, Th10At55Mph) {
   const DriveResult r = run_drive("th10-55mph", 1);
   EXPECT_NEAR(r.trip_damper_ratio, 1.0, 0.02);

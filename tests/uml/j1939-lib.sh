@@ -38,7 +38,7 @@ require_vcan() {
 wait_listening() {
   local pid i fd stat ready
   local -a f
-  for ((i = 0; i < 250; i++)); do
+  for ((i = 0; i < 750; i++)); do
     ready=1
     for pid in "$@"; do
       if ! read -r stat 2>/dev/null <"/proc/$pid/stat"; then
@@ -55,7 +55,7 @@ wait_listening() {
     ((ready)) && return 0
     sleep 0.02
   done
-  die "listeners $* did not start listening within 5 s"
+  die "listeners $* did not start listening within 15 s"
 }
 
 # can-utils 2020.11's j1939cat reads the socket error queue into a 100-byte

@@ -77,17 +77,19 @@ wait_status_match() {
 
 # A drive replayed into roadloadd as a truck would deliver it: roadloadd on vcan0 with the sensor
 # streams of $1/sim through its replay drivers, `roadload replay` sending the CAN frames at RATE
-# (extra arguments go to roadload replay), then a clean stop once the replayed accelerometer stream
-# has ended. Results in $1/live, recording in $1/rec, status in $1/status.log.
+# (extra arguments go to roadload replay; roadloadd's own, if any, are in the array daemon_args),
+# then a clean stop once the replayed accelerometer stream has ended. Results in $1/live, recording
+# in $1/rec, status in $1/status.log.
 replay_into_daemon() {
   local work=$1 replay_route=$2 replay_rate=$3
   shift 3
   "$roadloadd" --can vcan0 --no-gnss --replay "$work/sim" --replay-origin "$work/origin.toml" --route "$replay_route" \
     --results "$work/live" --data-dir "$work/rec" --status "$work/status.log" --status-json "$work/status.jsonl" \
-    2>"$work/daemon.err" &
+    ${daemon_args[@]+"${daemon_args[@]}"} 2>"$work/daemon.err" &
   daemon=$!
-  # The daemon reads the recording's metadata and opens vcan0 before it waits for the origin.
-  sleep 1
+  # The daemon opens vcan0 and then sleeps until the replay writes its origin: frames sent before
+  # it owns its socket would be lost, and a fixed pause is too short on a loaded host.
+  wait_listening "$daemon"
   "$roadload" replay "$work/sim" --iface vcan0 --rate "$replay_rate" --origin "$work/origin.toml" -q "$@" 2>"$work/replay.err" ||
     die "roadload replay failed with status $?: $(cat "$work/replay.err")"
   local i

@@ -62,6 +62,28 @@ TEST(RealtimeMap, CanStampsSurviveWallClockSteps) {
   EXPECT_EQ(map.counters().unplaced, 0u);
 }
 
+// The socket opens (a reading of both clocks) and the daemon is slow to start reading: the frames
+// queued meanwhile waited up to 0.9 s, longer than any later frame may, and keep their kernel stamps.
+// Had the wall clock stepped forward while they waited, the step's offset would place them before
+// its own first reading: they still go to the offset of their stamps.
+TEST(RealtimeMap, FramesQueuedWhileTheDaemonStartsKeepTheirStamps) {
+  const std::int64_t base = 1'700'000'000'000'000'000;
+  for (const std::int64_t step : {std::int64_t{0}, 7'000 * kMs}) {
+    RealtimeMap map;
+    map.observe(reading(1'000 * kMs, base, 20'000, 0.5));  // at the socket's opening
+    // Frames every 10 ms from 1.01 s to 1.89 s; the wall clock steps at 1.5 s; one read at 1.9 s.
+    map.observe(reading(1'900 * kMs, base + step, 20'000, 0.5));
+    std::uint64_t exact = 0;
+    for (std::int64_t t = 1'010 * kMs; t < 1'900 * kMs; t += 10 * kMs) {
+      const std::int64_t stamp = t + base + (t >= 1'500 * kMs ? step : 0);
+      const auto c = map.map(stamp, 1'900 * kMs);
+      if (c && std::llabs(to_ns(*c) - t) < 20'000) ++exact;
+    }
+    EXPECT_EQ(exact, 89u) << "step " << step / kMs << " ms";
+    EXPECT_EQ(map.counters().unplaced, 0u);
+  }
+}
+
 TEST(SampleClock, BurstSamplesLandOnTheirTrueTimes) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> latency(0, 400e-6);

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <map>
 
+#include "html_blocks.hpp"
 #include "report_figures.hpp"
+#include "report_gap.hpp"
 #include "roadload/fuel_breakdown.hpp"
 
 namespace roadload::report {
@@ -17,24 +19,9 @@ constexpr const char* kStyle =
     "h1{font-size:1.5em}h2{font-size:1.2em;border-bottom:1px solid #ccc;margin-top:2em}"
     "figure{margin:1em 0}figure svg{width:100%;max-width:760px;height:auto}figcaption{font-size:.9em;color:#444}"
     "table{border-collapse:collapse;font-size:.85em;margin:.5em 0}th,td{border:1px solid #ccc;padding:2px 6px;text-align:right}"
-    "th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.summary td{text-align:left}"
+    "h3{font-size:1.05em}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.summary td{text-align:left}"
     ".warn{color:#a00}nav a{margin-right:1em}";
 
-std::string figure_html(const Figure& f) {
-  return "<figure id=\"" + f.chart.id + "\">" + render_svg(f.chart) + "<figcaption>" + escape_html(f.caption) + "</figcaption></figure>\n";
-}
-
-std::string table_html(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows, const std::string& cls = "") {
-  std::string h = "<table" + (cls.empty() ? std::string() : " class=\"" + cls + "\"") + "><tr>";
-  for (const std::string& c : head) h += "<th>" + escape_html(c) + "</th>";
-  h += "</tr>\n";
-  for (const auto& row : rows) {
-    h += "<tr>";
-    for (const std::string& c : row) h += "<td>" + escape_html(c) + "</td>";
-    h += "</tr>\n";
-  }
-  return h + "</table>\n";
-}
 
 double at(const NumberTable& t, std::size_t row, const std::string& column) {
   const auto c = t.column(column);
@@ -146,7 +133,9 @@ std::string render_report(const ReportInput& in) {
   body += "<h1>" + escape_html(in.title) + "</h1>\n<p>Results from <code>" + escape_html(r.dir) + "</code>" +
           (in.truth ? ", beside the simulation's ground truth" : "") + ".</p>\n";
   body += "<nav><a href=\"#crr\">CRR</a><a href=\"#fuel\">fuel</a><a href=\"#forces\">contact forces</a>"
-          "<a href=\"#dynamic\">dynamic rolling resistance</a><a href=\"#spectra\">spectra</a><a href=\"#health\">sync health</a></nav>\n";
+          "<a href=\"#dynamic\">dynamic rolling resistance</a><a href=\"#spectra\">spectra</a><a href=\"#health\">sync health</a>";
+  if (r.gap || r.gap_tables) body += "<a href=\"#gap\">sim-to-real gap</a>";
+  body += "</nav>\n";
   body += summary(r.trip, cells);
   body += "<h2 id=\"crr\">Rolling resistance per cell</h2>\n" + figure_html(crr_per_cell(cells, in.truth)) + cell_table(cells, in.truth);
   body += "<h2 id=\"fuel\">Fuel</h2>\n" + figure_html(rolling_fuel_per_cell(cells)) + figure_html(fuel_breakdown_per_cell(cells));
@@ -167,6 +156,7 @@ std::string render_report(const ReportInput& in) {
   for (const results::Spectrum& s : r.spectra) body += figure_html(spectrum(s, r.trip));
   if (r.spectra.empty()) body += "<p class=\"warn\">No spectra in the results.</p>\n";
   body += "<h2 id=\"health\">Sync health</h2>\n" + sync_health(r.trip);
+  body += gap_section(r.gap ? &*r.gap : nullptr, r.gap_tables ? &*r.gap_tables : nullptr);
   return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + escape_html(in.title) + "</title><style>" + kStyle +
          "</style></head><body>\n" + body + "</body></html>\n";
 }

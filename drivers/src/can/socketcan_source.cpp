@@ -113,6 +113,9 @@ bool SocketCanSource::try_open() {
   sockaddr_can addr{};
   addr.can_family = AF_CAN;
   addr.can_ifindex = static_cast<int>(index);
+  // Read before the socket receives: every frame it will hold is stamped after this reading, and
+  // the map places them all with its offset, however late the first read comes (a slow start).
+  observe_clocks();
   if (!ok || bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
     std::snprintf(status_.detail, sizeof status_.detail, "%s: %s", iface, std::strerror(errno));
     ::close(fd);
@@ -124,7 +127,6 @@ bool SocketCanSource::try_open() {
   if (status_.items > 0) ++status_.restarts;
   status_.state = io::SourceState::waiting;
   std::snprintf(status_.detail, sizeof status_.detail, "listening");
-  observe_clocks();
   return true;
 }
 

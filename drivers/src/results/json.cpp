@@ -1,6 +1,7 @@
 #include "roadload/results/json.hpp"
 
 #include <charconv>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -207,6 +208,24 @@ Parsed<JsonValue> read_json_file(const std::string& path) {
   text << in.rdbuf();
   if (in.bad()) return ParseError{path, 0, "", "could not be read"};
   return parse_json(text.str(), path);
+}
+
+std::string json_quote(std::string_view s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char esc[8];
+      std::snprintf(esc, sizeof esc, "\\u%04x", static_cast<unsigned>(c));
+      out += esc;
+    } else {
+      out += c;
+    }
+  }
+  out += '"';
+  return out;
 }
 
 }  // namespace roadload::results

@@ -104,7 +104,14 @@ Parsed<ResultsDir> read_results_dir(const std::string& dir) {
   }
   auto trip = read_json_file(dir + "/trip.json");
   if (!trip) return trip.error();
-  ResultsDir r{dir, std::move(cells.value()), std::move(trip.value()), {}};
+  ResultsDir r{dir, std::move(cells.value()), std::move(trip.value()), {}, {}, {}};
+  for (auto [name, slot] : {std::pair{"/gap.json", &r.gap}, std::pair{"/gap-tables.json", &r.gap_tables}}) {
+    std::error_code exists_ec;
+    if (!std::filesystem::exists(dir + name, exists_ec)) continue;
+    auto json = read_json_file(dir + name);
+    if (!json) return json.error();
+    *slot = std::move(json.value());
+  }
   std::vector<std::pair<std::string, std::string>> psd_files;  // group, path
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {

@@ -30,8 +30,8 @@ struct CrrFilterConfig {
   // Error of the force balance, white, N per sqrt(Hz): a floor (torque resolution, driveline and
   // tire ripple) and a share of the aero drag (gusts scale with it). Both set so that the mean NIS
   // is near 1 on the simulated Mainline (30 mph) and highways (55 mph).
-  double force_noise_n = 28.0;
-  double aero_force_noise_per_sqrt_hz = 0.024;
+  double force_noise_n = 20.0;
+  double aero_force_noise_per_sqrt_hz = 0.030;
   double unusable_force_noise_n = 20000.0; // while braking or shifting: speed follows the measurements
   double crr_walk_per_sqrt_s = 3e-4;       // CRR changes from pavement to pavement (no cells known)
   double cda_walk_per_sqrt_s = 1e-4;

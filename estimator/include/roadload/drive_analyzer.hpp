@@ -41,7 +41,7 @@ struct AnalyzerConfig {
   // The report's runs hold one speed: CdA then keeps its prior (crr_filter.hpp, estimate_cda).
   bool estimate_cda = false;
   double cell_crr_jump_sigma = 0.003;
-  double wheel_speed_sigma_mps = 0.0005;  // CCVS1 rounds to 1/256 km/h; with NIS near 1 on simulated drives
+  double wheel_speed_sigma_mps = 0.00042;  // CCVS1 rounds to 1/256 km/h; with NIS near 1 on simulated drives
   double antenna_behind_front_m = 2.5;  // GNSS antenna behind the front axle
   double cg_behind_front_m = 9.74;      // from the axle loads of Table 6.2
   double max_gnss_offset_m = 30.0;      // fixes farther from the route are not on it

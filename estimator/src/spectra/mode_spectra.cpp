@@ -17,6 +17,8 @@ ModeSpectra::ModeSpectra(std::vector<ModeSensor> sensors, std::vector<int> cell_
       distance_window_sq_(hann_periodic(config.distance_nperseg)),
       segment_(config.nperseg),
       distance_segment_(config.distance_nperseg),
+      masked_segment_(config.distance_nperseg),
+      distance_group_(config.distance_nperseg),
       spectrum_(bin_count(transform_.config())),
       distance_spectrum_(bin_count(distance_transform_.config())),
       group_weight_(group_count + 1),
@@ -115,24 +117,39 @@ void ModeSpectra::advance_distance(std::size_t i, const SensorGrid& grid, std::i
   d.primed = true;
 }
 
+// The trip takes the segment whole. A group takes only its own stretches of it, the rest zeroed:
+// a segment is longer than most cells, and a weighted share of the whole would carry one
+// pavement's joint lines into its neighbours' spectra. The masked periodogram holds about
+// `share` of the group's density, so it is added as `share` of a segment.
 void ModeSpectra::take_distance(std::size_t i) {
   DistanceStream& d = streams_[i];
   const std::size_t n = config_.distance_nperseg, oldest = d.total % n;
-  for (double& g : group_weight_) g = 0;
-  group_weight_[0] = 1.0;
   double total = 0;
   for (std::size_t j = 0; j < n; ++j) {
     const std::size_t k = (oldest + j) % n;
     distance_segment_[j] = d.values[k];
-    total += distance_window_sq_[j];
     const int c = d.cells[k];
-    const int g = c >= 0 && static_cast<std::size_t>(c) < cell_group_.size() ? cell_group_[static_cast<std::size_t>(c)] : -1;
-    if (g >= 0) group_weight_[static_cast<std::size_t>(g) + 1] += distance_window_sq_[j];
+    distance_group_[j] = c >= 0 && static_cast<std::size_t>(c) < cell_group_.size() ? cell_group_[static_cast<std::size_t>(c)] : -1;
+    total += distance_window_sq_[j];
   }
-  for (std::size_t g = 1; g < group_weight_.size(); ++g) group_weight_[g] /= total;
   distance_transform_.transform(distance_segment_, distance_spectrum_);
-  for (std::size_t g = 0; g < group_weight_.size(); ++g)
-    if (group_weight_[g] > 0) spatial_[g * sensors_.size() + i].add_scaled(distance_spectrum_, distance_spectrum_, group_weight_[g]);
+  spatial_[index(i, -1)].add_scaled(distance_spectrum_, distance_spectrum_, 1.0);
+  for (int g = 0; g < static_cast<int>(group_count_); ++g) {
+    double share = 0, sum = 0, count = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (distance_group_[j] != g) continue;
+      share += distance_window_sq_[j];
+      sum += distance_segment_[j];
+      ++count;
+    }
+    share /= total;
+    if (share <= 0) continue;
+    const double mean = sum / count;
+    for (std::size_t j = 0; j < n; ++j) masked_segment_[j] = distance_group_[j] == g ? distance_segment_[j] - mean : 0.0;
+    distance_transform_.transform(masked_segment_, distance_spectrum_);
+    for (auto& x : distance_spectrum_) x /= share;
+    spatial_[index(i, g)].add_scaled(distance_spectrum_, distance_spectrum_, share);
+  }
 }
 
 std::vector<double> ModeSpectra::density(std::size_t sensor, int group) const {

@@ -1,6 +1,7 @@
 #include "roadload/spectra/suspension_spectra.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -21,6 +22,7 @@ SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::siz
       config_(config),
       transform_({grid.rate_hz(), config.nperseg, config.noverlap}),
       weights_(hann_periodic(config.nperseg)),
+      leaks_(cell_count, axles_.size()),
       segment_(config.nperseg),
       slot_spectrum_(slot_count(axles_), std::vector<std::complex<double>>(bin_count(transform_.config()))),
       slot_velocity_(slot_spectrum_),
@@ -79,7 +81,21 @@ void SuspensionSpectra::take(const SensorGrid& grid, const PlacementHistory& his
     add(window_[a], 1.0);
     for (std::size_t i = 0; i < shares.count; ++i)
       add(cell_[static_cast<std::size_t>(shares.share[i].cell) * axles_.size() + a], shares.share[i].weight);
+    leaks_.add(a, shares);
   }
+}
+
+AxlePower SuspensionSpectra::cell_power(std::size_t cell, std::size_t axle) const {
+  const AxlePower own = power(cell_[cell * axles_.size() + axle], axle);
+  const CellLeak& k = leaks_.leak(cell, axle);
+  std::array<AxlePower, CellLeak::kNeighbours> beside;
+  for (std::size_t j = 0; j < k.count; ++j) beside[j] = power(cell_[static_cast<std::size_t>(k.neighbour[j]) * axles_.size() + axle], axle);
+  AxlePower p = own;
+  for (double AxlePower::*field : {&AxlePower::damper_w, &AxlePower::damper_accel_w, &AxlePower::tire_eq27_w,
+                                   &AxlePower::tire_deflection_w}) {
+    p.*field = unblur(k, own.*field, own.segments, [&](std::size_t j) { return beside[j].*field; });
+  }
+  return p;
 }
 
 void SuspensionSpectra::clear_window() {

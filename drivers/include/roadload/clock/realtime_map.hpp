@@ -7,6 +7,10 @@
 // frame's arrival and its read therefore neither shifts nor reorders it, provided the daemon reads
 // both clocks after each receive (observe) and the step is larger than the frame's wait plus
 // future_slack_ns: a backward step of 2 ms on a frame that waited 3 ms fits either offset.
+// An offset also places any stamp after its own first reading, however long the frame waited: no
+// step came between, and a frame stamped before a forward step lands before that reading. So the
+// frames queued between the socket's opening (its first reading) and a slow start of the daemon
+// keep their kernel stamps.
 //
 // Pure computation: the caller reads the clocks (drivers/socketcan) and passes the numbers in.
 #include <array>
@@ -26,7 +30,7 @@ struct ClockReading {
 
 struct RealtimeMapConfig {
   std::int64_t step_threshold_ns = 200'000;   // an offset change beyond this is a step, not read noise
-  std::int64_t max_latency_ns = 500'000'000;  // a frame waits at most this long in the socket
+  std::int64_t max_latency_ns = 500'000'000;  // a frame read later waits at most this long in the socket
   std::int64_t future_slack_ns = 1'000'000;   // how far past its read a mapped stamp may land (offset error)
 };
 
@@ -43,7 +47,8 @@ class RealtimeMap {
   void observe(const ClockReading& r);
   bool ready() const { return count_ > 0; }
   // The capture time of a realtime stamp of a frame the daemon read at monotonic `read_mono_ns`;
-  // nothing when no kept offset places it within [read - max_latency, read + slack].
+  // nothing when no kept offset places it within [min(read - max_latency, the offset's first
+  // reading), read + slack].
   std::optional<CaptureTime> map(std::int64_t realtime_ns, std::int64_t read_mono_ns);
   // realtime - monotonic now, as last measured.
   std::int64_t offset_ns() const { return epochs_[newest()].offset_ns; }
@@ -53,6 +58,7 @@ class RealtimeMap {
   struct Epoch {
     std::int64_t offset_ns = 0;       // realtime - monotonic
     std::int64_t uncertainty_ns = 0;  // half the tightest reading's monotonic interval
+    std::int64_t first_mono_ns = 0;   // when this offset was first read: it held from then on
   };
   static constexpr std::size_t kEpochs = 8;
   std::size_t newest() const { return (head_ + kEpochs - 1) % kEpochs; }

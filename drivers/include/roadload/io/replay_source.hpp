@@ -46,14 +46,18 @@ class ReplaySource final : public Source<Sample> {
 
   std::size_t read(std::span<Sample> out, Nanoseconds timeout) override {
     std::size_t n = 0;
-    const CaptureTime give_up = clock_.now() + timeout;
+    // The clock is read again only for a sample not yet due at the last reading: on a kernel where
+    // reading it is a system call (UML's vDSO makes one), a reading per sample would cap the replay.
+    CaptureTime now = clock_.now();
+    const CaptureTime give_up = now + timeout;
     while (n < out.size()) {
       if (!has_pending_ && !pull()) break;
-      if (timing_.paced()) {
-        const CaptureTime now = clock_.now();
+      if (timing_.paced() && pending_.t > now) {
+        now = clock_.now();
         if (pending_.t > now) {
           if (n > 0 || now >= give_up) break;
           clock_.sleep_until(pending_.t, give_up - now);
+          now = clock_.now();
           continue;
         }
       }

@@ -1,6 +1,7 @@
 #pragma once
 // A JSON reader for the results files roadload writes (trip.json): values, arrays and objects,
-// with the line of each value kept so that a reader can say where a field is missing or wrong.
+// with the line of each value kept so that a reader can say where a field is missing or wrong;
+// and the one string quoting every JSON writer uses.
 #include <map>
 #include <memory>
 #include <optional>
@@ -44,5 +45,8 @@ class JsonValue {
 // `source` names the text in errors (usually its path).
 Parsed<JsonValue> parse_json(std::string_view text, const std::string& source);
 Parsed<JsonValue> read_json_file(const std::string& path);
+
+// A JSON string literal: quotes, backslashes and control characters escaped.
+std::string json_quote(std::string_view s);
 
 }  // namespace roadload::results

@@ -52,6 +52,7 @@ struct ResultsDir {
   NumberTable cells;
   JsonValue trip;
   std::vector<Spectrum> spectra;  // psd.csv then psd-<group>.csv, by name
+  std::optional<JsonValue> gap, gap_tables;  // gap.json and gap-tables.json when there (roadload gap)
 };
 
 Parsed<ResultsDir> read_results_dir(const std::string& dir);

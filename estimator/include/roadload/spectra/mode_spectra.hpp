@@ -85,7 +85,8 @@ class ModeSpectra {
   std::vector<SpectralSum> time_, spatial_;  // [(group + 1) * sensors + sensor]
   std::vector<DistanceStream> streams_;
   std::vector<double> speed_sum_, speed_weight_;  // per group + 1
-  std::vector<double> segment_, distance_segment_;
+  std::vector<double> segment_, distance_segment_, masked_segment_;
+  std::vector<int> distance_group_;  // per sample of distance_segment_, -1 outside every group
   std::vector<std::complex<double>> spectrum_, distance_spectrum_;
   std::vector<double> group_weight_;
   SegmentSchedule schedule_;

@@ -21,6 +21,7 @@
 
 #include "roadload/spectra/dynamic_power.hpp"
 #include "roadload/spectra/placement_history.hpp"
+#include "roadload/spectra/cell_leak.hpp"
 #include "roadload/spectra/segment_weights.hpp"
 #include "roadload/spectra/sensor_grid.hpp"
 #include "roadload/spectra/welch.hpp"
@@ -76,7 +77,8 @@ class SuspensionSpectra {
   std::size_t axle_count() const { return axles_.size(); }
   const SuspensionAxle& axle(std::size_t i) const { return axles_[i]; }
   const WelchConfig& welch() const { return transform_.config(); }
-  AxlePower cell_power(std::size_t cell, std::size_t axle) const { return power(cell_[cell * axles_.size() + axle], axle); }
+  // The cell's average with what it borrowed from the cells beside it taken out (cell_leak.hpp).
+  AxlePower cell_power(std::size_t cell, std::size_t axle) const;
   AxlePower trip_power(std::size_t axle) const { return power(trip_[axle], axle); }
   // Since the last clear_window(): the live status's time window.
   AxlePower window_power(std::size_t axle) const { return power(window_[axle], axle); }
@@ -110,6 +112,7 @@ class SuspensionSpectra {
   SegmentTransform transform_;
   SegmentWeights weights_;
   std::vector<Sums> trip_, window_, cell_;  // cell_[cell * axles + axle]
+  CellLeaks leaks_;
   std::vector<double> segment_;
   std::vector<std::vector<std::complex<double>>> slot_spectrum_, slot_velocity_;
   std::vector<bool> slot_ok_;

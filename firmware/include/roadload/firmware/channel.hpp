@@ -13,6 +13,7 @@
 
 #include "roadload/firmware/spsc_ring.hpp"
 #include "roadload/firmware/status_report.hpp"
+#include "roadload/io/replay_clock.hpp"
 #include "roadload/io/source.hpp"
 
 namespace roadload::firmware {
@@ -30,10 +31,13 @@ class Channel {
   Channel& operator=(const Channel&) = delete;
 
   // Without an estimator its ring stays empty rather than filling up and counting drops.
-  void start(const std::atomic<bool>& stop, bool feed_estimator) {
+  void start(const std::atomic<bool>& stop, bool feed_estimator, const io::WaitClock& clock) {
     feed_estimator_ = feed_estimator;
     replay_ = is_replay();
-    thread_ = std::thread([this, &stop] { run(stop); });
+    // Nothing is delivered before the first read: a replay's items stamped before start() are
+    // still to come, and a live device's socket may hold frames stamped before it.
+    delivered_through_ns_.store(to_ns(CaptureTime{}), std::memory_order_relaxed);
+    thread_ = std::thread([this, &stop, &clock] { run(stop, clock); });
   }
   void join() {
     if (thread_.joinable()) thread_.join();
@@ -62,16 +66,29 @@ class Channel {
   // A replay at its end; a live source never finishes.
   bool finished() const { return finished_.load(std::memory_order_acquire); }
   bool is_replay() const { return source_->status().stamps == StampSource::recording; }
+  // Every item stamped at or before this is in the rings: a thread the scheduler starved, or a
+  // device read late, holds this back, and the estimator waits for it rather than take its items
+  // out of order. After the end of a replay, the end of time.
+  CaptureTime delivered_through() const {
+    return capture_time_from_ns(delivered_through_ns_.load(std::memory_order_acquire));
+  }
 
  private:
   static constexpr std::size_t kBatch = 256;
   static constexpr Nanoseconds kReadTimeout{100'000'000};
   static constexpr int kDrainReads = 1024;
 
-  void run(const std::atomic<bool>& stop) {
+  void run(const std::atomic<bool>& stop, const io::WaitClock& clock) {
     std::array<T, kBatch> batch{};
     while (!stop.load(std::memory_order_relaxed)) {
-      pass_on(batch, source_->read(batch, kReadTimeout), stop);
+      const CaptureTime asked = clock.now();
+      const std::size_t n = source_->read(batch, kReadTimeout);
+      pass_on(batch, n, stop);
+      // A read that was not cut short by the batch's size returned everything stamped before it
+      // began; a full batch only what it holds.
+      CaptureTime through = n > 0 ? batch[n - 1].t : asked;
+      if (n < kBatch && asked > through) through = asked;
+      delivered_through_ns_.store(to_ns(through), std::memory_order_release);
       if (source_->status().state == io::SourceState::ended) break;
     }
     // On the way out, what the device already holds (frames queued in the socket) is still taken.
@@ -81,6 +98,7 @@ class Channel {
       pass_on(batch, n, stop);
     }
     publish();
+    delivered_through_ns_.store(to_ns(CaptureTime::max()), std::memory_order_release);
     finished_.store(true, std::memory_order_release);
   }
 
@@ -124,6 +142,7 @@ class Channel {
   std::atomic<std::uint64_t> bits_{0};
   std::uint64_t bits_seen_ = 0;  // the source thread's own count
   std::atomic<bool> finished_{false};
+  std::atomic<std::int64_t> delivered_through_ns_{0};
   bool feed_estimator_ = true;
   bool replay_ = false;
   std::thread thread_;

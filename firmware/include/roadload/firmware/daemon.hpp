@@ -54,9 +54,13 @@ struct DaemonSetup {
   std::vector<int> cell_group;  // per cell, for spectra per pavement
   std::size_t group_count = 0;
   // Items are handed to the estimator, and written to a stream's file shared by several sources,
-  // once every source has moved past them or this long after their capture time, so streams with
-  // different latencies merge in order.
+  // once every source has delivered what it stamped up to this long after them, so streams with
+  // different latencies, and threads the scheduler delays, merge in order.
   Nanoseconds merge_delay{200'000'000};
+  // A source that stops delivering (a hung driver, a starved thread) holds the others back for at
+  // most this long, within a ring's capacity (two seconds of a 4 kHz accelerometer); then its late
+  // items go out of order.
+  Nanoseconds max_merge_wait{1'000'000'000};
   // A replay faster than real time: the estimator sees every stamp mapped back onto the
   // recording's timeline, so the force balance keeps its real time steps. The recorder keeps the
   // stamps as they came.
@@ -89,6 +93,7 @@ class Daemon {
   void estimate_loop();
   bool write_pending(std::size_t max_items, CaptureTime horizon);
   bool estimate_next(CaptureTime horizon);
+  CaptureTime merge_horizon(CaptureTime now) const;
 
   DaemonSetup setup_;
   DaemonSources sources_;
@@ -109,7 +114,7 @@ class Daemon {
   j1939::CadenceMonitor cadence_;
   // Status thread's own memory of the previous report, for rates.
   CaptureTime last_report_{};
-  std::vector<std::uint64_t> last_items_, last_bits_, last_dropped_, last_errors_;
+  std::vector<std::uint64_t> last_items_, last_bits_, last_dropped_, last_errors_, last_restarts_;
   J1939Report last_j1939_;
   bool running_ = false;
 };

@@ -26,6 +26,7 @@ struct SourceReport {
   std::uint64_t ring_dropped = 0;  // lost because a consumer fell behind
   std::uint64_t dropped_recent = 0;  // source + ring drops in the last interval
   std::uint64_t errors_recent = 0;   // device or bus errors in the last interval
+  std::uint64_t restarts_recent = 0; // recoveries in the last interval (a bus-off shorter than it)
 };
 
 // What the decoded J1939 traffic says about frames lost or mangled before the gateway.

@@ -46,6 +46,7 @@ struct Scenario {
   std::size_t accelerometers = 8;
   double gnss_rate_hz = 10;
   double physics_rate_hz = 2400;
+  double load_scale = 1.0;      // every axle's load (its sprung part) times this: a heavier or lighter cargo
   bool coast = false;           // neutral coast-down instead of cruise
 };
 

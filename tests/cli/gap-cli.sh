@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# roadload gap as a user runs it: a short drive with an effect it is not told, diagnosed from the
+# recording alone after the ground-truth folder is gone; the JSON's fields; bad input refused.
+set -euo pipefail
+roadload=${1:?usage: gap-cli.sh ROADLOAD_BIN}
+# shellcheck source=cli-lib.sh source-path=SCRIPTDIR
+. "$(dirname "${BASH_SOURCE[0]}")/cli-lib.sh" gap-cli
+
+expect_status 0 "$roadload" gap --help
+grep -q -- "--real DIR" "$work/out" || fail "--help does not describe --real"
+expect_status 64 "$roadload" gap
+expect_status 64 "$roadload" gap --real "$work/rec" --model a --model b --real "$work/rec2" --model c
+expect_status 66 "$roadload" gap --real "$work/no-such-recording"
+grep -q "no-such-recording" "$work/err" || fail "missing recording not named: $(cat "$work/err")"
+
+# The engine reports 4 % more torque than it makes: the one effect that moves torque and not fuel.
+expect_status 0 "$roadload" simulate --scenario mnroad-mainline-30mph --seed 21 --duration 120 --out "$work/rec" \
+  --truth "$work/truth" --effect torque-bias=0.04 -q
+rm -rf "$work/truth"
+expect_status 0 "$roadload" gap --real "$work/rec" --noise-runs 3 --jobs 2 --json "$work/gap.json" --features "$work/f.csv" -q
+[[ ! -e $work/truth ]] || fail "the diagnosis recreated the truth folder"
+grep -q "model mnroad-mainline-30mph" "$work/out" || fail "the model scenario was not found from the GNSS track: $(head -3 "$work/out")"
+grep -q "^effect: torque-bias" "$work/out" || fail "torque-bias not named: $(grep -A8 '^candidates' "$work/out")"
+named=$(grep -A1 "^effect:" "$work/out" | tail -n 1 | sed "s/^ *//")
+python3 - "$work/gap.json" "$roadload" <<'PY'
+import json, subprocess, sys
+g = json.load(open(sys.argv[1]))
+names = [l.split()[0] for l in subprocess.run([sys.argv[2], "simulate", "--list-effects"], capture_output=True,
+                                               text=True, check=True).stdout.splitlines()[1:]]
+for key in ("effect", "magnitude", "where", "residual_before", "residual_after"):
+    assert key in g, f"gap.json lacks {key}"
+assert g["effect"] in names, f"effect {g['effect']} is not a --list-effects name"
+assert 0.03 < g["magnitude"] < 0.05, f"torque-bias fitted as {g['magnitude']}"
+assert g["interval"][0] < 0.04 < g["interval"][1] or abs(g["magnitude"] - 0.04) < 0.003, g["interval"]
+assert g["where"] and g["where"][0]["channel"] == "torque_nm", g["where"][:2]
+assert g["residual_after"] < 0.3 * g["residual_before"], (g["residual_before"], g["residual_after"])
+PY
+head -1 "$work/f.csv" | grep -qx "run,channel,where,half,real,model,sigma,z,after" || fail "features CSV header"
+
+# A damaged recording is refused with its file and line, not diagnosed.
+cp -r "$work/rec" "$work/bad"
+sed -i '20s/.*/(12.5) can0 not-a-frame/' "$work/bad/can.log"
+expect_status 65 "$roadload" gap --real "$work/bad" --model mnroad-mainline-30mph -q
+grep -q "can.log:20" "$work/err" || fail "damaged line not named: $(cat "$work/err")"
+echo "gap-cli: PASS: $named"

@@ -1,0 +1,118 @@
+// The estimator and the writer take every source's items in capture-time order even when the
+// scheduler starves a source thread for longer than the merge delay: they wait until each source
+// has delivered what it stamped, so a stalled CAN thread changes nothing the live filter computes
+// and a thread late to its first read leaves the recording in order.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "drive_fixture.hpp"
+#include "roadload/recording/reader.hpp"
+
+namespace roadload::firmware::test {
+namespace {
+
+// Delivers what `inner` delivers, but once, after `stall_after` items, blocks in read() for
+// `stall` of wall time: a thread the scheduler did not run.
+template <typename T>
+class StallingSource final : public io::Source<T> {
+ public:
+  StallingSource(std::unique_ptr<io::Source<T>> inner, std::size_t stall_after, std::chrono::milliseconds stall)
+      : inner_(std::move(inner)), stall_after_(stall_after), stall_(stall) {}
+  std::size_t read(std::span<T> out, Nanoseconds timeout) override {
+    if (!stalled_ && inner_->status().items >= stall_after_) {
+      stalled_ = true;
+      std::this_thread::sleep_for(stall_);
+    }
+    return inner_->read(out, timeout);
+  }
+  const io::SourceStatus& status() const override { return inner_->status(); }
+  const char* name() const override { return inner_->name(); }
+
+ private:
+  std::unique_ptr<io::Source<T>> inner_;
+  std::size_t stall_after_;
+  std::chrono::milliseconds stall_;
+  bool stalled_ = false;
+};
+
+LiveEstimate live_estimate(const SimulatedDrive& drive, std::chrono::milliseconds can_stall, const std::string& name) {
+  const std::string dir = temp_dir(name);
+  std::atomic<bool> gate{true};
+  const Pace pace = start_pace(drive);
+  PaceClock clock(pace);
+  DaemonSources sources = memory_sources(drive, pace, gate, 1.0);
+  const std::size_t half = drive.sink.frames.size() / 2;
+  sources.can.front() = std::make_unique<CanChannel>(
+      std::make_unique<StallingSource<CanFrame>>(
+          std::make_unique<MemorySource<CanFrame>>(drive.sink.frames, gate, drive.sink.frames.size(), "can0", pace), half,
+          can_stall),
+      SourceKind::can, "can0");
+  Daemon daemon(daemon_setup(drive, dir), std::move(sources), clock);
+  daemon.start();
+  wait_for(daemon);
+  daemon.stop();
+  std::filesystem::remove_all(dir);
+  return daemon.report().estimate;
+}
+
+TEST(DaemonMerge, AStarvedCanThreadChangesNothingTheFilterComputes) {
+  const SimulatedDrive drive(16);
+  // 120 ms of wall time is 0.6 s of the drive at the test's pace: three of the daemon's merge delays.
+  const LiveEstimate steady = live_estimate(drive, std::chrono::milliseconds(0), "roadloadd-merge-steady");
+  const LiveEstimate starved = live_estimate(drive, std::chrono::milliseconds(120), "roadloadd-merge-starved");
+  ASSERT_TRUE(steady.started);
+  EXPECT_GT(steady.s_front_m, 150.0);
+  EXPECT_EQ(starved.s_front_m, steady.s_front_m);
+  EXPECT_EQ(starved.speed_mps, steady.speed_mps);
+  EXPECT_EQ(starved.crr, steady.crr);
+  EXPECT_EQ(starved.crr_hi, steady.crr_hi);
+}
+
+// The drive has run 1.5 s when the daemon starts, and one accelerometer's thread then waits
+// 120 ms (0.6 s of the drive) before its first read: what it has not delivered yet is older than
+// everything the other sensors hand over meanwhile.
+TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
+  const SimulatedDrive drive(8);
+  const std::string dir = temp_dir("roadloadd-merge-late-start");
+  std::atomic<bool> gate{true};
+  const Pace pace = start_pace(drive);
+  PaceClock clock(pace);
+  DaemonSources sources = memory_sources(drive, pace, gate, 1.0);
+  // memory_sources() gives the lowest sensor number the first channel.
+  std::uint8_t first = 255;
+  for (const AccelSample& a : drive.sink.accels) first = std::min(first, a.sensor);
+  std::vector<AccelSample> first_sensor;
+  for (const AccelSample& a : drive.sink.accels) {
+    if (a.sensor == first) first_sensor.push_back(a);
+  }
+  sources.accel.front() = std::make_unique<AccelChannel>(
+      std::make_unique<StallingSource<AccelSample>>(
+          std::make_unique<MemorySource<AccelSample>>(std::move(first_sensor), gate, drive.sink.accels.size(), "accel", pace), 0,
+          std::chrono::milliseconds(120)),
+      SourceKind::accelerometer, "accel0");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  Daemon daemon(daemon_setup(drive, dir), std::move(sources), clock);
+  daemon.start();
+  wait_for(daemon);
+  daemon.stop();
+
+  const auto segments = std::vector<std::filesystem::path>(std::filesystem::directory_iterator(dir), {});
+  ASSERT_EQ(segments.size(), 1u);
+  auto reader = recording::RecordingReader::open(segments[0].string(), recording::kAccelStream);
+  ASSERT_TRUE(reader.ok()) << reader.error().to_string();
+  std::size_t rows = 0;
+  CaptureTime last{};
+  while (const recording::Record* rec = reader.value().next()) {
+    const auto* a = std::get_if<AccelSample>(rec);
+    if (a == nullptr) continue;
+    ASSERT_LE(last, a->t) << "accel.csv row " << rows << ", sensor " << int{a->sensor};
+    last = a->t;
+    ++rows;
+  }
+  EXPECT_EQ(rows, drive.sink.accels.size());
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace roadload::firmware::test

@@ -1,0 +1,144 @@
+// The diagnosis's arithmetic on synthetic whitened residuals: candidates with known responses,
+// residuals made from them plus unit noise.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <random>
+#include <set>
+
+#include "gap/diagnosis.hpp"
+
+namespace roadload::gap {
+namespace {
+
+constexpr Eigen::Index kFeatures = 240;
+
+struct Synthetic {
+  Problem problem;
+  std::mt19937_64 rng{42};
+
+  explicit Synthetic(std::size_t candidates) {
+    std::normal_distribution<double> normal;
+    for (Eigen::Index i = 0; i < kFeatures; ++i) {
+      problem.keys.push_back({"run", i < kFeatures / 2 ? "torque_nm" : "psd_db:TLF1", "cell " + std::to_string(i / 2),
+                              static_cast<std::uint8_t>(i % 2)});
+    }
+    for (std::size_t c = 0; c < candidates; ++c) {
+      // Each response a smooth shape over the features, with a little curvature.
+      Eigen::VectorXd d1(kFeatures), d2(kFeatures);
+      const double phase = normal(rng), freq = 0.02 + 0.01 * static_cast<double>(c);
+      for (Eigen::Index i = 0; i < kFeatures; ++i) {
+        const double shape = std::sin(freq * static_cast<double>(i) + phase) + 0.3 * static_cast<double>(static_cast<Eigen::Index>(c % 3) == i % 3);
+        d1(i) = 2.0 * shape;        // at magnitude 1
+        d2(i) = 4.4 * shape;        // at magnitude 2: 2 u + 0.1 u^2
+      }
+      problem.candidates.push_back(Candidate::from_two("effect-" + std::to_string(c), "unit", 0.0, 0.0, 3.0, 1.0, d1, 2.0, d2));
+    }
+    problem.z = Eigen::VectorXd::Zero(kFeatures);
+  }
+  void add_noise() {
+    std::normal_distribution<double> normal;
+    for (Eigen::Index i = 0; i < kFeatures; ++i) problem.z(i) += normal(rng);
+  }
+  std::string chosen_name(const Diagnosis& d, std::size_t i = 0) const {
+    return d.chosen ? problem.candidates[d.chosen->effects[i]].name : "none";
+  }
+};
+
+TEST(GapCandidate, TwoSimulationsGiveTheQuadraticResponseExactly) {
+  Eigen::VectorXd d1(2), d2(2);
+  // response(u) = 3 u - 0.5 u^2 and -u + 2 u^2, simulated at base + 1 and base + 4 (base 0.5).
+  d1 << 2.5, 1.0;
+  d2 << 4.0, 28.0;
+  const Candidate c = Candidate::from_two("x", "m", 0.5, 0.0, 5.0, 1.5, d1, 4.5, d2);
+  const Eigen::VectorXd r = c.response(0.5 + 2.0);
+  EXPECT_NEAR(r(0), 3.0 * 2.0 - 0.5 * 4.0, 1e-12);
+  EXPECT_NEAR(r(1), -2.0 + 2.0 * 4.0, 1e-12);
+  EXPECT_NEAR(c.response(0.5).norm(), 0.0, 1e-12);
+}
+
+TEST(GapDiagnosis, NamesTheEffectThatMadeTheResidualWithItsMagnitudeInsideTheInterval) {
+  Synthetic s(6);
+  s.problem.z = s.problem.candidates[3].response(1.7);
+  s.add_noise();
+  const Diagnosis d = diagnose(s.problem);
+  ASSERT_TRUE(d.chosen);
+  EXPECT_EQ(s.chosen_name(d), "effect-3");
+  ASSERT_EQ(d.chosen->effects.size(), 1u);
+  EXPECT_LT(d.chosen->lo[0], 1.7);
+  EXPECT_GT(d.chosen->hi[0], 1.7);
+  EXPECT_NEAR(d.chosen->magnitude[0], 1.7, 0.1);
+  EXPECT_GT(d.chosen->gain, 1000.0);
+}
+
+TEST(GapDiagnosis, NamesNothingInPureNoise) {
+  Synthetic s(6);
+  for (int draw = 0; draw < 50; ++draw) {
+    s.problem.z.setZero();
+    s.add_noise();
+    const Diagnosis d = diagnose(s.problem);
+    EXPECT_FALSE(d.chosen) << "draw " << draw << " named " << s.chosen_name(d) << " with gain " << d.chosen->gain;
+  }
+}
+
+TEST(GapDiagnosis, FindsTwoEffectsAtOnce) {
+  Synthetic s(6);
+  s.problem.z = s.problem.candidates[1].response(2.0) + s.problem.candidates[4].response(1.0);
+  s.add_noise();
+  const Diagnosis d = diagnose(s.problem);
+  ASSERT_TRUE(d.chosen);
+  ASSERT_EQ(d.chosen->effects.size(), 2u);
+  const std::set<std::string> named{s.chosen_name(d, 0), s.chosen_name(d, 1)};
+  EXPECT_EQ(named, (std::set<std::string>{"effect-1", "effect-4"}));
+}
+
+TEST(GapDiagnosis, AFitThatDoesNotCarryToTheOtherHalfIsNotNamed) {
+  // The residual has effect 2's shape on half 0 only: a fit on half 0 predicts half 1 wrongly.
+  Synthetic s(6);
+  const Eigen::VectorXd r = s.problem.candidates[2].response(2.0);
+  for (Eigen::Index i = 0; i < kFeatures; ++i) s.problem.z(i) = i % 2 == 0 ? r(i) : 0.0;
+  s.add_noise();
+  const Diagnosis d = diagnose(s.problem);
+  EXPECT_FALSE(d.chosen) << s.chosen_name(d);
+  EXPECT_LT(d.singles.front().gain, 100.0);
+}
+
+TEST(GapDiagnosis, OfTwoLookalikesNamesTheOneWhoseFittedMagnitudeIsRealistic) {
+  Synthetic s(2);
+  s.problem.candidates[1].a = s.problem.candidates[0].a;
+  s.problem.candidates[1].b = s.problem.candidates[0].b;
+  s.problem.candidates[0].realistic_lo = 2.0;  // 1.0 is far below where this effect is met
+  s.problem.candidates[0].realistic_hi = 3.0;
+  s.problem.candidates[1].realistic_lo = 0.5;
+  s.problem.candidates[1].realistic_hi = 1.5;
+  s.problem.z = s.problem.candidates[0].response(1.0);
+  s.add_noise();
+  const Diagnosis d = diagnose(s.problem);
+  ASSERT_TRUE(d.chosen);
+  EXPECT_EQ(s.chosen_name(d), "effect-1");
+  EXPECT_LT(d.singles.back().plausibility, 0.01);
+}
+
+TEST(GapLocate, RanksTheChannelWithTheExcessFirstAndNamesItsWorstPlace) {
+  Synthetic s(1);
+  s.add_noise();
+  s.problem.z(kFeatures - 7) = 12.0;  // one feature of the vibration channel
+  s.problem.z(kFeatures - 9) = 6.0;
+  const auto where = locate(s.problem.keys, s.problem.z, 5);
+  ASSERT_FALSE(where.empty());
+  EXPECT_EQ(where.front().channel, "psd_db:TLF1");
+  EXPECT_EQ(where.front().worst_where, s.problem.keys[kFeatures - 7].where);
+  EXPECT_DOUBLE_EQ(where.front().worst_z, 12.0);
+  EXPECT_GT(where.front().significance, 5.0);
+}
+
+TEST(GapRms, OfOneHalfCountsOnlyItsValidFeatures) {
+  Synthetic s(1);
+  for (Eigen::Index i = 0; i < kFeatures; ++i) s.problem.z(i) = i % 2 == 0 ? 2.0 : 4.0;
+  s.problem.z(3) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_DOUBLE_EQ(rms(s.problem.z, s.problem.keys, 0), 2.0);
+  EXPECT_DOUBLE_EQ(rms(s.problem.z, s.problem.keys, 1), 4.0);
+}
+
+}  // namespace
+}  // namespace roadload::gap

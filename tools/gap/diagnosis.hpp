@@ -1,0 +1,91 @@
+#pragma once
+// Steps 2-4 of the diagnosis as pure arithmetic on whitened residuals: where the gap lies, which
+// candidate effect explains it (fitted on one half of the road, judged on the other) and its
+// magnitude with an interval. No simulation here: the candidates arrive as responses already
+// simulated (resimulate.hpp, library.hpp), so this part runs in a unit test in microseconds.
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace roadload::gap {
+
+struct FeatureKey {
+  std::string run;      // the recording's label
+  std::string channel;  // features.hpp
+  std::string where;
+  std::uint8_t half = 0;
+};
+
+// A candidate effect's response, whitened like the residuals: the features move by
+// a u + b u^2 when the effect's magnitude moves by u from the model's own (`base`). a and b come
+// from two simulations at base + u1 and base + u2.
+struct Candidate {
+  std::string name;
+  std::string unit;
+  double base = 0;
+  double lo = 0, hi = 0;  // magnitudes a fit may take
+  // Where the effect is met in practice (the catalog's range): a fit far outside it is not
+  // believed (DecisionRule::range_tolerance).
+  double realistic_lo = -std::numeric_limits<double>::infinity(), realistic_hi = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd a, b;
+
+  static Candidate from_two(std::string name, std::string unit, double base, double lo, double hi, double m1,
+                            const Eigen::VectorXd& d1, double m2, const Eigen::VectorXd& d2);
+  Eigen::VectorXd response(double magnitude) const;
+};
+
+struct Problem {
+  std::vector<FeatureKey> keys;
+  Eigen::VectorXd z;  // (real - model) / noise; NaN where either side never saw the feature
+  std::vector<Candidate> candidates;
+};
+
+struct Fit {
+  std::vector<std::size_t> effects;  // indices into Problem::candidates
+  std::vector<double> magnitude, lo, hi;  // fitted on both halves; 90 % interval
+  std::vector<double> magnitude_half0;    // fitted on half 0 alone: what the held-out check uses
+  double gain = 0;  // chi-square removed on held-out data, both folds, minus the complexity penalty,
+                    // times the plausibility of the magnitudes
+  double plausibility = 1;  // exp(-(d / tolerance)^2), d: distance outside the realistic range in its widths
+};
+
+struct WhereItem {
+  std::string run, channel, where;
+  std::size_t features = 0;
+  double excess = 0;  // sum z^2 minus its noise expectation
+  double significance = 0;  // excess / sqrt(2 n): standard deviations above noise
+  double worst_z = 0;  // the largest |z| inside, and where
+  std::string worst_where;
+};
+
+struct DecisionRule {
+  double null_gain = 100.0;  // held-out chi-square a candidate must remove to be named
+  double pair_gain = 50.0;   // and a second effect beyond the first
+  double pair_share = 0.01;  // and at least this share of the first's gain: less is the first's model error
+  double penalty = 2.0;      // per fitted magnitude, AIC-like
+  std::size_t pair_pool = 6; // the best singles tried in pairs
+  double range_tolerance = 0.25;  // of the realistic range's width, outside it
+};
+
+struct Diagnosis {
+  std::vector<Fit> singles;  // every candidate, best first
+  std::optional<Fit> best_pair;
+  std::optional<Fit> chosen;  // none: no candidate explains the gap significantly
+  std::vector<WhereItem> where;  // most significant first
+  std::size_t features = 0;
+  double chi2 = 0;  // of the residual before any effect
+};
+
+Diagnosis diagnose(const Problem& p, const DecisionRule& rule = {});
+
+// Groups by (run, channel), ranked by significance, each naming its worst place.
+std::vector<WhereItem> locate(const std::vector<FeatureKey>& keys, const Eigen::VectorXd& z, std::size_t limit);
+
+// RMS of the valid z in one half (255: both).
+double rms(const Eigen::VectorXd& z, const std::vector<FeatureKey>& keys, std::uint8_t half);
+
+}  // namespace roadload::gap

@@ -1,0 +1,126 @@
+#include "gap/resimulate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <tuple>
+#include <variant>
+
+#include "roadload/recording/reader.hpp"
+#include "roadload/sim/simulation.hpp"
+#include "roadload/sim/truck.hpp"
+
+namespace roadload::gap {
+namespace {
+
+// Samples reach a sink in physics order, each stamped later by its sensor's latency; a recording
+// holds them in stamp order (ties: CAN, accelerometer, GNSS, weather, then as written). Held for a
+// second and released in that order, the extractor sees a simulation exactly as it reads the
+// recording of it back.
+class ExtractorSink final : public sim::SampleSink {
+ public:
+  explicit ExtractorSink(FeatureExtractor& x) : x_(x) {}
+  void frame(const CanFrame& f) override { hold(f, f.t, 0); }
+  void accel(const AccelSample& s) override { hold(s, s.t, 1); }
+  void gnss(const GnssFix& s) override { hold(s, s.t, 2); }
+  void weather(const WeatherSample& s) override { hold(s, s.t, 3); }
+  void flush() { release(std::numeric_limits<std::int64_t>::max()); }
+
+ private:
+  struct Held {
+    std::int64_t t_ns;
+    int stream;
+    std::uint64_t order;
+    recording::Record record;
+    bool operator>(const Held& o) const {
+      return std::tie(t_ns, stream, order) > std::tie(o.t_ns, o.stream, o.order);
+    }
+  };
+  template <typename T>
+  void hold(const T& sample, CaptureTime t, int stream) {
+    held_.push({to_ns(t), stream, order_++, sample});
+    latest_ns_ = std::max(latest_ns_, to_ns(t));
+    release(latest_ns_ - 1'000'000'000);
+  }
+  void release(std::int64_t before_ns) {
+    while (!held_.empty() && held_.top().t_ns < before_ns) {
+      std::visit([&](const auto& r) { x_.push(r); }, held_.top().record);
+      held_.pop();
+    }
+  }
+
+  FeatureExtractor& x_;
+  std::priority_queue<Held, std::vector<Held>, std::greater<>> held_;
+  std::uint64_t order_ = 0;
+  std::int64_t latest_ns_ = std::numeric_limits<std::int64_t>::min();
+};
+
+}  // namespace
+
+RunLayout layout_for(const sim::RouteDef& route) {
+  auto geometry = RouteGeometry::build(route.points);
+  RunLayout layout{*geometry, {}};
+  for (const auto& c : route.cells) layout.bins.push_back({c.id, c.start_m, c.end_m, c.surface == "concrete"});
+  if (layout.bins.empty()) {
+    const double length = layout.geometry.length_m();
+    for (double s = 0; s < length; s += 250.0) {
+      layout.bins.push_back({std::to_string(static_cast<long>(s)) + " m", s, std::min(s + 250.0, length), false});
+    }
+  }
+  return layout;
+}
+
+Parsed<RecordedRun> read_run(const std::string& path, const j1939::Database& db, const RunLayout& layout) {
+  auto reader = recording::RecordingReader::open(path);
+  if (!reader) return reader.error();
+  if (!reader.value().has_metadata()) return ParseError{path, 0, recording::kMetaFile, "missing: the re-simulation needs the vehicle"};
+  RecordedRun run{reader.value().metadata(), {}};
+  FeatureExtractor x(db, layout, run.meta);
+  while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { x.push(s); }, *r);
+  const auto& errors = reader.value().errors();
+  if (errors.count() > 0) {
+    ParseError first = errors.kept().front();
+    first.message += " (" + std::to_string(errors.count()) + " malformed lines in all)";
+    return first;
+  }
+  run.features = x.finish();
+  if (run.features.conditions.speed_samples == 0) return ParseError{path, 0, "CCVS1", "no wheel speed: nothing to re-simulate"};
+  return run;
+}
+
+sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, const recording::Metadata& meta) {
+  sim::Scenario s = model;
+  // A drive near the model's set speed was driven at it: the measured mean carries the cruise
+  // loop's own error, which the re-simulation reproduces.
+  if (c.mean_speed_mps > 0.5 && c.mean_speed_mps <= 40.0 && std::abs(c.mean_speed_mps - model.speed_mps) > 0.3) {
+    s.speed_mps = c.mean_speed_mps;
+  }
+  if (c.duration_s > 0) s.duration_s = std::min(model.duration_s.value_or(1e9), c.duration_s + 1.0);
+  if (c.weather_samples > 0) {
+    s.weather.air_temp_c = c.air_temp_c;
+    s.weather.temp_drift_c_per_h = c.temp_drift_c_per_h;
+    s.weather.pressure_pa = c.pressure_pa;
+    s.weather.wind_speed_mps = c.wind_speed_mps;
+    s.weather.wind_from_deg = c.wind_from_deg;
+    s.weather.wind_trace = c.wind_trace;
+  }
+  if (auto it = meta.vehicle.find("mass_kg"); it != meta.vehicle.end() && it->second > 0) {
+    s.load_scale = std::clamp(it->second / sim::mnroad_truck(model.unsprung).total_mass_kg(), 0.5, 1.5);
+  }
+  return s;
+}
+
+RecordedRun simulate_run(const sim::Scenario& scenario, std::uint64_t seed, const j1939::Database& db,
+                              const RunLayout& layout) {
+  sim::Simulation simulation(scenario, seed, db);
+  RecordedRun run{simulation.metadata(), {}};
+  FeatureExtractor x(db, layout, run.meta);
+  ExtractorSink sink(x);
+  simulation.run(sink, nullptr);
+  sink.flush();
+  run.features = x.finish();
+  return run;
+}
+
+}  // namespace roadload::gap
