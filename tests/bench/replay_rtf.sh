@@ -52,7 +52,7 @@ rm -f "$work/sim/accel.csv"
 rc=0
 "$here/../uml/uml-run" --timeout 600 -- "$here/replay_rtf.sh" --kernel-part "$work" "$build" "$rate" || rc=$?
 if ((rc == 77)); then
-  echo "replay RTF: skipped (no UML kernel)"
+  echo "replay RTF: skipped (uml-run: no UML kernel, or one this CPU cannot run)"
   exit 0
 fi
 ((rc == 0)) || { echo "replay RTF: the UML part failed (status $rc): $(cat "$work/daemon.err" 2>/dev/null)" >&2; exit 1; }
