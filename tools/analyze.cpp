@@ -12,7 +12,7 @@
 #include "command.hpp"
 #include "options.hpp"
 #include "roadload/contact_forces.hpp"
-#include "roadload/definitions.hpp"
+#include "roadload/engine_loss_file.hpp"
 #include "roadload/grade_file.hpp"
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/recording/reader.hpp"
@@ -41,7 +41,11 @@ constexpr const char* kHelp =
     "  --truth DIR     a simulation's ground truth: the true CRR beside each cell, RMSE and coverage, and\n"
     "                  the true fuel breakdown beside the estimate\n"
     "  --estimate-cda  fit CdA from the drive (drives across speeds); otherwise CdA keeps its prior\n"
+    "  --cda M2 [--cda-sigma M2]  CdA's prior and its standard error (default 6.2 +- 0.6: the MnROAD\n"
+    "                  truck's, known to 10 %); a measured value, for example `roadload calibrate --aero`\n"
     "  --grade FILE    grade and its sigma from FILE (`roadload grade`) instead of the route's survey\n"
+    "  --engine-losses FILE  the engine's friction + accessories by engine speed (`roadload calibrate`)\n"
+    "                  instead of EEC3's whole percent; engine speeds outside it are not used\n"
     "  --survey-sigma M  the route survey's height error, carried into the force balance (default 0:\n"
     "                  the survey taken as exact)\n"
     "  --mass KG       vehicle mass (default: meta.toml vehicle.mass_kg, else 36152)\n"
@@ -53,11 +57,12 @@ constexpr const char* kHelp =
 
 int run_analyze(Args args) {
   OptionParser opt("analyze", args);
-  std::string recording, route_name, out, truth_dir, grade_file;
+  std::string recording, route_name, out, truth_dir, grade_file, losses_file;
   double survey_sigma = 0;
   std::optional<double> mass;
   std::vector<std::string> dbcs;
   bool quiet = false, estimate_cda = false;
+  std::optional<double> cda_m2, cda_sigma_m2;
   while (opt.more()) {
     if (opt.flag("-h", "--help")) {
       std::fputs(kHelp, stdout);
@@ -67,8 +72,14 @@ int run_analyze(Args args) {
       quiet = true;
     } else if (opt.flag("--estimate-cda")) {
       estimate_cda = true;
+    } else if (auto c = opt.real("--cda", 0.5, 30)) {
+      cda_m2 = *c;
+    } else if (auto cs = opt.real("--cda-sigma", 0.0001, 10)) {
+      cda_sigma_m2 = *cs;
     } else if (auto g = opt.value("--grade")) {
       grade_file = *g;
+    } else if (auto l = opt.value("--engine-losses")) {
+      losses_file = *l;
     } else if (auto sg = opt.real("--survey-sigma", 0, 10)) {
       survey_sigma = *sg;
     } else if (auto r = opt.value("--route")) {
@@ -93,13 +104,7 @@ int run_analyze(Args args) {
   if (out.empty()) return opt.fail("--out is required");
 
   j1939::Database db;
-  dbcs.insert(dbcs.begin(), core_dbc_path());
-  for (const std::string& path : dbcs) {
-    if (auto err = load_dbc_file(db, path)) {
-      std::fprintf(stderr, "roadload analyze: %s\n", err->to_string().c_str());
-      return kExitNoInput;
-    }
-  }
+  if (auto rc = load_definitions("analyze", dbcs, db)) return *rc;
   auto route = load_route_file(resolve_route(route_name));
   if (!route) {
     std::fprintf(stderr, "roadload analyze: %s\n", route.error().to_string().c_str());
@@ -117,7 +122,17 @@ int run_analyze(Args args) {
   }
   AnalyzerConfig cfg = recording::config_from_vehicle(reader.value().metadata().vehicle, mass);
   cfg.estimate_cda = estimate_cda;
+  if (cda_m2) cfg.filter.truck.cda_prior_m2 = *cda_m2;
+  if (cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *cda_sigma_m2;
   cfg.survey_elevation_sigma_m = survey_sigma;
+  if (!losses_file.empty()) {
+    auto losses = load_engine_loss_file(losses_file);
+    if (!losses) {
+      std::fprintf(stderr, "roadload analyze: %s\n", losses.error().to_string().c_str());
+      return losses.error().line > 0 ? kExitDataErr : kExitNoInput;
+    }
+    cfg.filter.truck.engine_losses = losses.value();
+  }
 
   std::vector<CellSpan> cells;
   for (const CellDef& c : route.value().cells) cells.push_back({c.id, c.start_m, c.end_m});
@@ -177,7 +192,7 @@ int run_analyze(Args args) {
     truth = std::move(t.value());
   }
   if (!quiet) print_cells(results, truth ? &*truth : nullptr);
-  print_trip(trip, results, truth ? &*truth : nullptr);
+  print_trip(trip, results, truth ? &*truth : nullptr, va);
   if (spectra) print_vibration(*spectra);
   if (spectra && truth) print_vibration_truth(*vibration, route.value().cells, *truth);
   return kExitOk;

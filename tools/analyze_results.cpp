@@ -10,6 +10,7 @@
 #include "roadload/recording/csv.hpp"
 #include "roadload/spectra/dynamic_power.hpp"
 #include "roadload/recording/writer.hpp"
+#include "roadload/tire_crr.hpp"
 #include "roadload/toml_fields.hpp"
 
 namespace roadload::cli {
@@ -95,7 +96,30 @@ void print_cells(const std::vector<CellResult>& cells, const Truth* truth) {
   }
 }
 
-void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth) {
+namespace {
+
+// RMSE and interval coverage of one per-cell estimate (value, lo, hi) against the true CRR.
+template <typename Estimate>
+void print_against_truth(const char* what, const std::vector<CellResult>& cells, const Truth& truth, Estimate&& estimate) {
+  double se = 0;
+  std::size_t n = 0, covered = 0;
+  for (const CellResult& c : cells) {
+    const double* t = true_crr(&truth, c.id);
+    const auto e = c.samples > 0 && t != nullptr ? estimate(c) : std::nullopt;
+    if (!e) continue;
+    se += ((*e)[0] - *t) * ((*e)[0] - *t);
+    covered += *t >= (*e)[1] && *t <= (*e)[2] ? 1 : 0;
+    ++n;
+  }
+  if (n == 0) return;
+  std::fprintf(stderr, "analyze: %s against the truth: RMSE %.5f over %zu cells, 90 %% intervals cover %zu (%.0f %%)\n", what,
+               std::sqrt(se / static_cast<double>(n)), n, covered, 100.0 * static_cast<double>(covered) / static_cast<double>(n));
+}
+
+}  // namespace
+
+void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth,
+                const VibrationAnalysis* vibration) {
   std::fprintf(stderr, "analyze: trip CRR %.5f +- %.5f (%s), CdA %.2f m^2, %zu of %zu ticks usable, mean NIS %.2f +- %.2f\n",
                trip.crr, trip.crr_sigma, trip.identified ? "identified" : "NOT identified", trip.cda_m2,
                trip.usable_ticks, trip.ticks, trip.mean_nis, 1.96 * trip.mean_nis_se);
@@ -111,19 +135,17 @@ void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, co
     std::fprintf(stderr, "\n");
   }
   if (!truth) return;
-  double se = 0;
-  std::size_t n = 0, covered = 0;
-  for (const CellResult& c : cells) {
-    const double* t = true_crr(truth, c.id);
-    if (t == nullptr || c.samples == 0) continue;
-    se += (c.crr - *t) * (c.crr - *t);
-    covered += *t >= c.crr_lo && *t <= c.crr_hi ? 1 : 0;
-    ++n;
-  }
-  if (n > 0) {
-    std::fprintf(stderr, "analyze: against the truth: RMSE %.5f over %zu cells, 90 %% intervals cover %zu (%.0f %%)\n",
-                 std::sqrt(se / static_cast<double>(n)), n, covered, 100.0 * static_cast<double>(covered) / static_cast<double>(n));
-  }
+  print_against_truth("CRR", cells, *truth, [](const CellResult& c) { return std::optional(std::array{c.crr, c.crr_lo, c.crr_hi}); });
+  if (vibration == nullptr) return;
+  print_against_truth("tires' CRR (less the dampers' and tires' dissipation)", cells, *truth,
+                      [&](const CellResult& c) -> std::optional<std::array<double, 3>> {
+                        const std::size_t row = static_cast<std::size_t>(&c - cells.data());
+                        const DynamicPower p = vibration->cell_power(row);
+                        const double z = c.crr_sigma > 0 ? (c.crr_hi - c.crr) / c.crr_sigma : 0.0;
+                        const auto t = p.segments > 0 ? tire_crr(c, p.total_w(), z) : std::nullopt;
+                        if (!t) return std::nullopt;
+                        return std::array{t->crr, t->lo, t->hi};
+                      });
 }
 
 }  // namespace roadload::cli

@@ -8,6 +8,7 @@
 
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/parse_error.hpp"
+#include "roadload/vibration.hpp"
 #include "roadload/results/results_files.hpp"
 
 namespace roadload::cli {
@@ -22,6 +23,8 @@ struct Truth {
 Parsed<Truth> read_truth(const std::string& dir);
 
 void print_cells(const std::vector<CellResult>& cells, const Truth* truth);
-void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth);
+// With the accelerometers' analysis, the tires' own CRR too (tire_crr.hpp).
+void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth,
+                const VibrationAnalysis* vibration);
 
 }  // namespace roadload::cli

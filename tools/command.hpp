@@ -16,6 +16,7 @@ struct Command {
 int run_decode(Args args);
 int run_simulate(Args args);
 int run_analyze(Args args);
+int run_calibrate(Args args);
 int run_grade(Args args);
 int run_psd(Args args);
 int run_replay(Args args);

@@ -8,7 +8,6 @@
 
 #include "command.hpp"
 #include "options.hpp"
-#include "roadload/definitions.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "roadload/j1939/database.hpp"
 #include "roadload/recording/reader.hpp"
@@ -152,13 +151,7 @@ int run_decode(Args args) {
   }
 
   j1939::Database db;
-  dbcs.insert(dbcs.begin(), core_dbc_path());
-  for (const std::string& path : dbcs) {
-    if (auto e = load_dbc_file(db, path)) {
-      std::fprintf(stderr, "roadload decode: %s\n", e->to_string().c_str());
-      return kExitNoInput;
-    }
-  }
+  if (auto rc = load_definitions("decode", dbcs, db)) return *rc;
   auto rec = recording::RecordingReader::open(input);
   if (!rec) {
     std::fprintf(stderr, "roadload decode: %s\n", rec.error().to_string().c_str());

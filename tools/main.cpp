@@ -12,6 +12,8 @@ constexpr Command kCommands[] = {
      roadload::cli::run_decode},
     {"analyze", "estimate CRR along a recorded drive and per pavement cell (cells.csv, trip.json)",
      roadload::cli::run_analyze},
+    {"calibrate", "measure the engine's losses by engine speed standing in neutral (replaces EEC3's whole percent)",
+     roadload::cli::run_calibrate},
     {"gap", "diagnose the sim-to-real gap: where it lies, which unmodelled effect causes it, how far it shrinks",
      roadload::cli::run_gap},
     {"grade", "build a route's grade profile with its uncertainty from its survey or GNSS passes", roadload::cli::run_grade},

@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cstdio>
 
+#include "roadload/definitions.hpp"
+
 namespace roadload::cli {
 
 bool OptionParser::flag(std::string_view a, std::string_view b) {
@@ -76,5 +78,17 @@ int OptionParser::fail(const std::string& message) {
 }
 
 int OptionParser::fail_unknown() { return fail("unknown option '" + std::string(current()) + "'"); }
+
+std::optional<int> load_definitions(std::string_view command, const std::vector<std::string>& extra, j1939::Database& db) {
+  std::vector<std::string> paths{core_dbc_path()};
+  paths.insert(paths.end(), extra.begin(), extra.end());
+  for (const std::string& path : paths) {
+    if (auto err = load_dbc_file(db, path)) {
+      std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), err->to_string().c_str());
+      return kExitNoInput;
+    }
+  }
+  return std::nullopt;
+}
 
 }  // namespace roadload::cli

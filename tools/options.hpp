@@ -5,8 +5,10 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "command.hpp"
+#include "roadload/j1939/database.hpp"
 
 namespace roadload::cli {
 
@@ -34,5 +36,9 @@ class OptionParser {
   std::size_t pos_ = 0;
   bool failed_ = false;
 };
+
+// The built-in J1939 definitions, then each of `extra` (--dbc) over them; on failure the error is
+// printed as "roadload COMMAND: file:line: field: message" and the exit code returned.
+std::optional<int> load_definitions(std::string_view command, const std::vector<std::string>& extra, j1939::Database& db);
 
 }  // namespace roadload::cli

@@ -112,7 +112,15 @@ int DriveAnalyzer::cell_at(double s_m) const {
 void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   if (!started_) {
     const Reading& ref = signals_.get(Quantity::reference_torque_nm);
-    filter_.start(t, wheel_speed_mps, ref.seen ? std::optional(eec3_quantization_sigma_nm(ref.value)) : std::nullopt);
+    // The flywheel torque's error: the engine-loss calibration's where there is one, else EEC3's rounding.
+    const model::EngineLossMap& losses = config_.filter.truck.engine_losses;
+    std::optional<double> bias_sigma_nm;
+    if (!losses.empty()) {
+      bias_sigma_nm = losses.sigma_nm();
+    } else if (ref.seen) {
+      bias_sigma_nm = eec3_quantization_sigma_nm(ref.value);
+    }
+    filter_.start(t, wheel_speed_mps, bias_sigma_nm);
     started_ = true;
     last_tick_ = t;
     last_front_m_ = position_front_m();
@@ -312,7 +320,8 @@ CellResult DriveAnalyzer::live_cell_result(std::size_t i) const {
   r.crr_lo = r.crr - config_.interval_z * r.crr_sigma;
   r.crr_hi = r.crr + config_.interval_z * r.crr_sigma;
   r.speed_mps = l.speed_sum_mps / static_cast<double>(l.samples);
-  r.roll_force_n = r.crr * config_.filter.truck.mass_kg * model::kGravity_mps2;
+  r.weight_n = config_.filter.truck.mass_kg * model::kGravity_mps2;
+  r.roll_force_n = r.crr * r.weight_n;
   r.identified = r.crr_sigma <= config_.filter.identified_crr_sigma;
   if (!r.identified) r.reason = "CRR not identified: its uncertainty exceeds the configured limit";
   return r;
@@ -363,6 +372,7 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
     r.crr_lo = r.crr - config_.interval_z * r.crr_sigma;
     r.crr_hi = r.crr + config_.interval_z * r.crr_sigma;
     r.speed_mps = speed / n;
+    r.weight_n = weight;
     r.roll_force_n = r.crr * weight;
     r.identified = r.crr_sigma <= config_.filter.identified_crr_sigma;
     if (!r.identified) r.reason = "CRR not identified: its uncertainty exceeds the configured limit";

@@ -55,6 +55,7 @@ void DriveSignals::push(const j1939::Message& m) {
     if (!v) continue;
     if (b.quantity == Quantity::actual_torque_pct) {
       (b.add ? torque_fraction_ : torque_whole_) = *v;
+      if (b.add) torque_fraction_seen_ = true;
       torque = true;
       continue;
     }
@@ -73,6 +74,7 @@ const char* to_string(Unusable u) {
     case Unusable::declutched: return "shifting or declutched";
     case Unusable::stale: return "inputs are stale";
     case Unusable::no_elevation: return "no elevation in the route's survey (no grade)";
+    case Unusable::uncalibrated_rpm: return "engine speed outside the engine-loss calibration";
     case Unusable::count: break;
   }
   return "?";
@@ -113,6 +115,15 @@ TractionEstimate traction(const DriveSignals& s, const model::TruckModel& truck,
   out.friction_nm = friction / 100.0 * ref.value;
   out.parasitic_nm = parasitic / 100.0 * ref.value;
   out.flywheel_nm = model::flywheel_torque_nm(act.value, friction, parasitic, ref.value);
+  if (!truck.engine_losses.empty()) {
+    const std::optional<double> loss = rpm.seen ? truck.engine_losses.loss_nm(rpm.value) : std::nullopt;
+    if (!loss) {
+      out.reason = Unusable::uncalibrated_rpm;
+      return out;
+    }
+    out.friction_nm = *loss - out.parasitic_nm;
+    out.flywheel_nm = out.indicated_nm - *loss;
+  }
   out.tractive_n = model::tractive_force_n(truck, out.flywheel_nm, out.gear_ratio);
   out.effective_mass_kg = model::effective_mass_kg(truck, out.gear_ratio);
   out.wheel_force_per_flywheel_nm = model::wheel_force_per_flywheel_nm(truck, out.gear_ratio);

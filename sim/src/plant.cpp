@@ -290,9 +290,11 @@ void TruckPlant::step(double dt_s, const Environment& env) {
       state_.service_brake = true;
     }
   } else {
-    // Neutral or shifting: the governor brings the engine to idle or to the next gear's speed.
+    // Neutral or shifting: the governor brings the engine to idle (or the speed it is told to
+    // hold) or to the next gear's speed.
+    const double neutral_rpm = hold_rpm_ > 0 ? hold_rpm_ : e.idle_rpm;
     const double target_omega = shift_left_s_ > 0 ? total_ratio(truck_.driveline, target_gear_) * v0 / radius
-                                                  : e.idle_rpm * kRadps_per_rpm;
+                                                  : neutral_rpm * kRadps_per_rpm;
     omega_dot = (target_omega - omega0) / kGovernorTau_s;
     const double ind = parasitic + (e.inertia_kgm2 + truck_.driveline.inertia_kgm2) * omega_dot;
     if (ind < 0) omega_dot = -parasitic / (e.inertia_kgm2 + truck_.driveline.inertia_kgm2);

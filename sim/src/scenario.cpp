@@ -76,12 +76,32 @@ void read_effects(const detail::TomlFields& f, const toml::table& root, EffectSe
   }
 }
 
+// Standing in neutral, the engine held at each speed for hold_s: nothing reaches the flywheel, so
+// the indicated torque the engine reports is its own losses (an engine-loss calibration).
+void read_rev_hold(const detail::TomlFields& f, const toml::table& root, Scenario& s) {
+  const toml::node* list = root.get("hold_rpm");
+  const toml::array* rpms = list != nullptr ? list->as_array() : nullptr;
+  if (rpms == nullptr || rpms->empty()) f.fail(list, "hold_rpm", "rev-hold needs a list of engine speeds in rpm");
+  for (const toml::node& n : *rpms) {
+    const auto rpm = n.value<double>();
+    if (!rpm || *rpm < 500 || *rpm > 2500) f.fail(&n, "hold_rpm", "expected engine speeds between 500 and 2500 rpm");
+    s.hold_rpm.push_back(*rpm);
+  }
+  s.hold_s = f.required_number(root, "hold_s", "");
+  if (s.hold_s < 5 || s.hold_s > 600) f.fail(root.get("hold_s"), "hold_s", "outside 5-600 s");
+  if (root.contains("speed_mph") || root.contains("speed_mps")) {
+    f.fail(root.get(root.contains("speed_mph") ? "speed_mph" : "speed_mps"), "mode", "rev-hold stands still: no speed");
+  }
+  s.coast = true;
+  s.duration_s = s.hold_s * static_cast<double>(s.hold_rpm.size());
+}
+
 Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::path& path) {
   Scenario s;
   s.source = path.string();
   f.only(root, {"name", "description", "route", "speed_mph", "speed_mps", "start_m", "end_m", "duration_s", "start_utc",
                 "road_seed", "load_scale", "accel_rate_hz", "accelerometers", "gnss_rate_hz", "physics_rate_hz", "unsprung", "mode",
-                "weather", "clocks", "effects"},
+                "hold_rpm", "hold_s", "weather", "clocks", "effects"},
          "");
   s.name = f.required_text(root, "name", "");
   s.description = f.text(root, "description", "").value_or("");
@@ -89,16 +109,25 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
   auto route = load_route(resolve_route(route_name, path));
   if (!route) throw detail::TomlFailure{route.error()};
   s.route = std::move(route.value());
-  const char* speed_key = root.contains("speed_mph") ? "speed_mph" : "speed_mps";
-  if (auto mph = f.number(root, "speed_mph", "")) {
-    s.speed_mps = *mph * kMps_per_mph;
-  } else {
-    s.speed_mps = f.required_number(root, "speed_mps", "");
+  const auto mode = f.text(root, "mode", "");
+  if (mode && *mode != "cruise" && *mode != "coast" && *mode != "rev-hold") {
+    f.fail(root.get("mode"), "mode", "expected \"cruise\", \"coast\" or \"rev-hold\"");
   }
-  if (s.speed_mps <= 0 || s.speed_mps > 40) f.fail(root.get(speed_key), speed_key, "outside 0-40 m/s (0-89 mph)");
+  if (mode == "rev-hold") {
+    read_rev_hold(f, root, s);
+  } else {
+    const char* speed_key = root.contains("speed_mph") ? "speed_mph" : "speed_mps";
+    if (auto mph = f.number(root, "speed_mph", "")) {
+      s.speed_mps = *mph * kMps_per_mph;
+    } else {
+      s.speed_mps = f.required_number(root, "speed_mps", "");
+    }
+    if (s.speed_mps <= 0 || s.speed_mps > 40) f.fail(root.get(speed_key), speed_key, "outside 0-40 m/s (0-89 mph)");
+    s.coast = mode == "coast";
+  }
   s.start_m = f.number(root, "start_m", "", 0.0);
   if (auto end = f.number(root, "end_m", "")) s.end_m = *end;
-  s.duration_s = f.number(root, "duration_s", "");
+  if (s.hold_rpm.empty()) s.duration_s = f.number(root, "duration_s", "");
   if (const toml::node* utc = root.get("start_utc")) {
     const auto* dt = utc->as_date_time();
     if (dt == nullptr) f.fail(utc, "start_utc", "expected a TOML date-time such as 2014-10-20T10:00:00Z");
@@ -122,10 +151,6 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
   if (auto u = f.text(root, "unsprung", "")) {
     if (*u != "physical" && *u != "report") f.fail(root.get("unsprung"), "unsprung", "expected \"physical\" or \"report\"");
     s.unsprung = *u == "report" ? UnsprungDefinition::report : UnsprungDefinition::physical;
-  }
-  if (auto mode = f.text(root, "mode", "")) {
-    if (*mode != "cruise" && *mode != "coast") f.fail(root.get("mode"), "mode", "expected \"cruise\" or \"coast\"");
-    s.coast = *mode == "coast";
   }
   read_weather(f, root, s.weather);
   read_clocks(f, root, s.clocks);

@@ -247,9 +247,14 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
     ++sum.frames;
     sink.frame(f);
   };
+  const bool holding = !sc.hold_rpm.empty();
   for (;;) {
     p.wind.advance(dt);
     const Environment air = p.wind.at_truck();
+    if (holding) {
+      const auto step = static_cast<std::size_t>(p.plant.state().t_s / sc.hold_s);
+      p.plant.set_hold_rpm(sc.hold_rpm[std::min(step, sc.hold_rpm.size() - 1)]);
+    }
     p.plant.step(dt, air);
     const TruckState& s = p.plant.state();
     const Kinematics now = p.kinematics(s);
@@ -296,13 +301,13 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
     before = now;
     x_before = s.x_m;
     v_before = s.speed_mps;
-    const double done = (s.x_m - sc.start_m) / total;
+    const double done = holding ? s.t_s / *sc.duration_s : (s.x_m - sc.start_m) / total;
     if (progress && done >= next_progress) {
       progress(std::min(done, 1.0));
       next_progress += 0.01;
     }
     const bool timed_out = sc.duration_s && s.t_s >= *sc.duration_s;
-    if (s.x_m >= sc.end_m || timed_out || s.speed_mps <= 0.0) break;
+    if (s.x_m >= sc.end_m || timed_out || (s.speed_mps <= 0.0 && !holding)) break;
   }
   sum.simulated_s = p.plant.state().t_s;
   sum.distance_m = p.plant.ledger().distance_m;

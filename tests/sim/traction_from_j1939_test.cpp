@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "roadload/drive_signals.hpp"
+#include "roadload/engine_loss_calibration.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "sim_fixture.hpp"
 
@@ -15,8 +16,8 @@ namespace {
 
 class TractionSink final : public SampleSink {
  public:
-  TractionSink(const j1939::Database& db, const Simulation& sim, bool drop_ec1)
-      : db_(db), sim_(sim), signals_(db), drop_ec1_(drop_ec1) {}
+  TractionSink(const j1939::Database& db, const Simulation& sim, bool drop_ec1, const model::TruckModel& truck)
+      : db_(db), sim_(sim), signals_(db), drop_ec1_(drop_ec1), truck_(truck) {}
   void frame(const CanFrame& f) override {
     // Dropping the transport frames loses EC1, the only multi-packet message.
     if (drop_ec1_ && (j1939::pgn_of(f.id) == j1939::kPgnTpCm || j1939::pgn_of(f.id) == j1939::kPgnTpDt)) return;
@@ -24,7 +25,7 @@ class TractionSink final : public SampleSink {
     if (!m) return;
     signals_.push(*m);
     if (m->pgn != db_.find_name("EEC1")->pgn) return;
-    const TractionEstimate e = traction(signals_, model::TruckModel{}, m->t);
+    const TractionEstimate e = traction(signals_, truck_, m->t);
     last_reason = e.reason;
     if (e.reason != Unusable::none) return;
     const double err = e.tractive_n - sim_.plant().state().tractive_n;
@@ -47,6 +48,7 @@ class TractionSink final : public SampleSink {
   j1939::MessageAssembler assembler_;
   DriveSignals signals_;
   bool drop_ec1_;
+  model::TruckModel truck_;
 };
 
 struct Outcome {
@@ -55,13 +57,13 @@ struct Outcome {
   Unusable last_reason = Unusable::none;
 };
 
-Outcome drive(const char* scenario, double seconds, bool drop_ec1) {
+Outcome drive(const char* scenario, double seconds, bool drop_ec1, const model::TruckModel& truck = {}) {
   const j1939::Database db = test::core_database();
   Scenario sc = test::builtin(scenario);
   sc.duration_s = seconds;
   sc.accelerometers = 0;
   Simulation sim(sc, 2, db);
-  TractionSink sink(db, sim, drop_ec1);
+  TractionSink sink(db, sim, drop_ec1, truck);
   sim.run(sink, nullptr);
   return {sink.sum, sink.sum2, sink.truth_sum, sink.n, sink.last_reason};
 }
@@ -77,6 +79,33 @@ TEST(TractionFromJ1939, MatchesThePlantsTractiveForceWithinJ1939Resolution) {
   // +-105 N each at the wheels in 8th gear.
   EXPECT_LT(std::abs(mean), 210.0);
   EXPECT_LT(rms, 250.0);
+}
+
+// The engine's losses measured standing in neutral (the engine-losses scenario) replace EEC3's
+// whole percent: what is left is EEC1's 1/8 % and the calibration's interpolation.
+TEST(TractionFromJ1939, CalibratedEngineLossesRemoveEec3sRounding) {
+  const j1939::Database db = test::core_database();
+  Scenario standing = test::builtin("engine-losses");
+  standing.accelerometers = 0;
+  Simulation sim(standing, 5, db);
+  test::MemorySink held;
+  sim.run(held, nullptr);
+  EngineLossFrames frames(db);
+  for (const CanFrame& f : held.frames) frames.push(f);
+  model::TruckModel truck;
+  truck.engine_losses = engine_loss_map(frames.finish());
+  ASSERT_EQ(truck.engine_losses.size(), standing.hold_rpm.size());
+
+  const Outcome as_sent = drive("mnroad-mainline-30mph", 90, false);
+  const Outcome calibrated = drive("mnroad-mainline-30mph", 90, false, truck);
+  ASSERT_EQ(calibrated.n, as_sent.n);
+  const double bias_sent = as_sent.sum / static_cast<double>(as_sent.n);
+  const double bias_cal = calibrated.sum / static_cast<double>(calibrated.n);
+  std::printf("tractive force bias at 30 mph: EEC3 as sent %.1f N, with the engine-loss calibration %.1f N\n", bias_sent,
+              bias_cal);
+  // 1 N m at the flywheel is 8.7 N at the wheels in 8th gear; the calibration's sigma is 0.9 N m.
+  EXPECT_GT(std::abs(bias_sent), 80.0);
+  EXPECT_LT(std::abs(bias_cal), 20.0);
 }
 
 TEST(TractionFromJ1939, WithoutEc1TheTorqueHasNoScaleAndSaysSo) {

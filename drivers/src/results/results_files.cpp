@@ -5,6 +5,7 @@
 
 #include "roadload/recording/writer.hpp"
 #include "roadload/spectra/dynamic_power.hpp"
+#include "roadload/tire_crr.hpp"
 
 namespace roadload::results {
 namespace {
@@ -22,7 +23,10 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
   std::string header = "cell,start_m,end_m,samples,crr,crr_lo,crr_hi,crr_sigma,identified,speed_mps,roll_force_n,fuel_l";
   for (std::size_t i = 0; i < kUses; ++i) header += std::string(",") + to_string(use(i)) + "_l";
   for (const std::string& a : axle_names) header += ",fz_" + a + "_mean_n,fz_" + a + "_std_n,fz_" + a + "_dynamic_std_n";
-  if (vibration) header += ",damper_power_w,tire_power_w,tire_eq27_power_w,dynamic_energy_j,dynamic_l,dynamic_l_per_100km";
+  if (vibration) {
+    header += ",damper_power_w,tire_power_w,tire_eq27_power_w,dynamic_energy_j,dynamic_l,dynamic_l_per_100km";
+    header += ",crr_tire,crr_tire_lo,crr_tire_hi";
+  }
   csv.value().write(header + ",reason\n");
   recording::LineBuilder line;
   const double nan = std::nan("");
@@ -49,6 +53,10 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
       line.num(measured ? p.damper_w : nan, 2).sep().num(measured ? p.tire_w : nan, 2).sep().num(measured ? p.tire_eq27_w : nan, 2).sep();
       line.num(measured && driven ? cost.energy_j : nan, 1).sep().num(measured && driven ? cost.diesel_l : nan, 6).sep();
       line.num(measured && driven ? cost.l_per_100km : nan, 4).sep();
+      // At the confidence of the cell's own CRR interval.
+      const double z = c.crr_sigma > 0 ? (c.crr_hi - c.crr) / c.crr_sigma : 0.0;
+      const std::optional<TireCrr> tire = measured ? tire_crr(c, p.total_w(), z) : std::nullopt;
+      line.num(tire ? tire->crr : nan, 6).sep().num(tire ? tire->lo : nan, 6).sep().num(tire ? tire->hi : nan, 6).sep();
     }
     line.text(c.reason);
     csv.value().write(line.finish());

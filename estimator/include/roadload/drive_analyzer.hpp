@@ -74,6 +74,7 @@ struct CellResult {
   std::string reason;       // why not, when not
   double speed_mps = 0;
   double roll_force_n = 0;  // CRR x weight
+  double weight_n = 0;      // the truck's weight that CRR is a coefficient of
   FuelBreakdown fuel;       // over the time the centre of gravity was in the cell
   std::vector<AxleForceStats> contact;  // per axle of the attached ContactForces' layout (Eq. 2.1)
 };

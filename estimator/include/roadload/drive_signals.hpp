@@ -44,6 +44,8 @@ class DriveSignals {
   explicit DriveSignals(const j1939::Database& db);
   void push(const j1939::Message& m);
   const Reading& get(Quantity q) const { return readings_[static_cast<std::size_t>(q)]; }
+  // Whether EEC1's actual torque came with its 1/8 % fraction (SPN 4154), or in whole percent.
+  bool torque_fraction_seen() const { return torque_fraction_seen_; }
 
  private:
   struct Binding {
@@ -57,6 +59,7 @@ class DriveSignals {
   std::size_t bound_ = 0;
   std::array<Reading, kQuantityCount> readings_{};
   double torque_whole_ = 0, torque_fraction_ = 0;
+  bool torque_fraction_seen_ = false;
 };
 
 // Why a sample cannot feed the force balance; `none` when it can.
@@ -69,6 +72,7 @@ enum class Unusable : std::uint8_t {
   declutched,           // shifting or clutch open
   stale,                // inputs older than the staleness limit
   no_elevation,         // the route's survey has no elevation here: no grade
+  uncalibrated_rpm,     // an engine-loss calibration is given, but not for this engine speed
   count
 };
 inline constexpr std::size_t kUnusableCount = static_cast<std::size_t>(Unusable::count);
@@ -79,8 +83,9 @@ struct TractionEstimate {
   double gear_ratio = 0;
   double effective_mass_kg = 0;
   double wheel_force_per_flywheel_nm = 0;
-  // The engine's torques as J1939 states them, in N m: indicated (EEC1), friction and the
-  // parasitic loads it knows (EEC3), and what is left at the flywheel.
+  // The engine's torques in N m: indicated (EEC1), friction and the parasitic loads it knows
+  // (EEC3; with an engine-loss calibration, friction is the calibrated losses less EEC3's
+  // parasitic share), and what is left at the flywheel.
   double indicated_nm = 0, friction_nm = 0, parasitic_nm = 0, flywheel_nm = 0;
   Unusable reason = Unusable::none;
 };

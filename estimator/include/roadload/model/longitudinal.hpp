@@ -2,6 +2,7 @@
 // The estimator's force balance along the road (seed report Eq. 2.2-2.4, TRMA):
 //   m_eff dv/dt = F_tractive - 1/2 rho CdA v_air|v_air| - m g sin(grade) - CRR m g cos(grade)
 // Written from the report and first principles, independently of the simulator's plant.
+#include "roadload/model/engine_losses.hpp"
 #include "roadload/time.hpp"
 
 namespace roadload::model {
@@ -21,6 +22,8 @@ struct TruckModel {
   double cda_sigma_m2 = 0.6;
   double crr_prior = 0.0055;
   double crr_sigma = 0.002;
+  // Friction + accessories by engine speed from a standstill calibration; empty: EEC3's.
+  EngineLossMap engine_losses;
 };
 
 // Torque at the flywheel from EEC1/EEC3 percentages (J1939: actual torque is indicated; friction

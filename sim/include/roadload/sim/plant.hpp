@@ -71,6 +71,8 @@ class TruckPlant {
   void set_cruise_speed(double speed_mps) { set_speed_mps_ = speed_mps; }
   // Neutral coasting (coast-down tests): no engine torque, no brakes.
   void set_coasting(bool coasting) { coasting_ = coasting; }
+  // In neutral, the governor holds this engine speed instead of idle (0: idle).
+  void set_hold_rpm(double rpm) { hold_rpm_ = rpm; }
 
   void step(double dt_s, const Environment& env);
 
@@ -103,6 +105,7 @@ class TruckPlant {
   EnergyLedger ledger_;
   double set_speed_mps_ = 0;
   bool coasting_ = false;
+  double hold_rpm_ = 0;
   double integrator_mps2_ = 0;
   double shift_left_s_ = 0;
   int target_gear_ = 0;

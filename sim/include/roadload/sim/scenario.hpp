@@ -48,6 +48,10 @@ struct Scenario {
   double physics_rate_hz = 2400;
   double load_scale = 1.0;      // every axle's load (its sprung part) times this: a heavier or lighter cargo
   bool coast = false;           // neutral coast-down instead of cruise
+  // Rev-hold (an engine-loss calibration): standing in neutral, the governor holds the engine at
+  // each of these speeds in turn for hold_s; coast is set, the speed is 0.
+  std::vector<double> hold_rpm;
+  double hold_s = 0;
 };
 
 // NAME (a built-in, data_dir/scenarios/NAME.toml) or a path to a scenario file.

@@ -1,0 +1,43 @@
+#pragma once
+// CdA from two drives over the same cells at two speeds. At one speed the force balance cannot
+// tell CRR from CdA; a pavement's CRR is the same at both, the aero drag is not (v^2), so the CdA
+// that makes each cell's CRR agree between the drives is the truck's. Each drive is analysed with
+// CdA and the flywheel torque held, then again with each nudged: the cells' sensitivities come from
+// the estimator itself, wind, air density and gear included.
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "roadload/drive_analyzer.hpp"
+
+namespace roadload {
+
+// One drive's cells, analysed three ways.
+struct AeroDrive {
+  std::vector<CellResult> held;    // CdA and the flywheel torque held at the prior
+  std::vector<CellResult> cda;     // CdA + kCdaStep_m2
+  std::vector<CellResult> torque;  // flywheel torque + 1 N m
+};
+
+inline constexpr double kCdaStep_m2 = 0.5;
+
+// Runs `analyze` (a whole drive through a DriveAnalyzer with the given configuration) the three
+// ways. `base` carries the engine-loss calibration, without which the two drives' flywheel torques
+// carry EEC3's rounding at two engine speeds, and that would be fitted as drag.
+AeroDrive analyse_for_aero(const AnalyzerConfig& base,
+                           const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze);
+
+struct AeroCalibration {
+  double cda_m2 = 0, sigma_m2 = 0;
+  double statistical_m2 = 0, torque_m2 = 0;  // the parts of sigma: cells' scatter, flywheel torque error
+  double chi2_per_dof = 0;                   // of the cells' disagreement left at the fitted CdA
+  std::size_t cells = 0;
+};
+
+// Weighted least squares over the cells both drives estimated. `torque_sigma_nm` is the flywheel
+// torque's error at each drive's engine speed (the engine-loss calibration's), taken independent
+// between the drives. Nothing (cells 0) when fewer than two cells are shared or the speeds are too
+// close to separate drag from rolling resistance.
+AeroCalibration fit_cda(const AeroDrive& a, const AeroDrive& b, double cda_prior_m2, double torque_sigma_nm);
+
+}  // namespace roadload

@@ -1,0 +1,90 @@
+#pragma once
+// Engine losses from a standstill calibration: the truck stands in neutral while the engine is
+// held at a series of speeds. Nothing then reaches the flywheel, so the indicated torque EEC1
+// reports (SPN 513 with its 1/8 % fraction, SPN 4154) is the engine's friction plus the
+// accessories it drives, at that speed. Each steady hold becomes one point of the map.
+#include <deque>
+#include <vector>
+
+#include "roadload/can_frame.hpp"
+#include "roadload/drive_signals.hpp"
+#include "roadload/j1939/assembler.hpp"
+#include "roadload/model/engine_losses.hpp"
+#include "roadload/running_stats.hpp"
+#include "roadload/time.hpp"
+
+namespace roadload {
+
+struct EngineLossCalibrationConfig {
+  double steady_band_rpm = 10;     // a hold ends when the speed leaves its first reading by more
+  double settle_s = 3;             // the governor's approach, left out of each hold
+  double tail_s = 0.5;             // and the start of the next approach, before it leaves the band
+  double min_hold_s = 5;           // shorter holds (after settling) give no point
+  double max_gap_s = 1;            // a longer silence ends a hold
+  double max_speed_mps = 0.1;      // standing still
+};
+
+// One reading of the engine, in N m at the crankshaft.
+struct EngineReading {
+  CaptureTime t{};
+  double rpm = 0;
+  double indicated_nm = 0;     // EEC1 actual torque
+  double eec3_loss_nm = 0;     // EEC3 friction + parasitic
+  double resolution_nm = 0;    // one step of the indicated torque: 1/8 % or 1 % of the reference
+  bool standing = false;       // still, in neutral or declutched
+};
+
+// One hold: its point, and what EEC3 said of friction and parasitic losses there, for comparison.
+struct EngineLossHold {
+  model::EngineLossPoint point;
+  double eec3_loss_nm = 0;  // mean of EEC3 friction + parasitic over the hold
+  double duration_s = 0;
+  std::uint64_t samples = 0;
+};
+
+class EngineLossCalibration {
+ public:
+  explicit EngineLossCalibration(EngineLossCalibrationConfig config = {}) : config_(config) {}
+
+  void push(const EngineReading& r);
+  // Ends the last hold and gives every hold found, in increasing engine speed (holds within the
+  // steady band of each other are one).
+  std::vector<EngineLossHold> finish();
+
+ private:
+  void close_hold();
+  void keep(const EngineReading& r);
+
+  EngineLossCalibrationConfig config_;
+  std::vector<EngineLossHold> holds_;
+  bool open_ = false;
+  double anchor_rpm_ = 0, resolution_nm_ = 0;
+  std::deque<EngineReading> tail_;
+  CaptureTime start_{}, last_{};
+  RunningStats rpm_, torque_, eec3_;
+  CaptureTime first_kept_{}, last_kept_{};
+};
+
+// The calibration fed from a recording's frames: every EEC1 reading becomes an EngineReading.
+class EngineLossFrames {
+ public:
+  explicit EngineLossFrames(const j1939::Database& db, EngineLossCalibrationConfig config = {});
+  void push(const CanFrame& frame);
+  std::vector<EngineLossHold> finish() { return calibration_.finish(); }
+
+  // What the readings were: all, standing in neutral, before EC1's reference torque (unusable).
+  std::uint64_t readings = 0, standing = 0, no_reference = 0;
+  bool whole_percent = false;  // some reading came without EEC1's fraction
+
+ private:
+  j1939::MessageAssembler assembler_;
+  DriveSignals signals_;
+  const j1939::MessageDef* eec1_;
+  double max_speed_mps_;
+  EngineLossCalibration calibration_;
+};
+
+// The map `roadload analyze --engine-losses` uses, from the holds.
+model::EngineLossMap engine_loss_map(const std::vector<EngineLossHold>& holds);
+
+}  // namespace roadload

@@ -1,0 +1,124 @@
+#include "roadload/engine_loss_calibration.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace roadload {
+
+void EngineLossCalibration::push(const EngineReading& r) {
+  const bool continues = open_ && r.standing && std::abs(r.rpm - anchor_rpm_) <= config_.steady_band_rpm &&
+                         to_seconds(r.t - last_) <= config_.max_gap_s;
+  if (!continues) {
+    close_hold();
+    if (!r.standing) return;
+    open_ = true;
+    anchor_rpm_ = r.rpm;
+    resolution_nm_ = 0;
+    start_ = r.t;
+    rpm_ = torque_ = eec3_ = RunningStats{};
+    tail_.clear();
+  }
+  last_ = r.t;
+  if (to_seconds(r.t - start_) < config_.settle_s) return;
+  // A reading counts once the hold has gone on tail_s past it: the engine accelerating toward the
+  // next speed (its inertia torque, 75 N m for 50 rpm in 0.3 s) stays in the tail when it ends.
+  tail_.push_back(r);
+  while (to_seconds(r.t - tail_.front().t) > config_.tail_s) {
+    keep(tail_.front());
+    tail_.pop_front();
+  }
+}
+
+void EngineLossCalibration::keep(const EngineReading& r) {
+  if (rpm_.n == 0) first_kept_ = r.t;
+  last_kept_ = r.t;
+  rpm_.add(r.rpm);
+  torque_.add(r.indicated_nm);
+  eec3_.add(r.eec3_loss_nm);
+  resolution_nm_ = std::max(resolution_nm_, r.resolution_nm);
+}
+
+void EngineLossCalibration::close_hold() {
+  if (!open_) return;
+  open_ = false;
+  const double kept_s = to_seconds(last_kept_ - first_kept_);
+  if (rpm_.n < 2 || kept_s < config_.min_hold_s) return;
+  // A steady engine reports one value for seconds: its scatter says nothing of the rounding, a
+  // uniform error of one resolution step, which bounds the point's error from below.
+  const double rounding_nm = resolution_nm_ / std::sqrt(12.0);
+  const double scatter_nm = torque_.std() / std::sqrt(static_cast<double>(torque_.n));
+  EngineLossHold h;
+  h.point = {rpm_.mean, torque_.mean, std::hypot(rounding_nm, scatter_nm)};
+  h.eec3_loss_nm = eec3_.mean;
+  h.duration_s = kept_s;
+  h.samples = torque_.n;
+  holds_.push_back(h);
+}
+
+std::vector<EngineLossHold> EngineLossCalibration::finish() {
+  close_hold();
+  std::vector<EngineLossHold> out = holds_;
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.point.rpm < b.point.rpm; });
+  // Two holds at one speed (a calibration run twice) are one point, weighted by their samples.
+  std::vector<EngineLossHold> merged;
+  for (const EngineLossHold& h : out) {
+    if (!merged.empty() && h.point.rpm - merged.back().point.rpm <= config_.steady_band_rpm) {
+      EngineLossHold& m = merged.back();
+      const double wa = static_cast<double>(m.samples), wb = static_cast<double>(h.samples), w = wa + wb;
+      m.point.rpm = (wa * m.point.rpm + wb * h.point.rpm) / w;
+      m.point.loss_nm = (wa * m.point.loss_nm + wb * h.point.loss_nm) / w;
+      m.point.sigma_nm = std::max(m.point.sigma_nm, h.point.sigma_nm);
+      m.eec3_loss_nm = (wa * m.eec3_loss_nm + wb * h.eec3_loss_nm) / w;
+      m.duration_s += h.duration_s;
+      m.samples += h.samples;
+    } else {
+      merged.push_back(h);
+    }
+  }
+  return merged;
+}
+
+EngineLossFrames::EngineLossFrames(const j1939::Database& db, EngineLossCalibrationConfig config)
+    : signals_(db), eec1_(db.find_name("EEC1")), max_speed_mps_(config.max_speed_mps), calibration_(config) {}
+
+void EngineLossFrames::push(const CanFrame& frame) {
+  const auto m = assembler_.push(frame);
+  if (!m) return;
+  signals_.push(*m);
+  if (eec1_ == nullptr || m->pgn != eec1_->pgn) return;
+  const Reading& rpm = signals_.get(Quantity::engine_speed_rpm);
+  const Reading& torque = signals_.get(Quantity::actual_torque_pct);
+  const Reading& ref = signals_.get(Quantity::reference_torque_nm);
+  if (!rpm.seen || !torque.seen) return;
+  ++readings;
+  if (!ref.seen) {
+    ++no_reference;
+    return;
+  }
+  const Reading& wheel = signals_.get(Quantity::wheel_speed_mps);
+  const Reading& gear = signals_.get(Quantity::current_gear);
+  const Reading& engaged = signals_.get(Quantity::driveline_engaged);
+  const bool neutral = (gear.seen && gear.value == 0) || (engaged.seen && engaged.value < 0.5);
+  EngineReading r;
+  r.t = m->t;
+  r.rpm = rpm.value;
+  r.standing = wheel.seen && wheel.value < max_speed_mps_ && neutral;
+  if (r.standing) ++standing;
+  const Reading& friction = signals_.get(Quantity::friction_torque_pct);
+  const Reading& parasitic = signals_.get(Quantity::parasitic_torque_pct);
+  const double eec3_pct = (friction.seen ? friction.value : 0.0) + (parasitic.seen ? parasitic.value : 0.0);
+  const double to_nm = ref.value / 100.0;
+  r.indicated_nm = torque.value * to_nm;
+  r.eec3_loss_nm = eec3_pct * to_nm;
+  whole_percent = whole_percent || !signals_.torque_fraction_seen();
+  r.resolution_nm = (signals_.torque_fraction_seen() ? 0.125 : 1.0) * to_nm;
+  calibration_.push(r);
+}
+
+model::EngineLossMap engine_loss_map(const std::vector<EngineLossHold>& holds) {
+  model::EngineLossMap map;
+  for (const EngineLossHold& h : holds) map.add(h.point);
+  return map;
+}
+
+}  // namespace roadload

@@ -1,0 +1,30 @@
+#include "roadload/model/engine_losses.hpp"
+
+#include <algorithm>
+
+namespace roadload::model {
+
+bool EngineLossMap::add(const EngineLossPoint& p) {
+  if (size_ == kCapacity || (size_ > 0 && p.rpm <= points_[size_ - 1].rpm)) return false;
+  points_[size_++] = p;
+  return true;
+}
+
+std::optional<double> EngineLossMap::loss_nm(double rpm) const {
+  if (size_ == 0 || rpm < points_[0].rpm || rpm > points_[size_ - 1].rpm) return std::nullopt;
+  if (size_ == 1) return points_[0].loss_nm;
+  const auto* end = points_.begin() + static_cast<std::ptrdiff_t>(size_);
+  const auto* hi = std::lower_bound(points_.begin() + 1, end - 1, rpm,
+                                    [](const EngineLossPoint& p, double r) { return p.rpm < r; });
+  const auto* lo = hi - 1;
+  const double w = (rpm - lo->rpm) / (hi->rpm - lo->rpm);
+  return lo->loss_nm + w * (hi->loss_nm - lo->loss_nm);
+}
+
+double EngineLossMap::sigma_nm() const {
+  double s = 0;
+  for (std::size_t i = 0; i < size_; ++i) s = std::max(s, points_[i].sigma_nm);
+  return s;
+}
+
+}  // namespace roadload::model

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# roadload calibrate as a fleet runs it: help, errors with their exit codes, the engine's losses
+# from a simulated standstill calibration, a malformed table named by line and field, and CdA from
+# the Mainline at 30 and 64 mph; then analyze with both, against the drive's truth.
+set -euo pipefail
+roadload=${1:?usage: calibrate-cli.sh ROADLOAD_BIN}
+# shellcheck source=cli-lib.sh source-path=SCRIPTDIR
+. "$(dirname "${BASH_SOURCE[0]}")/cli-lib.sh" calibrate-cli
+route=mnroad-mainline-westbound
+
+expect_status 0 "$roadload" calibrate --help
+for o in --out --aero --route --engine-losses --cda; do grep -q -- "$o" "$work/out" || fail "--help does not describe $o"; done
+expect_status 64 "$roadload" calibrate --out "$work/l.csv"
+expect_status 64 "$roadload" calibrate "$work/x"
+expect_status 66 "$roadload" calibrate "$work/no-such-recording" --out "$work/l.csv"
+grep -q "no-such-recording" "$work/err" || fail "missing recording not named: $(cat "$work/err")"
+
+# A drive never stands in neutral: no hold, nothing written, and the counts say why.
+"$roadload" simulate --scenario mnroad-mainline-30mph --seed 4 --duration 20 --out "$work/short" -q || fail "simulate failed"
+expect_status 65 "$roadload" calibrate "$work/short" --out "$work/none.csv"
+grep -q "no steady engine speed standing in neutral" "$work/err" || fail "no reason given: $(cat "$work/err")"
+[[ ! -e $work/none.csv ]] || fail "a table was written without a hold"
+
+"$roadload" simulate --scenario engine-losses --seed 4 --out "$work/standing" -q || fail "simulate failed"
+expect_status 0 "$roadload" calibrate "$work/standing" --out "$work/losses.csv"
+[[ $(grep -v '^#' "$work/losses.csv" | head -1) == "rpm,loss_nm,sigma_nm,eec3_loss_nm,hold_s,samples" ]] ||
+  fail "losses.csv header: $(head -2 "$work/losses.csv")"
+holds=$(grep -c '^[0-9]' "$work/losses.csv")
+((holds == 26)) || fail "$holds holds for the scenario's 26 engine speeds"
+grep -q "26 engine speeds from 650 to 1900 rpm, torque to 1/8 %" "$work/err" || fail "summary: $(cat "$work/err")"
+
+# A table whose speeds go backwards is refused, naming the file, line and field.
+{ head -4 "$work/losses.csv"; sed -n 3p "$work/losses.csv"; } >"$work/bad.csv"
+expect_status 65 "$roadload" analyze "$work/short" --route $route --out "$work/res-bad" --engine-losses "$work/bad.csv"
+grep -q "bad.csv:5: rpm: engine speeds must increase" "$work/err" || fail "bad table not named: $(cat "$work/err")"
+
+for v in 30 64; do
+  "$roadload" simulate --scenario mnroad-mainline-${v}mph --seed 5 --out "$work/m$v" -q || fail "simulate failed"
+done
+expect_status 64 "$roadload" calibrate --aero "$work/m30" "$work/m64" --route $route
+expect_status 0 "$roadload" calibrate --aero "$work/m30" "$work/m64" --route $route --engine-losses "$work/losses.csv" \
+  --out "$work/aero.csv"
+read -r cda sigma < <(awk -F, 'NR == 2 { print $1, $2 }' "$work/aero.csv")
+# The simulated truck's CdA is 6.2 m^2; two speeds pin it to a few hundredths.
+awk -v c="$cda" -v s="$sigma" 'BEGIN { e = c - 6.2; if (e < 0) e = -e; exit !(s > 0.005 && s < 0.1 && e < 3 * s) }' ||
+  fail "CdA $cda +- $sigma against the truck's 6.2"
+
+"$roadload" simulate --scenario mnroad-mainline-30mph --seed 6 --out "$work/drive" --truth "$work/truth" -q || fail "simulate failed"
+expect_status 0 "$roadload" analyze "$work/drive" --route $route --out "$work/res" --truth "$work/truth" \
+  --engine-losses "$work/losses.csv" --cda "$cda" --cda-sigma "$sigma" -q
+rmse=$(sed -n 's/^analyze: CRR against the truth: RMSE \([0-9.]*\) over.*/\1/p' "$work/err")
+tire=$(sed -n "s/^analyze: tires' CRR .* against the truth: RMSE \([0-9.]*\) over.*/\1/p" "$work/err")
+awk -v r="$rmse" -v t="$tire" 'BEGIN { exit !(r != "" && r < 0.00015 && t != "" && t < 0.0001) }' ||
+  fail "calibrated per-cell RMSE $rmse, tires' $tire: $(grep RMSE "$work/err")"
+grep -q '^cell,.*,crr_tire,crr_tire_lo,crr_tire_hi,reason$' "$work/res/cells.csv" || fail "cells.csv lacks crr_tire: $(head -1 "$work/res/cells.csv")"
+echo "calibrate-cli: PASS: 26 holds; CdA $cda +- $sigma; calibrated Mainline RMSE $rmse (tires' CRR $tire)"

@@ -1,0 +1,140 @@
+// roadload calibrate: the engine's losses (friction + accessories) by engine speed, from a recording
+// of the truck standing in neutral while the engine is held at a series of speeds. Written as the
+// table `roadload analyze --engine-losses` uses in place of EEC3's whole percent.
+#include <cinttypes>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "calibrate_aero.hpp"
+#include "command.hpp"
+#include "options.hpp"
+#include "roadload/engine_loss_calibration.hpp"
+#include "roadload/engine_loss_file.hpp"
+#include "roadload/recording/reader.hpp"
+
+namespace roadload::cli {
+namespace {
+
+constexpr const char* kHelp =
+    "usage: roadload calibrate RECORDING... --out FILE [options]\n\n"
+    "Measures the engine's own losses, friction plus the accessories it drives, at each engine speed\n"
+    "the recordings hold steady while the truck stands in neutral (wheel speed below 0.1 m/s; ETC2\n"
+    "current gear neutral, or ETC1 driveline disengaged). Nothing then reaches the flywheel, so EEC1's\n"
+    "indicated torque (SPN 513 with its 1/8 % fraction, SPN 4154) is those losses. EEC3 states them in\n"
+    "whole percent of the reference torque (SPN 514, 2978): at one cruise speed its rounding is a\n"
+    "constant flywheel torque error of up to 1 % (24 N m on the MnROAD engine, 0.0005 in CRR in 8th\n"
+    "gear), which this table removes. Hold each speed for 10 s or more; the first 3 s of a hold are\n"
+    "the governor's approach and are left out. `roadload simulate --scenario engine-losses` drives such\n"
+    "a calibration.\n\n"
+    "usage: roadload calibrate --aero DRIVE_A DRIVE_B --route ROUTE --engine-losses FILE [--out FILE]\n\n"
+    "Measures the truck's CdA from two drives over the same route's cells at two speeds (the report's\n"
+    "Mainline runs at 30 and 64 mph): a pavement's CRR is the same at both, the drag is not, so the CdA\n"
+    "that makes each cell's CRR agree is the truck's. At one speed the force balance cannot tell them\n"
+    "apart, and CdA's prior (6.2 +- 0.6 m^2) is then most of each cell's interval. The engine-loss table\n"
+    "is required: EEC3's rounding differs between the two engine speeds and would be fitted as drag.\n"
+    "Prints the CdA with its standard error as `roadload analyze` options; --out writes them as CSV.\n\n"
+    "  --out FILE        write FILE: rpm,loss_nm,sigma_nm,eec3_loss_nm,hold_s,samples, one line per hold\n"
+    "  --route R         (--aero) route file or built-in route name: the cells both drives cross\n"
+    "  --engine-losses FILE  (--aero) the engine-loss table of the same truck\n"
+    "  --cda M2          (--aero) the prior both drives are analysed with (default 6.2); the fit does not\n"
+    "                    depend on it beyond linearity\n"
+    "  --dbc FILE        load FILE after the built-in definitions; repeatable\n"
+    "  -q, --quiet       no table on standard output\n"
+    "  -h, --help        this text\n";
+
+// Feeds every frame of one recording to the calibration; an exit code when it cannot be read.
+std::optional<int> read_recording(const std::string& path, EngineLossFrames& cal) {
+  auto reader = recording::RecordingReader::open(path);
+  if (!reader) {
+    std::fprintf(stderr, "roadload calibrate: %s\n", reader.error().to_string().c_str());
+    return kExitNoInput;
+  }
+  while (const recording::Record* r = reader.value().next()) {
+    if (const auto* frame = std::get_if<CanFrame>(r)) cal.push(*frame);
+  }
+  const recording::ErrorLog& errors = reader.value().errors();
+  for (const ParseError& e : errors.kept()) std::fprintf(stderr, "roadload calibrate: %s\n", e.to_string().c_str());
+  return std::nullopt;
+}
+
+}  // namespace
+
+int run_calibrate(Args args) {
+  OptionParser opt("calibrate", args);
+  std::vector<std::string> recordings, dbcs;
+  std::string out;
+  bool quiet = false, aero = false;
+  AeroOptions ao;
+  while (opt.more()) {
+    if (opt.flag("-h", "--help")) {
+      std::fputs(kHelp, stdout);
+      return kExitOk;
+    }
+    if (opt.flag("-q", "--quiet")) {
+      quiet = true;
+    } else if (opt.flag("--aero")) {
+      aero = true;
+    } else if (auto r = opt.value("--route")) {
+      ao.route = *r;
+    } else if (auto l = opt.value("--engine-losses")) {
+      ao.engine_losses = *l;
+    } else if (auto c = opt.real("--cda", 0.5, 30)) {
+      ao.cda_prior_m2 = *c;
+    } else if (auto f = opt.value("--out")) {
+      out = *f;
+    } else if (auto d = opt.value("--dbc")) {
+      dbcs.emplace_back(*d);
+    } else if (auto p = opt.positional()) {
+      recordings.emplace_back(*p);
+    } else if (!opt.failed()) {
+      return opt.fail_unknown();
+    }
+  }
+  if (opt.failed()) return kExitUsage;
+  if (recordings.empty()) return opt.fail("a recording is required");
+  if (aero && ao.route.empty()) return opt.fail("--aero needs --route");
+  if (aero && ao.engine_losses.empty()) return opt.fail("--aero needs --engine-losses (roadload calibrate, standing)");
+  if (!aero && out.empty()) return opt.fail("--out is required");
+
+  j1939::Database db;
+  if (auto rc = load_definitions("calibrate", dbcs, db)) return *rc;
+  if (aero) {
+    ao.recordings = recordings;
+    ao.out = out;
+    return run_calibrate_aero(ao, db);
+  }
+  EngineLossFrames cal(db);
+  for (const std::string& r : recordings) {
+    if (auto rc = read_recording(r, cal)) return *rc;
+  }
+  const std::vector<EngineLossHold> holds = cal.finish();
+  if (holds.empty()) {
+    std::fprintf(stderr,
+                 "roadload calibrate: %s: no steady engine speed standing in neutral (%" PRIu64 " EEC1 readings, %" PRIu64
+                 " standing in neutral, %" PRIu64 " before EC1's reference torque): nothing written\n",
+                 recordings.front().c_str(), cal.readings, cal.standing, cal.no_reference);
+    return kExitDataErr;
+  }
+  if (holds.size() > model::EngineLossMap::kCapacity) {
+    std::fprintf(stderr, "roadload calibrate: %zu holds, more than the %zu engine speeds a table keeps\n", holds.size(),
+                 model::EngineLossMap::kCapacity);
+    return kExitDataErr;
+  }
+  if (auto err = write_engine_loss_file(out, holds)) {
+    std::fprintf(stderr, "roadload calibrate: %s\n", err->to_string().c_str());
+    return kExitCantCreate;
+  }
+  if (!quiet) {
+    std::printf("%8s %10s %9s %12s %12s %7s\n", "rpm", "loss N m", "sigma", "EEC3 N m", "EEC3 error", "hold s");
+    for (const EngineLossHold& h : holds) {
+      std::printf("%8.1f %10.2f %9.2f %12.2f %+12.2f %7.1f\n", h.point.rpm, h.point.loss_nm, h.point.sigma_nm,
+                  h.eec3_loss_nm, h.eec3_loss_nm - h.point.loss_nm, h.duration_s);
+    }
+  }
+  std::fprintf(stderr, "roadload calibrate: %zu engine speeds from %.0f to %.0f rpm, torque to %s %% -> %s\n", holds.size(),
+               holds.front().point.rpm, holds.back().point.rpm, cal.whole_percent ? "whole" : "1/8", out.c_str());
+  return kExitOk;
+}
+
+}  // namespace roadload::cli

@@ -1,0 +1,113 @@
+// roadload calibrate --aero: the truck's CdA from two recorded drives over the same route's cells at
+// two speeds (estimator/aero_calibration.hpp), printed as the options `roadload analyze` takes.
+#include <cstdio>
+
+#include "calibrate_aero.hpp"
+#include "roadload/aero_calibration.hpp"
+#include "roadload/engine_loss_file.hpp"
+#include "roadload/recording/reader.hpp"
+#include "roadload/recording/vehicle_setup.hpp"
+#include "roadload/recording/writer.hpp"
+#include "roadload/route_file.hpp"
+
+namespace roadload::cli {
+namespace {
+
+// The recording's cells as `roadload analyze` estimates them with this configuration (the force
+// balance only: no accelerometers).
+Parsed<std::vector<CellResult>> analyse(const std::string& path, const j1939::Database& db, const RouteGeometry& route,
+                                        const std::vector<CellSpan>& cells, const AnalyzerConfig& cfg) {
+  auto reader = recording::RecordingReader::open(path);
+  if (!reader) return reader.error();
+  DriveAnalyzer analyzer(db, route, cells, cfg);
+  while (const recording::Record* r = reader.value().next()) {
+    if (const auto* f = std::get_if<CanFrame>(r)) analyzer.push(*f);
+    if (const auto* g = std::get_if<GnssFix>(r)) analyzer.push(*g);
+    if (const auto* w = std::get_if<WeatherSample>(r)) analyzer.push(*w);
+  }
+  if (!reader.value().errors().kept().empty()) return reader.value().errors().kept().front();
+  analyzer.finish();
+  return analyzer.cells();
+}
+
+}  // namespace
+
+int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
+  if (o.recordings.size() != 2) {
+    std::fprintf(stderr, "roadload calibrate: --aero takes two recordings, one drive at each of two speeds\n");
+    return kExitUsage;
+  }
+  auto losses = load_engine_loss_file(o.engine_losses);
+  if (!losses) {
+    std::fprintf(stderr, "roadload calibrate: %s\n", losses.error().to_string().c_str());
+    return losses.error().line > 0 ? kExitDataErr : kExitNoInput;
+  }
+  auto route = load_route_file(resolve_route(o.route));
+  if (!route) {
+    std::fprintf(stderr, "roadload calibrate: %s\n", route.error().to_string().c_str());
+    return kExitNoInput;
+  }
+  auto geometry = RouteGeometry::build(route.value().points);
+  if (!geometry) {
+    std::fprintf(stderr, "roadload calibrate: %s: point: fewer than two distinct points\n", route.value().source_file.c_str());
+    return kExitDataErr;
+  }
+  std::vector<CellSpan> cells;
+  for (const CellDef& c : route.value().cells) cells.push_back({c.id, c.start_m, c.end_m});
+  AeroDrive drives[2];
+  double prior_m2 = 0;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::string& path = o.recordings[k];
+    auto meta = recording::RecordingReader::open(path);
+    if (!meta) {
+      std::fprintf(stderr, "roadload calibrate: %s\n", meta.error().to_string().c_str());
+      return kExitNoInput;
+    }
+    AnalyzerConfig cfg = recording::config_from_vehicle(meta.value().metadata().vehicle, std::nullopt);
+    cfg.filter.truck.engine_losses = losses.value();
+    if (o.cda_prior_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_prior_m2;
+    prior_m2 = cfg.filter.truck.cda_prior_m2;
+    std::optional<ParseError> failed;
+    drives[k] = analyse_for_aero(cfg, [&](const AnalyzerConfig& c) {
+      auto r = analyse(path, db, *geometry, cells, c);
+      if (r) return std::move(r.value());
+      failed = r.error();
+      return std::vector<CellResult>{};
+    });
+    if (failed) {
+      std::fprintf(stderr, "roadload calibrate: %s\n", failed->to_string().c_str());
+      return failed->line > 0 ? kExitDataErr : kExitNoInput;
+    }
+  }
+  const AeroCalibration fit = fit_cda(drives[0], drives[1], prior_m2, losses.value().sigma_nm());
+  if (fit.cells == 0) {
+    std::fprintf(stderr,
+                 "roadload calibrate: %s and %s: fewer than two cells estimated in both, or speeds too close to tell "
+                 "drag from rolling resistance: nothing written\n",
+                 o.recordings[0].c_str(), o.recordings[1].c_str());
+    return kExitDataErr;
+  }
+  if (!o.out.empty()) {
+    auto out = recording::OutputFile::create(o.out);
+    if (!out) {
+      std::fprintf(stderr, "roadload calibrate: %s\n", out.error().to_string().c_str());
+      return kExitCantCreate;
+    }
+    recording::LineBuilder line;
+    line.num(fit.cda_m2, 4).sep().num(fit.sigma_m2, 4).sep().num(fit.statistical_m2, 4).sep().num(fit.torque_m2, 4).sep();
+    line.num(static_cast<std::int64_t>(fit.cells)).sep().num(fit.chi2_per_dof, 3);
+    out.value().write("cda_m2,cda_sigma_m2,statistical_m2,torque_m2,cells,chi2_per_dof\n");
+    out.value().write(line.finish());
+    if (auto err = out.value().close()) {
+      std::fprintf(stderr, "roadload calibrate: %s\n", err->to_string().c_str());
+      return kExitCantCreate;
+    }
+  }
+  std::printf("CdA %.3f +- %.3f m^2 (cells' scatter %.3f, flywheel torque %.3f) from %zu cells, chi2/dof %.2f; prior %.2f\n",
+              fit.cda_m2, fit.sigma_m2, fit.statistical_m2, fit.torque_m2, fit.cells, fit.chi2_per_dof, prior_m2);
+  std::printf("roadload analyze ... --engine-losses %s --cda %.3f --cda-sigma %.3f\n", o.engine_losses.c_str(), fit.cda_m2,
+              fit.sigma_m2);
+  return kExitOk;
+}
+
+}  // namespace roadload::cli
