@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "roadload/definitions.hpp"
+#include "roadload/engine_loss_file.hpp"
 #include "roadload/firmware/command_line.hpp"
 #include "roadload/firmware/daemon.hpp"
 #include "roadload/firmware/sources.hpp"
@@ -30,6 +31,7 @@ struct Estimation {
   RouteGeometry route;
   std::vector<CellSpan> cells;
   PavementGroups groups;
+  model::EngineLossMap engine_losses;
 };
 
 std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) {
@@ -42,6 +44,11 @@ std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) 
   e.route = std::move(*geometry);
   for (const CellDef& cell : route.value().cells) e.cells.push_back({cell.id, cell.start_m, cell.end_m});
   e.groups = pavement_groups(route.value().cells);
+  if (!c.estimator.engine_losses.empty()) {
+    auto losses = load_engine_loss_file(c.estimator.engine_losses);
+    if (!losses) return losses.error();
+    e.engine_losses = losses.value();
+  }
   return std::nullopt;
 }
 
@@ -120,6 +127,10 @@ int run(const CommandLine& cl) {
   setup.route = est.route;
   setup.cells = est.cells;
   setup.analyzer = recording::config_from_vehicle(setup.metadata.vehicle, std::nullopt);
+  model::TruckModel& truck = setup.analyzer.filter.truck;
+  truck.engine_losses = est.engine_losses;
+  if (c.estimator.cda_m2 > 0) truck.cda_prior_m2 = c.estimator.cda_m2;
+  if (c.estimator.cda_sigma_m2 > 0) truck.cda_sigma_m2 = c.estimator.cda_sigma_m2;
   if (setup.db != nullptr) {
     recording::LayoutResult layout = recording::axle_layout(setup.metadata, "accelerometers");
     if (layout.layout) {

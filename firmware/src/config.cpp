@@ -91,9 +91,18 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
     c.replay.can = f.flag(*t, "can", "replay.").value_or(c.replay.can);
   }
   if (const toml::table* t = f.table(root, "estimator")) {
-    f.only(*t, {"route", "results_dir"}, "estimator.");
+    f.only(*t, {"route", "results_dir", "engine_losses", "cda_m2", "cda_sigma_m2"}, "estimator.");
     c.estimator.route = f.text(*t, "route", "estimator.").value_or("");
     c.estimator.results_dir = f.text(*t, "results_dir", "estimator.").value_or("");
+    c.estimator.engine_losses = f.text(*t, "engine_losses", "estimator.").value_or("");
+    c.estimator.cda_m2 = f.number(*t, "cda_m2", "estimator.", c.estimator.cda_m2);
+    if (c.estimator.cda_m2 != 0 && (c.estimator.cda_m2 < 0.5 || c.estimator.cda_m2 > 30)) {
+      f.fail(t->get("cda_m2"), "estimator.cda_m2", "outside 0.5-30 m^2 (0: the built-in prior)");
+    }
+    c.estimator.cda_sigma_m2 = f.number(*t, "cda_sigma_m2", "estimator.", c.estimator.cda_sigma_m2);
+    if (c.estimator.cda_sigma_m2 < 0 || c.estimator.cda_sigma_m2 > 10) {
+      f.fail(t->get("cda_sigma_m2"), "estimator.cda_sigma_m2", "outside 0-10 m^2 (0: the built-in prior's)");
+    }
   }
 }
 
@@ -192,7 +201,8 @@ std::string format_config(const DaemonConfig& c) {
   o << "\n[replay]\nrecording = " << quoted(c.replay.recording) << "\nrate = " << c.replay.rate
     << "\ncan = " << (c.replay.can ? "true" : "false") << "\norigin_file = " << quoted(c.replay.origin_file) << "\n";
   o << "\n[estimator]\nroute = " << quoted(c.estimator.route) << "\nresults_dir = " << quoted(c.estimator.results_dir)
-    << "\n";
+    << "\nengine_losses = " << quoted(c.estimator.engine_losses) << "\ncda_m2 = " << c.estimator.cda_m2
+    << "\ncda_sigma_m2 = " << c.estimator.cda_sigma_m2 << "\n";
   return o.str();
 }
 

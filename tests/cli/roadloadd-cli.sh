@@ -31,6 +31,10 @@ grep -q "$work/bad.toml: status.interval_s: expected 0.1 to 60" "$work/err" || f
 printf '[status]\ninterval_s = "1"\n' >"$work/bad2.toml"
 expect_status 2 "$roadloadd" --config "$work/bad2.toml"
 grep -q "$work/bad2.toml:2: status.interval_s: expected a number" "$work/err" || fail "bad config: $(cat "$work/err")"
+# The truck's calibration is read at start: a missing table stops the daemon, naming it.
+printf '[estimator]\nroute = "mnroad-mainline-westbound"\nengine_losses = "%s/no-losses.csv"\n' "$work" >"$work/cal.toml"
+expect_status 1 "$roadloadd" --config "$work/cal.toml" --data-dir "$work/rec-cal" --status "$work/cal.log"
+grep -q "no-losses.csv" "$work/err" || fail "missing engine-loss table not named: $(cat "$work/err")"
 
 # A replayed drive: recorded frame for frame, reported every second with the live CRR.
 "$roadload" simulate --scenario mnroad-mainline-30mph --seed 3 --duration 30 --out "$work/sim" -q

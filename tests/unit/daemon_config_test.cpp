@@ -44,6 +44,17 @@ TEST(DaemonConfig, OutOfRangeValueNamesTheField) {
   EXPECT_EQ(q.error().field, "recording.quota_mib");
 }
 
+TEST(DaemonConfig, TheTrucksCalibrationIsReadAndCheckedForRange) {
+  auto c = load_config(write_temp("[estimator]\nengine_losses = \"/etc/roadload/losses.csv\"\ncda_m2 = 6.22\ncda_sigma_m2 = 0.03\n"));
+  ASSERT_TRUE(c.ok()) << c.error().to_string();
+  EXPECT_EQ(c.value().estimator.engine_losses, "/etc/roadload/losses.csv");
+  EXPECT_DOUBLE_EQ(c.value().estimator.cda_m2, 6.22);
+  EXPECT_DOUBLE_EQ(c.value().estimator.cda_sigma_m2, 0.03);
+  auto bad = load_config(write_temp("[estimator]\ncda_m2 = 62\n"));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().field, "estimator.cda_m2");
+}
+
 TEST(DaemonConfig, CommandLineOverridesTheFile) {
   const std::string file = write_temp("[[can]]\ninterface = \"can1\"\n[recording]\ndata_dir = \"/data\"\n");
   auto cl = parse_command_line({"--data-dir", "/tmp/x", "--config", file, "--can", "vcan0", "--can", "vcan1"});

@@ -60,6 +60,10 @@ struct ReplayConfig {
 struct EstimatorConfig {
   std::string route;       // route file or built-in name; empty: no cells
   std::string results_dir; // cells.csv and trip.json written here at exit; empty: none
+  // The truck's calibration (`roadload calibrate`): its engine-loss table, and its CdA with the
+  // standard error; empty or 0: EEC3's whole percent and the built-in prior.
+  std::string engine_losses;
+  double cda_m2 = 0, cda_sigma_m2 = 0;
 };
 
 struct DaemonConfig {
