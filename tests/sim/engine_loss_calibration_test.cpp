@@ -13,12 +13,13 @@
 namespace roadload::sim {
 namespace {
 
-// Records the frames, and the plant's true losses while the engine sits at a whole hold speed.
+// Feeds the calibration as `roadload calibrate` would from the recording, and keeps the plant's true
+// losses while the engine sits at a whole hold speed.
 class LossSink final : public SampleSink {
  public:
-  explicit LossSink(const Simulation& sim) : sim_(sim) {}
+  LossSink(const Simulation& sim, const j1939::Database& db) : frames(db), sim_(sim) {}
   void frame(const CanFrame& f) override {
-    frames.push_back(f);
+    frames.push(f);
     const TruckState& s = sim_.plant().state();
     const double rpm = std::round(s.engine_rpm / 50.0) * 50.0;
     if (std::abs(s.engine_rpm - rpm) > 0.5) return;
@@ -34,57 +35,58 @@ class LossSink final : public SampleSink {
     double sum = 0;
     std::size_t n = 0;
   };
-  std::vector<CanFrame> frames;
+  EngineLossFrames frames;
   std::map<double, Mean> truth;
 
  private:
   const Simulation& sim_;
 };
 
-TEST(EngineLossCalibration, EachHoldIsThePlantsLossesToEec1sResolution) {
-  const j1939::Database db = test::core_database();
-  Scenario sc = test::builtin("engine-losses");
+// The scenario driven with the calibration listening; `check` sees the sink before it goes.
+template <typename Check>
+void calibrate(Scenario sc, Check&& check) {
+  static const j1939::Database db = test::core_database();
   sc.accelerometers = 0;
   Simulation sim(sc, 3, db);
-  LossSink sink(sim);
+  LossSink sink(sim, db);
   sim.run(sink, nullptr);
-  EngineLossFrames frames(db);
-  for (const CanFrame& f : sink.frames) frames.push(f);
-  const std::vector<EngineLossHold> holds = frames.finish();
-  EXPECT_FALSE(frames.whole_percent);
-  ASSERT_EQ(holds.size(), sc.hold_rpm.size());
-  double worst = 0, worst_eec3 = 0;
-  for (std::size_t i = 0; i < holds.size(); ++i) {
-    const EngineLossHold& h = holds[i];
-    EXPECT_NEAR(h.point.rpm, sc.hold_rpm[i], 1.0);
-    const LossSink::Mean& t = sink.truth.at(sc.hold_rpm[i]);
-    ASSERT_GT(t.n, 0u);
-    const double truth = t.sum / static_cast<double>(t.n);
-    // One step of 1/8 % of 2,386 N m is 2.98 N m: the rounding is within half of it.
-    EXPECT_NEAR(h.point.loss_nm, truth, 1.5) << h.point.rpm << " rpm";
-    EXPECT_NEAR(h.point.sigma_nm, 2.98 / std::sqrt(12.0), 0.1);
-    EXPECT_GE(h.duration_s, 8.0);
-    worst = std::max(worst, std::abs(h.point.loss_nm - truth));
-    worst_eec3 = std::max(worst_eec3, std::abs(h.eec3_loss_nm - truth));
-  }
-  std::printf("engine losses at %zu speeds: calibration within %.2f N m of the plant, EEC3 within %.2f N m\n", holds.size(),
-              worst, worst_eec3);
-  EXPECT_GT(worst_eec3, 8.0);
+  check(sink);
+}
+
+TEST(EngineLossCalibration, EachHoldIsThePlantsLossesToEec1sResolution) {
+  const Scenario sc = test::builtin("engine-losses");
+  calibrate(sc, [&](LossSink& sink) {
+    const std::vector<EngineLossHold> holds = sink.frames.finish();
+    EXPECT_FALSE(sink.frames.whole_percent);
+    ASSERT_EQ(holds.size(), sc.hold_rpm.size());
+    double worst = 0, worst_eec3 = 0;
+    for (std::size_t i = 0; i < holds.size(); ++i) {
+      const EngineLossHold& h = holds[i];
+      EXPECT_NEAR(h.point.rpm, sc.hold_rpm[i], 1.0);
+      const LossSink::Mean& t = sink.truth.at(sc.hold_rpm[i]);
+      ASSERT_GT(t.n, 0u);
+      const double truth = t.sum / static_cast<double>(t.n);
+      // One step of 1/8 % of 2,386 N m is 2.98 N m: the rounding is within half of it.
+      EXPECT_NEAR(h.point.loss_nm, truth, 1.5) << h.point.rpm << " rpm";
+      EXPECT_NEAR(h.point.sigma_nm, 2.98 / std::sqrt(12.0), 0.1);
+      EXPECT_GE(h.duration_s, 8.0);
+      worst = std::max(worst, std::abs(h.point.loss_nm - truth));
+      worst_eec3 = std::max(worst_eec3, std::abs(h.eec3_loss_nm - truth));
+    }
+    std::printf("engine losses at %zu speeds: calibration within %.2f N m of the plant, EEC3 within %.2f N m\n", holds.size(),
+                worst, worst_eec3);
+    EXPECT_GT(worst_eec3, 8.0);
+  });
 }
 
 TEST(EngineLossCalibration, ADriveGivesNoHold) {
-  const j1939::Database db = test::core_database();
   Scenario sc = test::builtin("mnroad-mainline-30mph");
-  sc.accelerometers = 0;
   sc.duration_s = 30;
-  Simulation sim(sc, 3, db);
-  LossSink sink(sim);
-  sim.run(sink, nullptr);
-  EngineLossFrames frames(db);
-  for (const CanFrame& f : sink.frames) frames.push(f);
-  EXPECT_TRUE(frames.finish().empty());
-  EXPECT_GT(frames.readings, 1000u);
-  EXPECT_EQ(frames.standing, 0u);
+  calibrate(sc, [](LossSink& sink) {
+    EXPECT_TRUE(sink.frames.finish().empty());
+    EXPECT_GT(sink.frames.readings, 1000u);
+    EXPECT_EQ(sink.frames.standing, 0u);
+  });
 }
 
 }  // namespace
