@@ -55,9 +55,17 @@ std::vector<std::string> axle_names(const NumberTable& cells) {
 
 Figure crr_per_cell(const NumberTable& cells, const cli::Truth* truth) {
   Chart c{"crr-per-cell", {"pavement cell", false, false}, {"coefficient of rolling resistance", false, false}, cell_ids(cells), false, {}, {}};
-  c.series.push_back({"estimate, 90 % interval", Series::Style::points, {}, column(cells, "crr"), column(cells, "crr_lo"), column(cells, "crr_hi")});
-  if (truth) c.series.push_back({"simulated truth", Series::Style::points, {}, by_cell(c.categories, truth->crr), {}, {}});
-  return {std::move(c), "CRR per cell with its 90 % interval, in route order (seed report Figure 6.2, Table 6.3)."};
+  c.series.push_back({"force balance, 90 % interval", Series::Style::points, {}, column(cells, "crr"), column(cells, "crr_lo"), column(cells, "crr_hi")});
+  const bool tires = cells.column("crr_tire").has_value();
+  if (tires) {
+    c.series.push_back({"the tires' own, 90 % interval", Series::Style::points, {}, column(cells, "crr_tire"),
+                        column(cells, "crr_tire_lo"), column(cells, "crr_tire_hi")});
+  }
+  if (truth) c.series.push_back({"simulated truth (the tires')", Series::Style::points, {}, by_cell(c.categories, truth->crr), {}, {}});
+  return {std::move(c), tires ? "CRR per cell with its 90 % interval, in route order (seed report Figure 6.2, Table 6.3): the force "
+                                "balance's, all that resists rolling, and the tires' own, less what the dampers and tires dissipate "
+                                "of the road's roughness (the accelerometers' dynamic rolling resistance)."
+                              : "CRR per cell with its 90 % interval, in route order (seed report Figure 6.2, Table 6.3)."};
 }
 
 Figure rolling_fuel_per_cell(const NumberTable& cells) {

@@ -28,10 +28,16 @@ double at(const NumberTable& t, std::size_t row, const std::string& column) {
   return c ? t.at(row, *c) : std::nan("");
 }
 
+// With accelerometers, the tires' own CRR follows the force balance's, and the truth (the simulator's
+// tire CRR) is judged against it: like with like.
 std::string cell_table(const NumberTable& cells, const cli::Truth* truth) {
+  const bool tires = cells.column("crr_tire").has_value();
+  const std::string judged = tires ? "crr_tire" : "crr";
   std::vector<std::string> head = {"cell", "from (m)", "to (m)", "samples", "CRR", "90 % low", "90 % high", "speed (m/s)",
                                    "rolling force (N)", "rolling fuel (L)"};
-  if (truth) head.insert(head.begin() + 7, {"truth", "inside"});
+  if (tires) head.insert(head.begin() + 7, {"tires' CRR", "90 % low", "90 % high"});
+  const std::size_t truth_at = tires ? 10 : 7;
+  if (truth) head.insert(head.begin() + static_cast<std::ptrdiff_t>(truth_at), {"truth", "inside"});
   head.push_back("note");
   std::vector<std::vector<std::string>> rows;
   const std::vector<std::string> ids = cell_ids(cells);
@@ -42,11 +48,16 @@ std::string cell_table(const NumberTable& cells, const cli::Truth* truth) {
                                     format_number(at(cells, r, "crr_lo"), 4), format_number(at(cells, r, "crr_hi"), 4),
                                     format_number(at(cells, r, "speed_mps"), 3), format_number(at(cells, r, "roll_force_n"), 4),
                                     format_number(at(cells, r, "rolling_l"), 3)};
+    if (tires) {
+      row.insert(row.begin() + 7, {format_number(at(cells, r, "crr_tire"), 4), format_number(at(cells, r, "crr_tire_lo"), 4),
+                                   format_number(at(cells, r, "crr_tire_hi"), 4)});
+    }
     if (truth) {
       const auto it = truth->crr.find(ids[r]);
       const double t = it == truth->crr.end() ? std::nan("") : it->second;
-      const bool inside = t >= at(cells, r, "crr_lo") && t <= at(cells, r, "crr_hi");
-      row.insert(row.begin() + 7, {format_number(t, 4), std::isfinite(t) && std::isfinite(at(cells, r, "crr")) ? (inside ? "yes" : "no") : ""});
+      const bool inside = t >= at(cells, r, judged + "_lo") && t <= at(cells, r, judged + "_hi");
+      const bool judgeable = std::isfinite(t) && std::isfinite(at(cells, r, judged));
+      row.insert(row.begin() + static_cast<std::ptrdiff_t>(truth_at), {format_number(t, 4), judgeable ? (inside ? "yes" : "no") : ""});
     }
     row.push_back(cells.text(r, reason));
     rows.push_back(std::move(row));
