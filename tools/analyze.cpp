@@ -17,7 +17,6 @@
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
-#include "roadload/route_file.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -105,16 +104,9 @@ int run_analyze(Args args) {
 
   j1939::Database db;
   if (auto rc = load_definitions("analyze", dbcs, db)) return *rc;
-  auto route = load_route_file(resolve_route(route_name));
-  if (!route) {
-    std::fprintf(stderr, "roadload analyze: %s\n", route.error().to_string().c_str());
-    return kExitNoInput;
-  }
-  auto geometry = RouteGeometry::build(route.value().points);
-  if (!geometry) {
-    std::fprintf(stderr, "roadload analyze: %s: point: fewer than two distinct points\n", route.value().source_file.c_str());
-    return kExitDataErr;
-  }
+  auto loaded = load_route("analyze", route_name);
+  if (const int* rc = std::get_if<int>(&loaded)) return *rc;
+  LoadedRoute& route = std::get<LoadedRoute>(loaded);
   auto reader = recording::RecordingReader::open(recording);
   if (!reader) {
     std::fprintf(stderr, "roadload analyze: %s\n", reader.error().to_string().c_str());
@@ -135,9 +127,9 @@ int run_analyze(Args args) {
   }
 
   std::vector<CellSpan> cells;
-  for (const CellDef& c : route.value().cells) cells.push_back({c.id, c.start_m, c.end_m});
-  const double route_length_m = geometry->length_m();
-  DriveAnalyzer analyzer(db, std::move(*geometry), cells, cfg);
+  for (const CellDef& c : route.file.cells) cells.push_back({c.id, c.start_m, c.end_m});
+  const double route_length_m = route.geometry.length_m();
+  DriveAnalyzer analyzer(db, std::move(route.geometry), cells, cfg);
   if (!grade_file.empty()) {
     auto grade = load_grade_file(grade_file, route_length_m);
     if (!grade) {
@@ -149,7 +141,7 @@ int run_analyze(Args args) {
   std::vector<std::string> axle_names;
   std::optional<ContactForces> contact;
   std::optional<VibrationAnalysis> vibration;
-  const PavementGroups groups = pavement_groups(route.value().cells);
+  const PavementGroups groups = pavement_groups(route.file.cells);
   auto layout = recording::axle_layout(reader.value().metadata(), recording + "/meta.toml");
   if (!layout.layout) {
     std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.why_not.c_str());
@@ -194,7 +186,7 @@ int run_analyze(Args args) {
   if (!quiet) print_cells(results, truth ? &*truth : nullptr);
   print_trip(trip, results, truth ? &*truth : nullptr, va);
   if (spectra) print_vibration(*spectra);
-  if (spectra && truth) print_vibration_truth(*vibration, route.value().cells, *truth);
+  if (spectra && truth) print_vibration_truth(*vibration, route.file.cells, *truth);
   return kExitOk;
 }
 

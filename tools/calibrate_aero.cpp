@@ -3,12 +3,12 @@
 #include <cstdio>
 
 #include "calibrate_aero.hpp"
+#include "options.hpp"
 #include "roadload/aero_calibration.hpp"
 #include "roadload/engine_loss_file.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/recording/writer.hpp"
-#include "roadload/route_file.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -42,18 +42,11 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
     std::fprintf(stderr, "roadload calibrate: %s\n", losses.error().to_string().c_str());
     return losses.error().line > 0 ? kExitDataErr : kExitNoInput;
   }
-  auto route = load_route_file(resolve_route(o.route));
-  if (!route) {
-    std::fprintf(stderr, "roadload calibrate: %s\n", route.error().to_string().c_str());
-    return kExitNoInput;
-  }
-  auto geometry = RouteGeometry::build(route.value().points);
-  if (!geometry) {
-    std::fprintf(stderr, "roadload calibrate: %s: point: fewer than two distinct points\n", route.value().source_file.c_str());
-    return kExitDataErr;
-  }
+  auto loaded = load_route("calibrate", o.route);
+  if (const int* rc = std::get_if<int>(&loaded)) return *rc;
+  const LoadedRoute& route = std::get<LoadedRoute>(loaded);
   std::vector<CellSpan> cells;
-  for (const CellDef& c : route.value().cells) cells.push_back({c.id, c.start_m, c.end_m});
+  for (const CellDef& c : route.file.cells) cells.push_back({c.id, c.start_m, c.end_m});
   AeroDrive drives[2];
   double prior_m2 = 0;
   for (std::size_t k = 0; k < 2; ++k) {
@@ -69,7 +62,7 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
     prior_m2 = cfg.filter.truck.cda_prior_m2;
     std::optional<ParseError> failed;
     drives[k] = analyse_for_aero(cfg, [&](const AnalyzerConfig& c) {
-      auto r = analyse(path, db, *geometry, cells, c);
+      auto r = analyse(path, db, route.geometry, cells, c);
       if (r) return std::move(r.value());
       failed = r.error();
       return std::vector<CellResult>{};

@@ -14,7 +14,6 @@
 #include "roadload/grade_profile.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/writer.hpp"
-#include "roadload/route_file.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -206,22 +205,14 @@ int run_grade(Args args) {
   Options o;
   if (auto code = parse(opt, o)) return *code;
 
-  auto route = load_route_file(resolve_route(o.route_name));
-  if (!route) {
-    std::fprintf(stderr, "roadload grade: %s\n", route.error().to_string().c_str());
-    return kExitNoInput;
-  }
-  const auto geometry = RouteGeometry::build(route.value().points);
-  if (!geometry) {
-    std::fprintf(stderr, "roadload grade: %s: point: fewer than two distinct points\n",
-                 route.value().source_file.c_str());
-    return kExitDataErr;
-  }
-  const GradeProfile survey = GradeProfile::from_survey(*geometry, o.survey_sigma_m, o.cfg);
+  const auto loaded = load_route("grade", o.route_name);
+  if (const int* rc = std::get_if<int>(&loaded)) return *rc;
+  const LoadedRoute& route = std::get<LoadedRoute>(loaded);
+  const GradeProfile survey = GradeProfile::from_survey(route.geometry, o.survey_sigma_m, o.cfg);
   if (o.recordings.empty()) {
     if (auto code = write_csv(o.out, survey)) return *code;
     std::fprintf(stderr, "grade: survey profile of %s: %zu bins of %.1f m, grade sigma %.4f %% (survey sigma %.3f m)\n",
-                 route.value().source_file.c_str(), survey.bins().size(), o.cfg.bin_m,
+                 route.file.source_file.c_str(), survey.bins().size(), o.cfg.bin_m,
                  100 * std::sqrt(2.0) * o.survey_sigma_m / (2 * o.cfg.base_m), o.survey_sigma_m);
     return kExitOk;
   }
@@ -233,7 +224,7 @@ int run_grade(Args args) {
   }
   std::vector<GnssTrack> gnss_tracks;
   for (const Track& t : tracks) gnss_tracks.push_back({t.fixes, t.antenna_height_m});
-  const GradeProfile gnss = GradeProfile::from_gnss(*geometry, gnss_tracks, o.cfg);
+  const GradeProfile gnss = GradeProfile::from_gnss(route.geometry, gnss_tracks, o.cfg);
   if (auto code = write_csv(o.out, gnss)) return *code;
   compare(gnss, survey, o.quiet);
   if (gnss.bins_with_grade() == 0) {

@@ -91,4 +91,20 @@ std::optional<int> load_definitions(std::string_view command, const std::vector<
   return std::nullopt;
 }
 
+std::variant<LoadedRoute, int> load_route(std::string_view command, const std::string& name) {
+  const int n = static_cast<int>(command.size());
+  auto route = load_route_file(resolve_route(name));
+  if (!route) {
+    std::fprintf(stderr, "roadload %.*s: %s\n", n, command.data(), route.error().to_string().c_str());
+    return kExitNoInput;
+  }
+  auto geometry = RouteGeometry::build(route.value().points);
+  if (!geometry) {
+    std::fprintf(stderr, "roadload %.*s: %s: point: fewer than two distinct points\n", n, command.data(),
+                 route.value().source_file.c_str());
+    return kExitDataErr;
+  }
+  return LoadedRoute{std::move(route.value()), std::move(*geometry)};
+}
+
 }  // namespace roadload::cli

@@ -5,10 +5,13 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "command.hpp"
 #include "roadload/j1939/database.hpp"
+#include "roadload/route_file.hpp"
+#include "roadload/route_geometry.hpp"
 
 namespace roadload::cli {
 
@@ -40,5 +43,13 @@ class OptionParser {
 // The built-in J1939 definitions, then each of `extra` (--dbc) over them; on failure the error is
 // printed as "roadload COMMAND: file:line: field: message" and the exit code returned.
 std::optional<int> load_definitions(std::string_view command, const std::vector<std::string>& extra, j1939::Database& db);
+
+// A route file or built-in route name with its geometry; on failure the error is printed as above
+// and the exit code returned (66: no such route, 65: too few points).
+struct LoadedRoute {
+  RouteFile file;
+  RouteGeometry geometry;
+};
+std::variant<LoadedRoute, int> load_route(std::string_view command, const std::string& name);
 
 }  // namespace roadload::cli
