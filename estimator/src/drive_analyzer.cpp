@@ -261,17 +261,44 @@ void DriveAnalyzer::finish() {
     if (const int c = cell_at(k.s_cg_m); c >= 0) cell_fuel_[static_cast<std::size_t>(c)].add(k.power);
   }
   // The trip's CRR is the smoothed CRR averaged over every usable tick (a distance average at
-  // steady speed); its sigma, like a cell's, the mean per-tick sigma.
-  double crr = 0, sigma = 0;
+  // steady speed). Its sigma is that of the average: the parts every tick shares (CdA and the
+  // flywheel torque bias, through each tick's regression on them) do not average out; the rest is
+  // one error per cell (CRR is nearly constant within a cell and free between cells), which does.
+  double crr = 0, beta_cda = 0, beta_bias = 0, var_cda = 0, var_bias = 0;
   std::size_t n = 0;
+  // Summed random sigma per cell, then per stretch between cells (each stretch on its own).
+  std::vector<double> cell_random(cells_.size(), 0.0);
+  bool in_gap = false;
   for (const Tick& k : ticks_) {
     if (!k.usable) continue;
+    const CrrFilter::Mat p = covariance_at(k);
     crr += state_at(k)(CrrState::crr);
-    sigma += std::sqrt(covariance_at(k)(CrrState::crr, CrrState::crr));
+    var_cda = p(CrrState::cda, CrrState::cda);
+    var_bias = p(CrrState::torque_bias, CrrState::torque_bias);
+    const double b_cda = var_cda > 0 ? p(CrrState::crr, CrrState::cda) / var_cda : 0.0;
+    const double b_bias = var_bias > 0 ? p(CrrState::crr, CrrState::torque_bias) / var_bias : 0.0;
+    beta_cda += b_cda;
+    beta_bias += b_bias;
+    const double random = p(CrrState::crr, CrrState::crr) - b_cda * b_cda * var_cda - b_bias * b_bias * var_bias;
+    const int c = cell_at(k.s_cg_m);
+    if (c < 0 && !in_gap) cell_random.push_back(0.0);
+    in_gap = c < 0;
+    cell_random[c >= 0 ? static_cast<std::size_t>(c) : cell_random.size() - 1] += std::sqrt(std::max(0.0, random));
     ++n;
   }
-  trip_.crr = n > 0 ? crr / static_cast<double>(n) : filter_.crr();
-  trip_.crr_sigma = n > 0 ? sigma / static_cast<double>(n) : filter_.crr_sigma();
+  if (n > 0) {
+    const auto total = static_cast<double>(n);
+    beta_cda /= total;
+    beta_bias /= total;
+    double var = beta_cda * beta_cda * var_cda + beta_bias * beta_bias * var_bias;
+    // A cell's weight in the average times its mean random sigma: its summed sigma over n.
+    for (const double summed : cell_random) var += (summed / total) * (summed / total);
+    trip_.crr = crr / total;
+    trip_.crr_sigma = std::sqrt(var);
+  } else {
+    trip_.crr = filter_.crr();
+    trip_.crr_sigma = filter_.crr_sigma();
+  }
   trip_.cda_m2 = filter_.cda_m2();
   trip_.torque_bias_nm = filter_.torque_bias_nm();
   trip_.torque_bias_sigma_nm = std::sqrt(filter_.core().p()(CrrState::torque_bias, CrrState::torque_bias));

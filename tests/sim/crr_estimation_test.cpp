@@ -187,5 +187,42 @@ TEST(CrrEstimation, GnssGradeSigmaWidensTheIntervalsHonestly) {
   EXPECT_GE(coverage, 0.75);
 }
 
+// The trip's sigma is that of its average: the part every cell shares (CdA's prior: 0.6 m^2 is
+// 0.00018 in CRR at 30 mph) stays whole, the cells' own errors average out.
+TEST(CrrEstimation, TheTripSigmaIsThatOfTheAverageOverCells) {
+  const j1939::Database db = test::core_database();
+  Scenario sc = test::builtin("mnroad-mainline-30mph");
+  sc.accelerometers = 0;
+  Simulation sim(sc, 4, db);
+  test::MemorySink sink;
+  sim.run(sink, nullptr);
+  auto route = RouteGeometry::build(sc.route.points);
+  ASSERT_TRUE(route.has_value());
+  const auto analyse = [&](const AnalyzerConfig& cfg) {
+    DriveAnalyzer a(db, *route, test::cell_spans(sc), cfg);
+    test::analyze(a, sink);
+    double sigma = 0;
+    std::size_t n = 0;
+    for (const CellResult& c : a.cells()) {
+      if (c.samples == 0) continue;
+      sigma += c.crr_sigma;
+      ++n;
+    }
+    return std::pair{a.trip().crr_sigma, sigma / static_cast<double>(n)};
+  };
+  const auto [trip, cell] = analyse(AnalyzerConfig{});
+  const double cda_part = 0.6 * 0.5 * 1.19 * 13.4 * 13.4 / (36152 * 9.80665);
+  EXPECT_GT(trip, 0.9 * cda_part);
+  EXPECT_LE(trip, cell);
+  AnalyzerConfig known;
+  known.filter.truck.cda_sigma_m2 = 1e-6;
+  known.filter.torque_bias_sigma_nm = 1e-6;
+  const auto [trip_known, cell_known] = analyse(known);
+  std::printf("trip sigma %.6f (cells %.6f); with CdA and the torque known %.6f (cells %.6f)\n", trip, cell, trip_known,
+              cell_known);
+  // 29 cells: their own errors average to about a fifth.
+  EXPECT_LT(trip_known, 0.4 * cell_known);
+}
+
 }  // namespace
 }  // namespace roadload::sim
