@@ -191,11 +191,8 @@ TEST(CrrEstimation, GnssGradeSigmaWidensTheIntervalsHonestly) {
 // 0.00018 in CRR at 30 mph) stays whole, the cells' own errors average out.
 TEST(CrrEstimation, TheTripSigmaIsThatOfTheAverageOverCells) {
   const j1939::Database db = test::core_database();
-  Scenario sc = test::builtin("mnroad-mainline-30mph");
-  sc.accelerometers = 0;
-  Simulation sim(sc, 4, db);
-  test::MemorySink sink;
-  sim.run(sink, nullptr);
+  const Scenario sc = test::builtin("mnroad-mainline-30mph");
+  const test::MemorySink sink = test::drive_without_accelerometers(sc, 4, db);
   auto route = RouteGeometry::build(sc.route.points);
   ASSERT_TRUE(route.has_value());
   const auto analyse = [&](const AnalyzerConfig& cfg) {

@@ -26,4 +26,14 @@ inline j1939::Database core_database() {
   return db;
 }
 
+// The scenario driven into memory without its accelerometers: the force balance does not use them,
+// and the run is three times faster.
+inline MemorySink drive_without_accelerometers(Scenario sc, std::uint64_t seed, const j1939::Database& db) {
+  sc.accelerometers = 0;
+  Simulation sim(sc, seed, db);
+  MemorySink sink;
+  sim.run(sink, nullptr);
+  return sink;
+}
+
 }  // namespace roadload::sim::test

@@ -85,11 +85,8 @@ TEST(TractionFromJ1939, MatchesThePlantsTractiveForceWithinJ1939Resolution) {
 // whole percent: what is left is EEC1's 1/8 % and the calibration's interpolation.
 TEST(TractionFromJ1939, CalibratedEngineLossesRemoveEec3sRounding) {
   const j1939::Database db = test::core_database();
-  Scenario standing = test::builtin("engine-losses");
-  standing.accelerometers = 0;
-  Simulation sim(standing, 5, db);
-  test::MemorySink held;
-  sim.run(held, nullptr);
+  const Scenario standing = test::builtin("engine-losses");
+  const test::MemorySink held = test::drive_without_accelerometers(standing, 5, db);
   EngineLossFrames frames(db);
   for (const CanFrame& f : held.frames) frames.push(f);
   model::TruckModel truck;
