@@ -6,28 +6,35 @@
 #include "options.hpp"
 #include "roadload/aero_calibration.hpp"
 #include "roadload/engine_loss_file.hpp"
+#include "roadload/pavement_groups.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/recording/writer.hpp"
+#include "roadload/tire_crr.hpp"
 
 namespace roadload::cli {
 namespace {
 
-// The recording's cells as `roadload analyze` estimates them with this configuration (the force
-// balance only: no accelerometers).
-Parsed<std::vector<CellResult>> analyse(const std::string& path, const j1939::Database& db, const RouteGeometry& route,
+// The recording's cells as `roadload analyze` estimates them with this configuration: with the
+// truck's accelerometers, the tires' own CRR (tire_crr.hpp). The road's dissipation grows with
+// speed; left in, it would be fitted as drag.
+Parsed<std::vector<CellResult>> analyse(const std::string& path, const j1939::Database& db, const LoadedRoute& route,
                                         const std::vector<CellSpan>& cells, const AnalyzerConfig& cfg) {
   auto reader = recording::RecordingReader::open(path);
   if (!reader) return reader.error();
-  DriveAnalyzer analyzer(db, route, cells, cfg);
-  while (const recording::Record* r = reader.value().next()) {
-    if (const auto* f = std::get_if<CanFrame>(r)) analyzer.push(*f);
-    if (const auto* g = std::get_if<GnssFix>(r)) analyzer.push(*g);
-    if (const auto* w = std::get_if<WeatherSample>(r)) analyzer.push(*w);
+  DriveAnalyzer analyzer(db, route.geometry, cells, cfg);
+  std::optional<VibrationAnalysis> vibration;
+  const recording::LayoutResult layout = recording::axle_layout(reader.value().metadata(), path + "/meta.toml");
+  if (layout.layout) {
+    const PavementGroups groups = pavement_groups(route.file.cells);
+    vibration.emplace(*layout.layout, recording::accelerometers(reader.value().metadata()), cells.size(), groups.cell_group,
+                      groups.names.size());
+    analyzer.attach(&*vibration);
   }
+  while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { analyzer.push(s); }, *r);
   if (!reader.value().errors().kept().empty()) return reader.value().errors().kept().front();
   analyzer.finish();
-  return analyzer.cells();
+  return vibration ? with_tire_crr(analyzer.cells(), *vibration) : analyzer.cells();
 }
 
 }  // namespace
@@ -62,7 +69,7 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
     prior_m2 = cfg.filter.truck.cda_prior_m2;
     std::optional<ParseError> failed;
     drives[k] = analyse_for_aero(cfg, [&](const AnalyzerConfig& c) {
-      auto r = analyse(path, db, route.geometry, cells, c);
+      auto r = analyse(path, db, route, cells, c);
       if (r) return std::move(r.value());
       failed = r.error();
       return std::vector<CellResult>{};

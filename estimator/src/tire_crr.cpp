@@ -17,4 +17,19 @@ std::optional<TireCrr> tire_crr(const CellResult& cell, double dissipated_w, dou
   return t;
 }
 
+std::vector<CellResult> with_tire_crr(std::vector<CellResult> cells, const VibrationAnalysis& vibration) {
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    CellResult& c = cells[i];
+    const DynamicPower p = vibration.cell_power(i);
+    const double z = c.crr_sigma > 0 ? (c.crr_hi - c.crr) / c.crr_sigma : 0.0;
+    const auto t = p.segments > 0 ? tire_crr(c, p.total_w(), z) : std::nullopt;
+    if (!t) continue;
+    c.crr = t->crr;
+    c.crr_sigma = t->sigma;
+    c.crr_lo = t->lo;
+    c.crr_hi = t->hi;
+  }
+  return cells;
+}
+
 }  // namespace roadload

@@ -99,16 +99,20 @@ Calibration calibrate(const j1939::Database& db, std::uint64_t seed) {
   AeroDrive drives[2];
   const char* names[2] = {"mnroad-mainline-30mph", "mnroad-mainline-64mph"};
   for (std::size_t k = 0; k < 2; ++k) {
-    sim::Scenario sc = scenario(names[k]);
-    sc.accelerometers = 0;
+    // With the accelerometers: the fit takes the tires' CRR, without the road's dissipation.
+    const sim::Scenario sc = scenario(names[k]);
     sim::Simulation sim(sc, seed, db);
     sim::test::MemorySink sink;
     sim.run(sink, nullptr);
     const RouteGeometry route = route_of(sc);
+    const PavementGroups groups = sim::test::pavement_groups(sc);
     drives[k] = analyse_for_aero(base, [&](const AnalyzerConfig& cfg) {
       DriveAnalyzer a(db, route, sim::test::cell_spans(sc), cfg);
-      sim::test::analyze(a, sink);
-      return a.cells();
+      VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()),
+                           sc.route.cells.size(), groups.cell_group, groups.names.size());
+      a.attach(&va);
+      sim::test::analyze(a, sink, true);
+      return with_tire_crr(a.cells(), va);
     });
   }
   c.aero = fit_cda(drives[0], drives[1], base.filter.truck.cda_prior_m2, c.losses.sigma_nm());

@@ -6,8 +6,10 @@
 // accelerometers' dissipation out of the force balance leaves the tires' own CRR, the figure a
 // drum test (ISO 28580) would give.
 #include <optional>
+#include <vector>
 
 #include "roadload/drive_analyzer.hpp"
+#include "roadload/vibration.hpp"
 
 namespace roadload {
 
@@ -20,5 +22,9 @@ struct TireCrr {
 // (docs/spectra.md: dampers within 3 %, tires within 4.4 % in the worst cell).
 std::optional<TireCrr> tire_crr(const CellResult& cell, double dissipated_w, double interval_z,
                                 double relative_error = 0.05);
+
+// The cells with their CRR and sigma replaced by the tires' own where the accelerometers measured
+// the cell; the others keep the force balance's.
+std::vector<CellResult> with_tire_crr(std::vector<CellResult> cells, const VibrationAnalysis& vibration);
 
 }  // namespace roadload
