@@ -129,7 +129,9 @@ void print_vibration(const VibrationSummary& s) {
                "absolute motion: %.0f W); %.4f L, %.3f L/100 km; a year of 2,207 h: %.0f MJ, %.0f L\n",
                s.trip.damper_w, s.trip.tire_w, s.trip.tire_eq27_w, s.trip_cost.diesel_l, s.trip_cost.l_per_100km,
                s.annual.energy_mj_per_year, s.annual.diesel_l_per_year);
-  const GroupSpectra* concrete = nullptr;
+  // Concrete of every panel length together, weighted by the time measured on each, as the report's
+  // tables and bench_dynamic compare it with bituminous.
+  double concrete_w_segments = 0, concrete_segments = 0;
   const GroupSpectra* bituminous = nullptr;
   for (const GroupSpectra& g : s.groups) {
     std::fprintf(stderr, "  %-18s dampers %7.1f W  tires %7.1f W", g.name.c_str(), g.power.damper_w, g.power.tire_w);
@@ -139,12 +141,15 @@ void print_vibration(const VibrationSummary& s) {
       std::fprintf(stderr, "  no joint line at %.2f m (%.1f sigma)", g.expected_panel_m, g.joint.significance);
     }
     std::fprintf(stderr, "\n");
-    if (g.name.rfind("concrete", 0) == 0 && (concrete == nullptr || g.power.segments > concrete->power.segments)) concrete = &g;
+    if (g.name.rfind("concrete", 0) == 0) {
+      concrete_w_segments += g.power.damper_w * static_cast<double>(g.power.segments);
+      concrete_segments += static_cast<double>(g.power.segments);
+    }
     if (g.name == "bituminous") bituminous = &g;
   }
-  if (concrete && bituminous && bituminous->power.damper_w > 0) {
+  if (concrete_segments > 0 && bituminous && bituminous->power.damper_w > 0) {
     std::fprintf(stderr, "analyze: concrete / bituminous damper power %.2f (report: %.2f Mainline Table 6.5, %.2f TH 10 / TH 66 Table 6.6)\n",
-                 concrete->power.damper_w / bituminous->power.damper_w, kReportMainlineRatio, kReportHighwayRatio);
+                 concrete_w_segments / concrete_segments / bituminous->power.damper_w, kReportMainlineRatio, kReportHighwayRatio);
   }
 }
 
