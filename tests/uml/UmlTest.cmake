@@ -53,7 +53,8 @@ function(roadload_add_uml_test)
   set_tests_properties(${arg_NAME} PROPERTIES
     LABELS "${labels}"
     SKIP_RETURN_CODE 77
-    TIMEOUT ${ctest_timeout})
+    TIMEOUT ${ctest_timeout}
+    RESOURCE_LOCK uml)
   if(arg_ENVIRONMENT)
     set_property(TEST ${arg_NAME} PROPERTY ENVIRONMENT ${arg_ENVIRONMENT})
   endif()
