@@ -1,6 +1,5 @@
 #include "analyze_results.hpp"
 
-#include <array>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -98,17 +97,15 @@ void print_cells(const std::vector<CellResult>& cells, const Truth* truth) {
 
 namespace {
 
-// RMSE and interval coverage of one per-cell estimate (value, lo, hi) against the true CRR.
-template <typename Estimate>
-void print_against_truth(const char* what, const std::vector<CellResult>& cells, const Truth& truth, Estimate&& estimate) {
+// RMSE and interval coverage of the cells' CRR against the true CRR.
+void print_against_truth(const char* what, const std::vector<CellResult>& cells, const Truth& truth) {
   double se = 0;
   std::size_t n = 0, covered = 0;
   for (const CellResult& c : cells) {
     const double* t = true_crr(&truth, c.id);
-    const auto e = c.samples > 0 && t != nullptr ? estimate(c) : std::nullopt;
-    if (!e) continue;
-    se += ((*e)[0] - *t) * ((*e)[0] - *t);
-    covered += *t >= (*e)[1] && *t <= (*e)[2] ? 1 : 0;
+    if (c.samples == 0 || t == nullptr) continue;
+    se += (c.crr - *t) * (c.crr - *t);
+    covered += *t >= c.crr_lo && *t <= c.crr_hi ? 1 : 0;
     ++n;
   }
   if (n == 0) return;
@@ -135,17 +132,14 @@ void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, co
     std::fprintf(stderr, "\n");
   }
   if (!truth) return;
-  print_against_truth("CRR", cells, *truth, [](const CellResult& c) { return std::optional(std::array{c.crr, c.crr_lo, c.crr_hi}); });
+  print_against_truth("CRR", cells, *truth);
   if (vibration == nullptr) return;
-  print_against_truth("tires' CRR (less the dampers' and tires' dissipation)", cells, *truth,
-                      [&](const CellResult& c) -> std::optional<std::array<double, 3>> {
-                        const std::size_t row = static_cast<std::size_t>(&c - cells.data());
-                        const DynamicPower p = vibration->cell_power(row);
-                        const double z = c.crr_sigma > 0 ? (c.crr_hi - c.crr) / c.crr_sigma : 0.0;
-                        const auto t = p.segments > 0 ? tire_crr(c, p.total_w(), z) : std::nullopt;
-                        if (!t) return std::nullopt;
-                        return std::array{t->crr, t->lo, t->hi};
-                      });
+  // Cells the accelerometers did not measure keep the force balance's CRR: only the measured count.
+  std::vector<CellResult> tires = with_tire_crr(cells, *vibration);
+  for (std::size_t i = 0; i < tires.size(); ++i) {
+    if (vibration->cell_power(i).segments == 0) tires[i].samples = 0;
+  }
+  print_against_truth("tires' CRR (less the dampers' and tires' dissipation)", tires, *truth);
 }
 
 }  // namespace roadload::cli

@@ -12,19 +12,14 @@ AeroDrive analyse_for_aero(const AnalyzerConfig& base,
   AnalyzerConfig held = base;
   held.estimate_cda = false;
   held.filter.truck.cda_sigma_m2 = 1e-6;
-  model::EngineLossMap exact;
-  const model::EngineLossMap& losses = base.filter.truck.engine_losses;
-  for (std::size_t i = 0; i < losses.size(); ++i) exact.add({losses[i].rpm, losses[i].loss_nm, 1e-6});
-  held.filter.truck.engine_losses = exact;
+  held.filter.truck.engine_losses = base.filter.truck.engine_losses.shifted(0.0, 1e-6);
   AeroDrive d;
   d.held = analyze(held);
   AnalyzerConfig cda = held;
   cda.filter.truck.cda_prior_m2 += kCdaStep_m2;
   d.cda = analyze(cda);
   AnalyzerConfig torque = held;
-  model::EngineLossMap less;
-  for (std::size_t i = 0; i < exact.size(); ++i) less.add({exact[i].rpm, exact[i].loss_nm - 1.0, 1e-6});
-  torque.filter.truck.engine_losses = less;
+  torque.filter.truck.engine_losses = base.filter.truck.engine_losses.shifted(-1.0, 1e-6);
   d.torque = analyze(torque);
   return d;
 }

@@ -4,10 +4,12 @@
 
 namespace roadload {
 
-std::optional<TireCrr> tire_crr(const CellResult& cell, double dissipated_w, double interval_z, double relative_error) {
-  if (cell.samples == 0 || !(cell.speed_mps > 0) || !(cell.weight_n > 0) || !std::isfinite(dissipated_w)) {
+std::optional<TireCrr> tire_crr(const CellResult& cell, double dissipated_w, double relative_error) {
+  if (cell.samples == 0 || !(cell.speed_mps > 0) || !(cell.weight_n > 0) || !(cell.crr_sigma > 0) ||
+      !std::isfinite(dissipated_w)) {
     return std::nullopt;
   }
+  const double interval_z = (cell.crr_hi - cell.crr) / cell.crr_sigma;
   TireCrr t;
   t.dynamic_crr = dissipated_w / (cell.speed_mps * cell.weight_n);
   t.crr = cell.crr - t.dynamic_crr;
@@ -21,8 +23,7 @@ std::vector<CellResult> with_tire_crr(std::vector<CellResult> cells, const Vibra
   for (std::size_t i = 0; i < cells.size(); ++i) {
     CellResult& c = cells[i];
     const DynamicPower p = vibration.cell_power(i);
-    const double z = c.crr_sigma > 0 ? (c.crr_hi - c.crr) / c.crr_sigma : 0.0;
-    const auto t = p.segments > 0 ? tire_crr(c, p.total_w(), z) : std::nullopt;
+    const auto t = p.segments > 0 ? tire_crr(c, p.total_w()) : std::nullopt;
     if (!t) continue;
     c.crr = t->crr;
     c.crr_sigma = t->sigma;

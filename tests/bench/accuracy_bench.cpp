@@ -51,10 +51,7 @@ constexpr std::uint64_t kCalibrationSeeds = 1000;  // a judged seed's calibratio
 AnalyzerConfig nuisance_known(AnalyzerConfig c) {
   c.filter.truck.cda_sigma_m2 = 1e-6;
   c.filter.torque_bias_sigma_nm = 1e-6;
-  model::EngineLossMap exact;
-  const model::EngineLossMap& losses = c.filter.truck.engine_losses;
-  for (std::size_t i = 0; i < losses.size(); ++i) exact.add({losses[i].rpm, losses[i].loss_nm, 1e-6});
-  c.filter.truck.engine_losses = exact;
+  c.filter.truck.engine_losses = c.filter.truck.engine_losses.shifted(0.0, 1e-6);
   return c;
 }
 
@@ -151,7 +148,7 @@ void tally(const sim::Scenario& sc, const sim::Simulation& sim, const sim::test:
     t.bias_total += cells[i].crr - total;
     t.inside_total += total >= cells[i].crr_lo && total <= cells[i].crr_hi ? 1 : 0;
     const DynamicPower p = va.cell_power(i);
-    if (const auto tire = p.segments > 0 ? tire_crr(cells[i], p.total_w(), 1.645) : std::nullopt) {
+    if (const auto tire = p.segments > 0 ? tire_crr(cells[i], p.total_w()) : std::nullopt) {
       t.se_tire += (tire->crr - truths[i].crr) * (tire->crr - truths[i].crr);
       t.bias_tire += tire->crr - truths[i].crr;
       t.inside_tire += truths[i].crr >= tire->lo && truths[i].crr <= tire->hi ? 1 : 0;

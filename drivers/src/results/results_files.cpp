@@ -53,9 +53,7 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
       line.num(measured ? p.damper_w : nan, 2).sep().num(measured ? p.tire_w : nan, 2).sep().num(measured ? p.tire_eq27_w : nan, 2).sep();
       line.num(measured && driven ? cost.energy_j : nan, 1).sep().num(measured && driven ? cost.diesel_l : nan, 6).sep();
       line.num(measured && driven ? cost.l_per_100km : nan, 4).sep();
-      // At the confidence of the cell's own CRR interval.
-      const double z = c.crr_sigma > 0 ? (c.crr_hi - c.crr) / c.crr_sigma : 0.0;
-      const std::optional<TireCrr> tire = measured ? tire_crr(c, p.total_w(), z) : std::nullopt;
+      const std::optional<TireCrr> tire = measured ? tire_crr(c, p.total_w()) : std::nullopt;
       line.num(tire ? tire->crr : nan, 6).sep().num(tire ? tire->lo : nan, 6).sep().num(tire ? tire->hi : nan, 6).sep();
     }
     line.text(c.reason);

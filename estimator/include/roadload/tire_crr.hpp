@@ -18,10 +18,10 @@ struct TireCrr {
   double dynamic_crr = 0;  // the dissipation as a coefficient of the weight: P / (v W)
 };
 
-// Nothing for a cell without a CRR, a speed or a weight. `relative_error` is the dissipation's
-// (docs/spectra.md: dampers within 3 %, tires within 4.4 % in the worst cell).
-std::optional<TireCrr> tire_crr(const CellResult& cell, double dissipated_w, double interval_z,
-                                double relative_error = 0.05);
+// Nothing for a cell without a CRR, a speed or a weight. The interval has the confidence of the
+// cell's own. `relative_error` is the dissipation's (docs/spectra.md: dampers within 3 %, tires
+// within 4.4 % in the worst cell).
+std::optional<TireCrr> tire_crr(const CellResult& cell, double dissipated_w, double relative_error = 0.05);
 
 // The cells with their CRR and sigma replaced by the tires' own where the accelerometers measured
 // the cell; the others keep the force balance's.

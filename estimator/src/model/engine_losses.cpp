@@ -21,6 +21,12 @@ std::optional<double> EngineLossMap::loss_nm(double rpm) const {
   return lo->loss_nm + w * (hi->loss_nm - lo->loss_nm);
 }
 
+EngineLossMap EngineLossMap::shifted(double offset_nm, double sigma_nm) const {
+  EngineLossMap m;
+  for (std::size_t i = 0; i < size_; ++i) m.add({points_[i].rpm, points_[i].loss_nm + offset_nm, sigma_nm});
+  return m;
+}
+
 double EngineLossMap::sigma_nm() const {
   double s = 0;
   for (std::size_t i = 0; i < size_; ++i) s = std::max(s, points_[i].sigma_nm);

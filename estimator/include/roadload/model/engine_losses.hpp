@@ -32,6 +32,9 @@ class EngineLossMap {
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
   const EngineLossPoint& operator[](std::size_t i) const { return points_[i]; }
+  // The same engine speeds with every loss moved by `offset_nm` and every sigma set to
+  // `sigma_nm`: the table held as exact, or nudged, to see what depends on it.
+  EngineLossMap shifted(double offset_nm, double sigma_nm) const;
 
  private:
   std::array<EngineLossPoint, kCapacity> points_{};
