@@ -2,6 +2,7 @@
 // of the truck standing in neutral while the engine is held at a series of speeds. Written as the
 // table `roadload analyze --engine-losses` uses in place of EEC3's whole percent.
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -126,11 +127,17 @@ int run_calibrate(Args args) {
     return kExitCantCreate;
   }
   if (!quiet) {
-    std::printf("%8s %10s %9s %12s %12s %7s\n", "rpm", "loss N m", "sigma", "EEC3 N m", "EEC3 error", "hold s");
+    std::printf("%8s %10s %9s %12s %12s %12s %7s\n", "rpm", "loss N m", "sigma", "friction", "EEC3 N m", "EEC3 error",
+                "hold s");
     for (const EngineLossHold& h : holds) {
-      std::printf("%8.1f %10.2f %9.2f %12.2f %+12.2f %7.1f\n", h.point.rpm, h.point.loss_nm, h.point.sigma_nm,
-                  h.eec3_loss_nm, h.eec3_loss_nm - h.point.loss_nm, h.duration_s);
+      std::printf("%8.1f %10.2f %9.2f %12.2f %12.2f %+12.2f %7.1f\n", h.point.rpm, h.point.loss_nm, h.point.sigma_nm,
+                  h.point.friction_nm, h.eec3_loss_nm, h.eec3_loss_nm - h.point.loss_nm, h.duration_s);
     }
+  }
+  if (std::isnan(holds.front().point.friction_nm)) {
+    std::fprintf(stderr,
+                 "roadload calibrate: EEC3's friction steps fewer than three times over these speeds: the accessories "
+                 "keep EEC3's parasitic share\n");
   }
   std::fprintf(stderr, "roadload calibrate: %zu engine speeds from %.0f to %.0f rpm, torque to %s %% -> %s\n", holds.size(),
                holds.front().point.rpm, holds.back().point.rpm, cal.whole_percent ? "whole" : "1/8", out.c_str());

@@ -1,5 +1,7 @@
 #include "roadload/engine_loss_file.hpp"
 
+#include <cmath>
+#include <limits>
 #include <span>
 #include <string_view>
 
@@ -9,7 +11,7 @@
 namespace roadload {
 namespace {
 
-constexpr std::string_view kColumns[] = {"rpm", "loss_nm", "sigma_nm"};
+constexpr std::string_view kColumns[] = {"rpm", "loss_nm", "sigma_nm", "friction_nm"};
 
 }  // namespace
 
@@ -20,10 +22,15 @@ Parsed<model::EngineLossMap> load_engine_loss_file(const std::string& path) {
   std::span<const std::string_view> row;
   for (recording::CsvReader::Status st; (st = csv.value().next(row)) != recording::CsvReader::Status::end;) {
     if (st == recording::CsvReader::Status::bad_row) return *csv.value().error();
-    double v[3];
-    for (std::size_t i = 0; i < 3; ++i) {
+    double v[4];
+    for (std::size_t i = 0; i < 4; ++i) {
+      // An empty friction: the calibration could not separate it from the accessories.
+      if (i == 3 && row[i].empty()) {
+        v[i] = std::numeric_limits<double>::quiet_NaN();
+        continue;
+      }
       const auto x = recording::parse_f64(row[i]);
-      if (!x) return csv.value().field_error(i, "expected a number");
+      if (!x || !std::isfinite(*x)) return csv.value().field_error(i, "expected a number");
       v[i] = *x;
     }
     if (v[0] < 100 || v[0] > 5000) return csv.value().field_error(0, "outside 100-5000 rpm");
@@ -31,7 +38,7 @@ Parsed<model::EngineLossMap> load_engine_loss_file(const std::string& path) {
     if (map.size() == model::EngineLossMap::kCapacity) {
       return csv.value().field_error(0, "more than " + std::to_string(model::EngineLossMap::kCapacity) + " engine speeds");
     }
-    if (!map.add({v[0], v[1], v[2]})) return csv.value().field_error(0, "engine speeds must increase line by line");
+    if (!map.add({v[0], v[1], v[2], v[3]})) return csv.value().field_error(0, "engine speeds must increase line by line");
   }
   if (csv.value().error()) return *csv.value().error();
   if (map.empty()) return ParseError{path, 0, "rpm", "no engine speed in the table"};
@@ -42,12 +49,13 @@ std::optional<ParseError> write_engine_loss_file(const std::string& path, const 
   auto out = recording::OutputFile::create(path);
   if (!out) return out.error();
   out.value().write("# Engine losses (friction + accessories) measured standing in neutral: roadload calibrate\n");
-  out.value().write("rpm,loss_nm,sigma_nm,eec3_loss_nm,hold_s,samples\n");
+  out.value().write("rpm,loss_nm,sigma_nm,friction_nm,eec3_loss_nm,eec3_friction_nm,hold_s,samples\n");
   recording::LineBuilder line;
   for (const EngineLossHold& h : holds) {
     line.clear();
     line.num(h.point.rpm, 1).sep().num(h.point.loss_nm, 3).sep().num(h.point.sigma_nm, 3).sep();
-    line.num(h.eec3_loss_nm, 3).sep().num(h.duration_s, 1).sep().num(static_cast<std::int64_t>(h.samples));
+    line.num(h.point.friction_nm, 3).sep().num(h.eec3_loss_nm, 3).sep().num(h.eec3_friction_nm, 3).sep();
+    line.num(h.duration_s, 1).sep().num(static_cast<std::int64_t>(h.samples));
     out.value().write(line.finish());
   }
   return out.value().close();

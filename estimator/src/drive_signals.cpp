@@ -121,7 +121,12 @@ TractionEstimate traction(const DriveSignals& s, const model::TruckModel& truck,
       out.reason = Unusable::uncalibrated_rpm;
       return out;
     }
-    out.friction_nm = *loss - out.parasitic_nm;
+    if (const std::optional<double> curve = truck.engine_losses.friction_nm(rpm.value)) {
+      out.friction_nm = *curve;
+      out.parasitic_nm = *loss - *curve;
+    } else {
+      out.friction_nm = *loss - out.parasitic_nm;
+    }
     out.flywheel_nm = out.indicated_nm - *loss;
   }
   out.tractive_n = model::tractive_force_n(truck, out.flywheel_nm, out.gear_ratio);

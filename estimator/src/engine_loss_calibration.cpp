@@ -1,5 +1,6 @@
 #include "roadload/engine_loss_calibration.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
@@ -15,7 +16,7 @@ void EngineLossCalibration::push(const EngineReading& r) {
     anchor_rpm_ = r.rpm;
     resolution_nm_ = 0;
     start_ = r.t;
-    rpm_ = torque_ = eec3_ = RunningStats{};
+    rpm_ = torque_ = eec3_ = eec3_friction_ = RunningStats{};
     tail_.clear();
   }
   last_ = r.t;
@@ -35,6 +36,7 @@ void EngineLossCalibration::keep(const EngineReading& r) {
   rpm_.add(r.rpm);
   torque_.add(r.indicated_nm);
   eec3_.add(r.eec3_loss_nm);
+  eec3_friction_.add(r.eec3_friction_nm);
   resolution_nm_ = std::max(resolution_nm_, r.resolution_nm);
 }
 
@@ -50,6 +52,7 @@ void EngineLossCalibration::close_hold() {
   EngineLossHold h;
   h.point = {rpm_.mean, torque_.mean, std::hypot(rounding_nm, scatter_nm)};
   h.eec3_loss_nm = eec3_.mean;
+  h.eec3_friction_nm = eec3_friction_.mean;
   h.duration_s = kept_s;
   h.samples = torque_.n;
   holds_.push_back(h);
@@ -69,13 +72,46 @@ std::vector<EngineLossHold> EngineLossCalibration::finish() {
       m.point.loss_nm = (wa * m.point.loss_nm + wb * h.point.loss_nm) / w;
       m.point.sigma_nm = std::max(m.point.sigma_nm, h.point.sigma_nm);
       m.eec3_loss_nm = (wa * m.eec3_loss_nm + wb * h.eec3_loss_nm) / w;
+      m.eec3_friction_nm = (wa * m.eec3_friction_nm + wb * h.eec3_friction_nm) / w;
       m.duration_s += h.duration_s;
       m.samples += h.samples;
     } else {
       merged.push_back(h);
     }
   }
+  if (const auto curve = fit_friction_curve(merged)) {
+    for (EngineLossHold& h : merged) h.point.friction_nm = curve->at(h.point.rpm);
+  }
   return merged;
+}
+
+double FrictionCurve::at(double rpm) const {
+  const double k = rpm / 1000.0;
+  return a_nm + k * (b_nm_per_krpm + k * c_nm_per_krpm2);
+}
+
+std::optional<FrictionCurve> fit_friction_curve(const std::vector<EngineLossHold>& holds) {
+  constexpr std::size_t kTerms = 3;
+  std::vector<double> krpm, value;
+  for (std::size_t i = 1; i < holds.size(); ++i) {
+    const EngineLossHold& lo = holds[i - 1];
+    const EngineLossHold& hi = holds[i];
+    if (std::abs(hi.eec3_friction_nm - lo.eec3_friction_nm) <= 1e-9 * std::abs(lo.eec3_friction_nm)) continue;
+    krpm.push_back((lo.point.rpm + hi.point.rpm) / 2000.0);
+    value.push_back((lo.eec3_friction_nm + hi.eec3_friction_nm) / 2.0);
+  }
+  if (krpm.size() < kTerms) return std::nullopt;
+  Eigen::MatrixXd a(krpm.size(), kTerms);
+  Eigen::VectorXd b(krpm.size());
+  for (std::size_t i = 0; i < krpm.size(); ++i) {
+    const auto r = static_cast<Eigen::Index>(i);
+    a(r, 0) = 1.0;
+    a(r, 1) = krpm[i];
+    a(r, 2) = krpm[i] * krpm[i];
+    b(r) = value[i];
+  }
+  const Eigen::Vector3d c = a.colPivHouseholderQr().solve(b);
+  return FrictionCurve{c(0), c(1), c(2), krpm.size()};
 }
 
 EngineLossFrames::EngineLossFrames(const j1939::Database& db, EngineLossCalibrationConfig config)
@@ -110,6 +146,7 @@ void EngineLossFrames::push(const CanFrame& frame) {
   const double to_nm = ref.value / 100.0;
   r.indicated_nm = torque.value * to_nm;
   r.eec3_loss_nm = eec3_pct * to_nm;
+  r.eec3_friction_nm = (friction.seen ? friction.value : 0.0) * to_nm;
   whole_percent = whole_percent || !signals_.torque_fraction_seen();
   r.resolution_nm = (signals_.torque_fraction_seen() ? 0.125 : 1.0) * to_nm;
   calibration_.push(r);

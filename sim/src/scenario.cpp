@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include "roadload/sim/units.hpp"
 #include "roadload/toml_fields.hpp"
@@ -100,7 +101,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
   Scenario s;
   s.source = path.string();
   f.only(root, {"name", "description", "route", "speed_mph", "speed_mps", "start_m", "end_m", "duration_s", "start_utc",
-                "road_seed", "load_scale", "accel_rate_hz", "accelerometers", "gnss_rate_hz", "physics_rate_hz", "unsprung", "mode",
+                "road_seed", "load_scale", "engine_friction_scale", "accessory_scale", "cda_scale", "accel_rate_hz", "accelerometers", "gnss_rate_hz", "physics_rate_hz", "unsprung", "mode",
                 "hold_rpm", "hold_s", "weather", "clocks", "effects"},
          "");
   s.name = f.required_text(root, "name", "");
@@ -139,6 +140,11 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
   }
   s.load_scale = f.number(root, "load_scale", "", s.load_scale);
   if (s.load_scale < 0.5 || s.load_scale > 1.5) f.fail(root.get("load_scale"), "load_scale", "outside 0.5-1.5");
+  for (auto [key, value] : {std::pair{"engine_friction_scale", &s.engine_friction_scale}, std::pair{"accessory_scale", &s.accessory_scale},
+                             std::pair{"cda_scale", &s.cda_scale}}) {
+    *value = f.number(root, key, "", *value);
+    if (*value < 0.5 || *value > 1.5) f.fail(root.get(key), key, "outside 0.5-1.5");
+  }
   s.accel_rate_hz = f.number(root, "accel_rate_hz", "", s.accel_rate_hz);
   if (s.accel_rate_hz < 1 || s.accel_rate_hz > 4000) f.fail(root.get("accel_rate_hz"), "accel_rate_hz", "outside 1-4000 Hz");
   const double count = f.number(root, "accelerometers", "", 8.0);

@@ -41,6 +41,14 @@ TruckParams scenario_truck(const Scenario& s) {
     a.vertical.sprung_kg += (s.load_scale - 1.0) * a.load_kg;
     a.load_kg *= s.load_scale;
   }
+  t.cda_m2 *= s.cda_scale;
+  t.engine.friction_a *= s.engine_friction_scale;
+  t.engine.friction_b *= s.engine_friction_scale;
+  t.engine.friction_c *= s.engine_friction_scale;
+  for (double* w : {&t.accessories.alternator_w, &t.accessories.steering_w, &t.accessories.compressor_w,
+                    &t.accessories.fan_engaged_w, &t.accessories.fan_idle_w}) {
+    *w *= s.accessory_scale;
+  }
   return t;
 }
 

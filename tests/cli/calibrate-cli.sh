@@ -23,11 +23,11 @@ grep -q "no steady engine speed standing in neutral" "$work/err" || fail "no rea
 
 "$roadload" simulate --scenario engine-losses --seed 4 --out "$work/standing" -q || fail "simulate failed"
 expect_status 0 "$roadload" calibrate "$work/standing" --out "$work/losses.csv"
-[[ $(grep -v '^#' "$work/losses.csv" | head -1) == "rpm,loss_nm,sigma_nm,eec3_loss_nm,hold_s,samples" ]] ||
+[[ $(grep -v '^#' "$work/losses.csv" | head -1) == "rpm,loss_nm,sigma_nm,friction_nm,eec3_loss_nm,eec3_friction_nm,hold_s,samples" ]] ||
   fail "losses.csv header: $(head -2 "$work/losses.csv")"
 holds=$(grep -c '^[0-9]' "$work/losses.csv")
-((holds == 26)) || fail "$holds holds for the scenario's 26 engine speeds"
-grep -q "26 engine speeds from 650 to 1900 rpm, torque to 1/8 %" "$work/err" || fail "summary: $(cat "$work/err")"
+((holds == 51)) || fail "$holds holds for the scenario's 51 engine speeds"
+grep -q "51 engine speeds from 650 to 1900 rpm, torque to 1/8 %" "$work/err" || fail "summary: $(cat "$work/err")"
 
 # A table whose speeds go backwards is refused, naming the file, line and field.
 { head -4 "$work/losses.csv"; sed -n 3p "$work/losses.csv"; } >"$work/bad.csv"
@@ -53,4 +53,4 @@ tire=$(sed -n "s/^analyze: tires' CRR .* against the truth: RMSE \([0-9.]*\) ove
 awk -v r="$rmse" -v t="$tire" 'BEGIN { exit !(r != "" && r < 0.00015 && t != "" && t < 0.0001) }' ||
   fail "calibrated per-cell RMSE $rmse, tires' $tire: $(grep RMSE "$work/err")"
 grep -q '^cell,.*,crr_tire,crr_tire_lo,crr_tire_hi,reason$' "$work/res/cells.csv" || fail "cells.csv lacks crr_tire: $(head -1 "$work/res/cells.csv")"
-echo "calibrate-cli: PASS: 26 holds; CdA $cda +- $sigma; calibrated Mainline RMSE $rmse (tires' CRR $tire)"
+echo "calibrate-cli: PASS: 51 holds; CdA $cda +- $sigma; calibrated Mainline RMSE $rmse (tires' CRR $tire)"

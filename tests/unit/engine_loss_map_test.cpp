@@ -32,6 +32,18 @@ TEST(EngineLossMap, RefusesSpeedsOutOfOrderAndBeyondItsCapacity) {
   EXPECT_EQ(m.size(), EngineLossMap::kCapacity);
 }
 
+TEST(EngineLossMap, FrictionInterpolatesLikeTheLossAndIsAbsentWhereAPointHasNone) {
+  EngineLossMap m;
+  ASSERT_TRUE(m.add({1000, 200, 0.8, 150}));
+  ASSERT_TRUE(m.add({1100, 210, 0.9, 160}));
+  ASSERT_TRUE(m.add({1200, 220, 0.9}));
+  EXPECT_DOUBLE_EQ(*m.friction_nm(1050), 155);
+  EXPECT_FALSE(m.friction_nm(1150).has_value());
+  EXPECT_FALSE(m.friction_nm(999).has_value());
+  EXPECT_DOUBLE_EQ(*m.loss_nm(1150), 215);
+  EXPECT_DOUBLE_EQ(*m.shifted(1.0, 0.1).friction_nm(1050), 155);
+}
+
 TEST(EngineLossMap, OneSpeedIsThatSpeedOnly) {
   EngineLossMap m;
   ASSERT_TRUE(m.add({1200, 224, 0.9}));

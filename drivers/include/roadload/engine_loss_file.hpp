@@ -1,6 +1,7 @@
 #pragma once
-// An engine-loss table as `roadload calibrate` writes it (rpm,loss_nm,sigma_nm,eec3_loss_nm,hold_s,
-// samples; one line per steady hold), read back for `roadload analyze --engine-losses`.
+// An engine-loss table as `roadload calibrate` writes it (rpm,loss_nm,sigma_nm,friction_nm,
+// eec3_loss_nm,eec3_friction_nm,hold_s,samples; one line per steady hold; friction_nm empty where
+// the calibration could not separate it), read back for `roadload analyze --engine-losses`.
 #include <optional>
 #include <string>
 #include <vector>

@@ -4,6 +4,7 @@
 // reports (SPN 513 with its 1/8 % fraction, SPN 4154) is the engine's friction plus the
 // accessories it drives, at that speed. Each steady hold becomes one point of the map.
 #include <deque>
+#include <optional>
 #include <vector>
 
 #include "roadload/can_frame.hpp"
@@ -30,6 +31,7 @@ struct EngineReading {
   double rpm = 0;
   double indicated_nm = 0;     // EEC1 actual torque
   double eec3_loss_nm = 0;     // EEC3 friction + parasitic
+  double eec3_friction_nm = 0; // EEC3 friction alone
   double resolution_nm = 0;    // one step of the indicated torque: 1/8 % or 1 % of the reference
   bool standing = false;       // still, in neutral or declutched
 };
@@ -37,7 +39,8 @@ struct EngineReading {
 // One hold: its point, and what EEC3 said of friction and parasitic losses there, for comparison.
 struct EngineLossHold {
   model::EngineLossPoint point;
-  double eec3_loss_nm = 0;  // mean of EEC3 friction + parasitic over the hold
+  double eec3_loss_nm = 0;      // mean of EEC3 friction + parasitic over the hold
+  double eec3_friction_nm = 0;  // mean of EEC3 friction alone
   double duration_s = 0;
   std::uint64_t samples = 0;
 };
@@ -48,7 +51,8 @@ class EngineLossCalibration {
 
   void push(const EngineReading& r);
   // Ends the last hold and gives every hold found, in increasing engine speed (holds within the
-  // steady band of each other are one).
+  // steady band of each other are one), each with its friction from fit_friction_curve where
+  // that finds a curve.
   std::vector<EngineLossHold> finish();
 
  private:
@@ -61,7 +65,7 @@ class EngineLossCalibration {
   double anchor_rpm_ = 0, resolution_nm_ = 0;
   std::deque<EngineReading> tail_;
   CaptureTime start_{}, last_{};
-  RunningStats rpm_, torque_, eec3_;
+  RunningStats rpm_, torque_, eec3_, eec3_friction_;
   CaptureTime first_kept_{}, last_kept_{};
 };
 
@@ -83,6 +87,21 @@ class EngineLossFrames {
   double max_speed_mps_;
   EngineLossCalibration calibration_;
 };
+
+// How the calibrated losses split into friction and accessories. EEC3's friction (SPN 514) comes in
+// whole percent of the reference torque: at one engine speed it is up to 12 N m off on the MnROAD
+// engine, a third of what its accessories take at cruise. Over the holds it is a staircase whose
+// steps stand where the true friction crosses each half percent, so the crossings (the midpoints
+// between holds on either side of a step) are points of the true curve to within half the holds'
+// spacing. Friction is fitted through them as the usual mean-effective-pressure form, quadratic in
+// engine speed; the accessories are the measured loss less it.
+struct FrictionCurve {
+  double a_nm = 0, b_nm_per_krpm = 0, c_nm_per_krpm2 = 0;
+  std::size_t crossings = 0;
+  double at(double rpm) const;
+};
+// Nothing with fewer than three crossings: the split then stays EEC3's.
+std::optional<FrictionCurve> fit_friction_curve(const std::vector<EngineLossHold>& holds);
 
 // The map `roadload analyze --engine-losses` uses, from the holds.
 model::EngineLossMap engine_loss_map(const std::vector<EngineLossHold>& holds);

@@ -1,6 +1,7 @@
 #include "roadload/model/engine_losses.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace roadload::model {
 
@@ -10,20 +11,33 @@ bool EngineLossMap::add(const EngineLossPoint& p) {
   return true;
 }
 
-std::optional<double> EngineLossMap::loss_nm(double rpm) const {
+template <typename Field>
+std::optional<double> EngineLossMap::interpolate(double rpm, Field field) const {
   if (size_ == 0 || rpm < points_[0].rpm || rpm > points_[size_ - 1].rpm) return std::nullopt;
-  if (size_ == 1) return points_[0].loss_nm;
-  const auto* end = points_.begin() + static_cast<std::ptrdiff_t>(size_);
-  const auto* hi = std::lower_bound(points_.begin() + 1, end - 1, rpm,
-                                    [](const EngineLossPoint& p, double r) { return p.rpm < r; });
-  const auto* lo = hi - 1;
-  const double w = (rpm - lo->rpm) / (hi->rpm - lo->rpm);
-  return lo->loss_nm + w * (hi->loss_nm - lo->loss_nm);
+  double v = field(points_[0]);
+  if (size_ > 1) {
+    const auto* end = points_.begin() + static_cast<std::ptrdiff_t>(size_);
+    const auto* hi = std::lower_bound(points_.begin() + 1, end - 1, rpm,
+                                      [](const EngineLossPoint& p, double r) { return p.rpm < r; });
+    const auto* lo = hi - 1;
+    const double w = (rpm - lo->rpm) / (hi->rpm - lo->rpm);
+    v = field(*lo) + w * (field(*hi) - field(*lo));
+  }
+  if (std::isnan(v)) return std::nullopt;
+  return v;
+}
+
+std::optional<double> EngineLossMap::loss_nm(double rpm) const {
+  return interpolate(rpm, [](const EngineLossPoint& p) { return p.loss_nm; });
+}
+
+std::optional<double> EngineLossMap::friction_nm(double rpm) const {
+  return interpolate(rpm, [](const EngineLossPoint& p) { return p.friction_nm; });
 }
 
 EngineLossMap EngineLossMap::shifted(double offset_nm, double sigma_nm) const {
   EngineLossMap m;
-  for (std::size_t i = 0; i < size_; ++i) m.add({points_[i].rpm, points_[i].loss_nm + offset_nm, sigma_nm});
+  for (std::size_t i = 0; i < size_; ++i) m.add({points_[i].rpm, points_[i].loss_nm + offset_nm, sigma_nm, points_[i].friction_nm});
   return m;
 }
 

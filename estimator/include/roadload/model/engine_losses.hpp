@@ -6,6 +6,7 @@
 // standstill measures them to EEC1's 1/8 % instead (engine_loss_calibration.hpp).
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <optional>
 
 namespace roadload::model {
@@ -14,6 +15,9 @@ struct EngineLossPoint {
   double rpm = 0;
   double loss_nm = 0;   // friction + accessories at this engine speed
   double sigma_nm = 0;  // its standard error
+  // The engine's friction alone, from EEC3's friction curve (fit_friction_curve); NaN where the
+  // calibration could not separate it, and the accessories keep EEC3's parasitic share.
+  double friction_nm = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Fixed capacity, no heap: it is part of the truck model the live filter copies.
@@ -27,6 +31,8 @@ class EngineLossMap {
   // Linear between the two nearest points; nothing outside the calibrated range: an engine
   // speed the calibration never held is not guessed at.
   std::optional<double> loss_nm(double rpm) const;
+  // The friction part of that loss, likewise; nothing where a neighbouring point has none.
+  std::optional<double> friction_nm(double rpm) const;
   // The largest point sigma: the error the map leaves in the flywheel torque.
   double sigma_nm() const;
   std::size_t size() const { return size_; }
@@ -37,6 +43,9 @@ class EngineLossMap {
   EngineLossMap shifted(double offset_nm, double sigma_nm) const;
 
  private:
+  template <typename Field>
+  std::optional<double> interpolate(double rpm, Field field) const;
+
   std::array<EngineLossPoint, kCapacity> points_{};
   std::size_t size_ = 0;
 };

@@ -47,6 +47,11 @@ struct Scenario {
   double gnss_rate_hz = 10;
   double physics_rate_hz = 2400;
   double load_scale = 1.0;      // every axle's load (its sprung part) times this: a heavier or lighter cargo
+  // This truck's engine against its type's: friction and the accessories' power times these (one
+  // engine of a fleet; EEC3 rounds each truck's losses differently).
+  double engine_friction_scale = 1.0;
+  double accessory_scale = 1.0;
+  double cda_scale = 1.0;       // and its drag area against the type's (body, mirrors, trailer gap)
   bool coast = false;           // neutral coast-down instead of cruise
   // Rev-hold (an engine-loss calibration): standing in neutral, the governor holds the engine at
   // each of these speeds in turn for hold_s; coast is set, the speed is 0.
