@@ -79,10 +79,39 @@ std::vector<EngineLossHold> EngineLossCalibration::finish() {
       merged.push_back(h);
     }
   }
-  if (const auto curve = fit_friction_curve(merged)) {
-    for (EngineLossHold& h : merged) h.point.friction_nm = curve->at(h.point.rpm);
-  }
+  if (const auto curve = fit_friction_curve(merged)) split_losses(*curve, merged);
   return merged;
+}
+
+namespace {
+
+constexpr double kAccessorySmoothing_rpm = 150;
+
+// The accessories at `i`: the loss less the friction curve, a straight line fitted over the holds
+// within kAccessorySmoothing_rpm.
+double smoothed_accessories_nm(const FrictionCurve& curve, const std::vector<EngineLossHold>& holds, std::size_t i) {
+  const double at = holds[i].point.rpm;
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const EngineLossHold& h : holds) {
+    const double x = h.point.rpm - at;
+    if (std::abs(x) > kAccessorySmoothing_rpm) continue;
+    const double y = h.point.loss_nm - curve.at(h.point.rpm);
+    n += 1;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  const double det = n * sxx - sx * sx;
+  return det > 0 ? (sxx * sy - sx * sxy) / det : sy / n;
+}
+
+}  // namespace
+
+void split_losses(const FrictionCurve& curve, std::vector<EngineLossHold>& holds) {
+  std::vector<double> accessories(holds.size());
+  for (std::size_t i = 0; i < holds.size(); ++i) accessories[i] = smoothed_accessories_nm(curve, holds, i);
+  for (std::size_t i = 0; i < holds.size(); ++i) holds[i].point.friction_nm = holds[i].point.loss_nm - accessories[i];
 }
 
 double FrictionCurve::at(double rpm) const {

@@ -51,8 +51,8 @@ class EngineLossCalibration {
 
   void push(const EngineReading& r);
   // Ends the last hold and gives every hold found, in increasing engine speed (holds within the
-  // steady band of each other are one), each with its friction from fit_friction_curve where
-  // that finds a curve.
+  // steady band of each other are one), each with its friction (split_losses) where
+  // fit_friction_curve finds a curve.
   std::vector<EngineLossHold> finish();
 
  private:
@@ -102,6 +102,11 @@ struct FrictionCurve {
 };
 // Nothing with fewer than three crossings: the split then stays EEC3's.
 std::optional<FrictionCurve> fit_friction_curve(const std::vector<EngineLossHold>& holds);
+// Sets each hold's friction: its loss less the accessories, which are the loss less the curve
+// smoothed over +-150 rpm of holds. EEC1's 1/8 % rounding differs from hold to hold (+-1.5 N m, 4 %
+// of the accessories at cruise); smoothed, it stays with the friction and so in the engine's row of
+// the fuel breakdown, where it is a thousandth.
+void split_losses(const FrictionCurve& curve, std::vector<EngineLossHold>& holds);
 
 // The map `roadload analyze --engine-losses` uses, from the holds.
 model::EngineLossMap engine_loss_map(const std::vector<EngineLossHold>& holds);
