@@ -94,7 +94,7 @@ class EngineLossFrames {
 // steps stand where the true friction crosses each half percent, so the crossings (the midpoints
 // between holds on either side of a step) are points of the true curve to within half the holds'
 // spacing. Friction is fitted through them as the usual mean-effective-pressure form, quadratic in
-// engine speed; the accessories are the measured loss less it.
+// engine speed; the accessories are the measured loss less it (split_losses).
 struct FrictionCurve {
   double a_nm = 0, b_nm_per_krpm = 0, c_nm_per_krpm2 = 0;
   std::size_t crossings = 0;

@@ -15,8 +15,9 @@ struct EngineLossPoint {
   double rpm = 0;
   double loss_nm = 0;   // friction + accessories at this engine speed
   double sigma_nm = 0;  // its standard error
-  // The engine's friction alone, from EEC3's friction curve (fit_friction_curve); NaN where the
-  // calibration could not separate it, and the accessories keep EEC3's parasitic share.
+  // The engine's friction alone: the loss less the accessories split_losses smoothed against EEC3's
+  // friction curve; NaN where the calibration could not separate them, and the accessories keep
+  // EEC3's parasitic share.
   double friction_nm = std::numeric_limits<double>::quiet_NaN();
 };
 
