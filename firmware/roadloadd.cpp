@@ -131,6 +131,7 @@ int run(const CommandLine& cl) {
   truck.engine_losses = est.engine_losses;
   if (c.estimator.cda_m2 > 0) truck.cda_prior_m2 = c.estimator.cda_m2;
   if (c.estimator.cda_sigma_m2 > 0) truck.cda_sigma_m2 = c.estimator.cda_sigma_m2;
+  truck.cda_torque_bias_correlation = c.estimator.cda_torque_correlation;
   if (setup.db != nullptr) {
     recording::LayoutResult layout = recording::axle_layout(setup.metadata, "accelerometers");
     if (layout.layout) {

@@ -42,6 +42,8 @@ constexpr const char* kHelp =
     "  --estimate-cda  fit CdA from the drive (drives across speeds); otherwise CdA keeps its prior\n"
     "  --cda M2 [--cda-sigma M2]  CdA's prior and its standard error (default 6.2 +- 0.6: the MnROAD\n"
     "                  truck's, known to 10 %); a measured value, for example `roadload calibrate --aero`\n"
+    "  --cda-torque-correlation R  between that CdA's error and the flywheel torque's (-1..1; what\n"
+    "                  `roadload calibrate --aero` prints: its CdA took up the engine-loss table's error)\n"
     "  --grade FILE    grade and its sigma from FILE (`roadload grade`) instead of the route's survey\n"
     "  --engine-losses FILE  the engine's friction + accessories by engine speed (`roadload calibrate`)\n"
     "                  instead of EEC3's whole percent; engine speeds outside it are not used\n"
@@ -61,7 +63,7 @@ int run_analyze(Args args) {
   std::optional<double> mass;
   std::vector<std::string> dbcs;
   bool quiet = false, estimate_cda = false;
-  std::optional<double> cda_m2, cda_sigma_m2;
+  std::optional<double> cda_m2, cda_sigma_m2, cda_torque_correlation;
   while (opt.more()) {
     if (opt.flag("-h", "--help")) {
       std::fputs(kHelp, stdout);
@@ -75,6 +77,8 @@ int run_analyze(Args args) {
       cda_m2 = *c;
     } else if (auto cs = opt.real("--cda-sigma", 0.0001, 10)) {
       cda_sigma_m2 = *cs;
+    } else if (auto cr = opt.real("--cda-torque-correlation", -1, 1)) {
+      cda_torque_correlation = *cr;
     } else if (auto g = opt.value("--grade")) {
       grade_file = *g;
     } else if (auto l = opt.value("--engine-losses")) {
@@ -116,6 +120,7 @@ int run_analyze(Args args) {
   cfg.estimate_cda = estimate_cda;
   if (cda_m2) cfg.filter.truck.cda_prior_m2 = *cda_m2;
   if (cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *cda_sigma_m2;
+  if (cda_torque_correlation) cfg.filter.truck.cda_torque_bias_correlation = *cda_torque_correlation;
   cfg.survey_elevation_sigma_m = survey_sigma;
   if (!losses_file.empty()) {
     auto losses = load_engine_loss_file(losses_file);

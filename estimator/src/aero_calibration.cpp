@@ -52,16 +52,31 @@ AeroCalibration fit_cda(const AeroDrive& a, const AeroDrive& b, double cda_prior
   // Below one sigma of a cell per m^2 of CdA in total, drag and rolling resistance stay confounded.
   if (cells.size() < 2 || swdd < 1.0) return out;
   const double shift = swdx / swdd;  // c - CdA
-  double chi2 = 0;
-  for (const Cell& c : cells) chi2 += c.w * (c.x - c.d * shift) * (c.x - c.d * shift);
+  double chi2 = 0, lag1 = 0;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const double z = std::sqrt(cells[i].w) * (cells[i].x - cells[i].d * shift);
+    chi2 += z * z;
+    if (i > 0) lag1 += z * std::sqrt(cells[i - 1].w) * (cells[i - 1].x - cells[i - 1].d * shift);
+  }
   out.cells = cells.size();
   out.chi2_per_dof = chi2 / static_cast<double>(cells.size() - 1);
   out.cda_m2 = cda_prior_m2 - shift;
-  // The cells' estimates are smoothed and correlated along the road: their scatter widens the
-  // statistical sigma where it exceeds what their own sigmas say.
-  out.statistical_m2 = std::sqrt(std::max(1.0, out.chi2_per_dof) / swdd);
-  out.torque_m2 = torque_sigma_nm * std::hypot(swta, swtb) / swdd;
+  // The cells' sigmas overstate how far the two drives disagree (chi2/dof near 0.13 on the
+  // simulated Mainline, where the fitted CdA's errors then matched the scatter's sigma). So
+  // the scatter sizes the statistical sigma, widened as for AR(1) noise where neighbouring cells'
+  // residuals are correlated along the road (their estimates share smoothed data). The lag-one
+  // estimate is biased low by (1 + 4 r) / n over n cells (Kendall), put back here.
+  const double r = chi2 > 0 ? lag1 / chi2 : 0.0;
+  out.residual_correlation = std::clamp(r + (1.0 + 4.0 * r) / static_cast<double>(cells.size()), 0.0, 0.9);
+  const double widening = (1.0 + out.residual_correlation) / (1.0 - out.residual_correlation);
+  out.statistical_m2 = std::sqrt(out.chi2_per_dof * widening / swdd);
+  // A flywheel torque bias b (true less computed, the same engine-loss map in both drives) lowers
+  // each drive's CRR by its sensitivity times b, so the fit carries CdA + b (swta - swtb) / swdd.
+  out.cda_per_torque_bias_m2_per_nm = (swta - swtb) / swdd;
+  out.torque_m2 = torque_sigma_nm * std::abs(out.cda_per_torque_bias_m2_per_nm);
   out.sigma_m2 = std::hypot(out.statistical_m2, out.torque_m2);
+  // The filter's covariance is of the truth about the estimate: CdA less the fit is -k b.
+  out.torque_bias_correlation = out.sigma_m2 > 0 ? -out.cda_per_torque_bias_m2_per_nm * torque_sigma_nm / out.sigma_m2 : 0.0;
   return out;
 }
 

@@ -18,6 +18,8 @@ void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> tor
   p(CrrState::cda, CrrState::cda) = config_.truck.cda_sigma_m2 * config_.truck.cda_sigma_m2;
   const double bias_sigma = torque_bias_sigma_nm.value_or(config_.torque_bias_sigma_nm);
   p(CrrState::torque_bias, CrrState::torque_bias) = bias_sigma * bias_sigma;
+  const double rho = std::clamp(config_.truck.cda_torque_bias_correlation, -1.0, 1.0);
+  p(CrrState::cda, CrrState::torque_bias) = p(CrrState::torque_bias, CrrState::cda) = rho * config_.truck.cda_sigma_m2 * bias_sigma;
   core_.reset(x, p);
   core_.set_consider(CrrState::cda, !config_.estimate_cda);
   core_.set_consider(CrrState::torque_bias, true);

@@ -233,8 +233,10 @@ CrrFilter::Vec DriveAnalyzer::state_at(const Tick& k) const {
   return k.step >= smoother_.size() ? filter_.core().x() : smoother_.x(k.step);
 }
 
-CrrFilter::Mat DriveAnalyzer::covariance_at(const Tick& k) const {
-  return k.step >= smoother_.size() ? filter_.core().p() : smoother_.p(k.step);
+double DriveAnalyzer::crr_sigma_of_mean(std::span<const Smoother::Weight> weights) const {
+  CrrFilter::Vec e = CrrFilter::Vec::Zero();
+  e(CrrState::crr) = 1.0;
+  return std::sqrt(std::max(0.0, smoother_.variance_of_sum(e, weights)));
 }
 
 // The resistances over the interval before a tick, from the smoothed CRR and CdA.
@@ -261,40 +263,19 @@ void DriveAnalyzer::finish() {
     if (const int c = cell_at(k.s_cg_m); c >= 0) cell_fuel_[static_cast<std::size_t>(c)].add(k.power);
   }
   // The trip's CRR is the smoothed CRR averaged over every usable tick (a distance average at
-  // steady speed). Its sigma is that of the average: the parts every tick shares (CdA and the
-  // flywheel torque bias, through each tick's regression on them) do not average out; the rest is
-  // one error per cell (CRR is nearly constant within a cell and free between cells), which does.
-  double crr = 0, beta_cda = 0, beta_bias = 0, var_cda = 0, var_bias = 0;
-  std::size_t n = 0;
-  // Summed random sigma per cell, then per stretch between cells (each stretch on its own).
-  std::vector<double> cell_random(cells_.size(), 0.0);
-  bool in_gap = false;
+  // steady speed), its sigma that of the average.
+  std::vector<Smoother::Weight> usable;
+  double crr = 0;
   for (const Tick& k : ticks_) {
     if (!k.usable) continue;
-    const CrrFilter::Mat p = covariance_at(k);
     crr += state_at(k)(CrrState::crr);
-    var_cda = p(CrrState::cda, CrrState::cda);
-    var_bias = p(CrrState::torque_bias, CrrState::torque_bias);
-    const double b_cda = var_cda > 0 ? p(CrrState::crr, CrrState::cda) / var_cda : 0.0;
-    const double b_bias = var_bias > 0 ? p(CrrState::crr, CrrState::torque_bias) / var_bias : 0.0;
-    beta_cda += b_cda;
-    beta_bias += b_bias;
-    const double random = p(CrrState::crr, CrrState::crr) - b_cda * b_cda * var_cda - b_bias * b_bias * var_bias;
-    const int c = cell_at(k.s_cg_m);
-    if (c < 0 && !in_gap) cell_random.push_back(0.0);
-    in_gap = c < 0;
-    cell_random[c >= 0 ? static_cast<std::size_t>(c) : cell_random.size() - 1] += std::sqrt(std::max(0.0, random));
-    ++n;
+    usable.push_back({k.step, 1.0});
   }
-  if (n > 0) {
-    const auto total = static_cast<double>(n);
-    beta_cda /= total;
-    beta_bias /= total;
-    double var = beta_cda * beta_cda * var_cda + beta_bias * beta_bias * var_bias;
-    // A cell's weight in the average times its mean random sigma: its summed sigma over n.
-    for (const double summed : cell_random) var += (summed / total) * (summed / total);
-    trip_.crr = crr / total;
-    trip_.crr_sigma = std::sqrt(var);
+  if (!usable.empty()) {
+    const auto n = static_cast<double>(usable.size());
+    for (Smoother::Weight& w : usable) w.weight = 1.0 / n;
+    trip_.crr = crr / n;
+    trip_.crr_sigma = crr_sigma_of_mean(usable);
   } else {
     trip_.crr = filter_.crr();
     trip_.crr_sigma = filter_.crr_sigma();
@@ -302,7 +283,7 @@ void DriveAnalyzer::finish() {
   trip_.cda_m2 = filter_.cda_m2();
   trip_.torque_bias_nm = filter_.torque_bias_nm();
   trip_.torque_bias_sigma_nm = std::sqrt(filter_.core().p()(CrrState::torque_bias, CrrState::torque_bias));
-  trip_.identified = n > 0 && trip_.crr_sigma <= config_.filter.identified_crr_sigma;
+  trip_.identified = !usable.empty() && trip_.crr_sigma <= config_.filter.identified_crr_sigma;
   trip_.filter = filter_.counters();
   nis_statistics();
 }
@@ -369,7 +350,8 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
     r.id = c.id;
     r.start_m = c.start_m;
     r.end_m = c.end_m;
-    double crr = 0, sigma = 0, speed = 0;
+    double crr = 0, speed = 0;
+    std::vector<Smoother::Weight> usable;
     std::size_t seen = 0;
     std::array<std::size_t, kUnusableCount> why{};
     for (const Tick& k : ticks_) {
@@ -378,7 +360,7 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
       ++why[static_cast<std::size_t>(k.why)];
       if (!k.usable) continue;
       crr += state_at(k)(CrrState::crr);
-      sigma += std::sqrt(covariance_at(k)(CrrState::crr, CrrState::crr));
+      usable.push_back({k.step, 1.0});
       speed += k.speed_mps;
       ++r.samples;
     }
@@ -392,10 +374,9 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
       continue;
     }
     const auto n = static_cast<double>(r.samples);
-    // CRR is nearly constant within a cell, so its smoothed estimates there are one estimate:
-    // the cell's uncertainty is their mean sigma, not that over sqrt(n).
+    for (Smoother::Weight& w : usable) w.weight = 1.0 / n;
     r.crr = crr / n;
-    r.crr_sigma = sigma / n;
+    r.crr_sigma = crr_sigma_of_mean(usable);
     r.crr_lo = r.crr - config_.interval_z * r.crr_sigma;
     r.crr_hi = r.crr + config_.interval_z * r.crr_sigma;
     r.speed_mps = speed / n;

@@ -91,7 +91,7 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
     c.replay.can = f.flag(*t, "can", "replay.").value_or(c.replay.can);
   }
   if (const toml::table* t = f.table(root, "estimator")) {
-    f.only(*t, {"route", "results_dir", "engine_losses", "cda_m2", "cda_sigma_m2"}, "estimator.");
+    f.only(*t, {"route", "results_dir", "engine_losses", "cda_m2", "cda_sigma_m2", "cda_torque_correlation"}, "estimator.");
     c.estimator.route = f.text(*t, "route", "estimator.").value_or("");
     c.estimator.results_dir = f.text(*t, "results_dir", "estimator.").value_or("");
     c.estimator.engine_losses = f.text(*t, "engine_losses", "estimator.").value_or("");
@@ -102,6 +102,10 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
     c.estimator.cda_sigma_m2 = f.number(*t, "cda_sigma_m2", "estimator.", c.estimator.cda_sigma_m2);
     if (c.estimator.cda_sigma_m2 < 0 || c.estimator.cda_sigma_m2 > 10) {
       f.fail(t->get("cda_sigma_m2"), "estimator.cda_sigma_m2", "outside 0-10 m^2 (0: the built-in prior's)");
+    }
+    c.estimator.cda_torque_correlation = f.number(*t, "cda_torque_correlation", "estimator.", c.estimator.cda_torque_correlation);
+    if (c.estimator.cda_torque_correlation < -1 || c.estimator.cda_torque_correlation > 1) {
+      f.fail(t->get("cda_torque_correlation"), "estimator.cda_torque_correlation", "outside -1..1");
     }
   }
 }
@@ -202,7 +206,8 @@ std::string format_config(const DaemonConfig& c) {
     << "\ncan = " << (c.replay.can ? "true" : "false") << "\norigin_file = " << quoted(c.replay.origin_file) << "\n";
   o << "\n[estimator]\nroute = " << quoted(c.estimator.route) << "\nresults_dir = " << quoted(c.estimator.results_dir)
     << "\nengine_losses = " << quoted(c.estimator.engine_losses) << "\ncda_m2 = " << c.estimator.cda_m2
-    << "\ncda_sigma_m2 = " << c.estimator.cda_sigma_m2 << "\n";
+    << "\ncda_sigma_m2 = " << c.estimator.cda_sigma_m2 << "\ncda_torque_correlation = " << c.estimator.cda_torque_correlation
+    << "\n";
   return o.str();
 }
 

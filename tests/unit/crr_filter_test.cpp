@@ -128,6 +128,38 @@ TEST(CrrFilter, NeesAndNisLieInTheir95PercentBandsWithATorqueBiasOnlyConsidered)
   EXPECT_NEAR(nis_sum / static_cast<double>(nis_n), 1.0, 0.03);
 }
 
+// A CdA calibrated from two speeds took up the engine-loss map's torque bias b: its error is k b
+// plus its own scatter. At one later speed the two add up in CRR; the filter's interval holds them
+// only with their correlation in its prior.
+TEST(CrrFilter, ACalibratedCdasCorrelationWithTheTorqueBiasKeepsNeesInItsBand) {
+  constexpr int kRuns = 100;
+  constexpr double kPerNm = 0.02, kScatter = 0.01, kTrueCda = 6.2;
+  CrrFilterConfig cfg = config();
+  cfg.estimate_cda = false;
+  cfg.torque_bias_sigma_nm = 5.0;
+  cfg.truck.cda_sigma_m2 = std::hypot(kScatter, kPerNm * cfg.torque_bias_sigma_nm);
+  const double rho = -kPerNm * cfg.torque_bias_sigma_nm / cfg.truck.cda_sigma_m2;
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  double nees = 0, nees_uncorrelated = 0;
+  for (int n = 0; n < kRuns; ++n) {
+    const double bias_nm = cfg.torque_bias_sigma_nm * n01(rng);
+    const Drive d = make_drive(300 + static_cast<std::uint64_t>(n), 600, 0.0055, kTrueCda, cfg, false, -1, 0, bias_nm);
+    CrrFilterConfig fitted = cfg;
+    fitted.truck.cda_prior_m2 = kTrueCda + kPerNm * bias_nm + kScatter * n01(rng);
+    for (const double correlation : {rho, 0.0}) {
+      fitted.truck.cda_torque_bias_correlation = correlation;
+      const CrrFilter f = run(fitted, d);
+      const double e = f.crr() - 0.0055;
+      (correlation == 0.0 ? nees_uncorrelated : nees) += e * e / (f.crr_sigma() * f.crr_sigma());
+    }
+  }
+  // chi-square(100): 95 % band [74.2, 129.6]. Without the correlation the interval is too narrow.
+  EXPECT_GT(nees, 74.2);
+  EXPECT_LT(nees, 129.6);
+  EXPECT_GT(nees_uncorrelated, 129.6);
+}
+
 TEST(CrrFilter, AStepIsFreeOfHeapAllocations) {
   const CrrFilterConfig cfg = config();
   const Drive d = make_drive(2, 60, 0.0055, 6.2, cfg);

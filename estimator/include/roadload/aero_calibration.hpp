@@ -31,12 +31,15 @@ struct AeroCalibration {
   double cda_m2 = 0, sigma_m2 = 0;
   double statistical_m2 = 0, torque_m2 = 0;  // the parts of sigma: cells' scatter, flywheel torque error
   double chi2_per_dof = 0;                   // of the cells' disagreement left at the fitted CdA
+  double residual_correlation = 0;           // lag one along the road, 0-0.9 (negative taken as 0)
+  double cda_per_torque_bias_m2_per_nm = 0;  // how the fitted CdA follows a flywheel torque bias
+  double torque_bias_correlation = 0;        // of the fitted CdA's error with that bias's
   std::size_t cells = 0;
 };
 
 // Weighted least squares over the cells both drives estimated. `torque_sigma_nm` is the flywheel
-// torque's error at each drive's engine speed (the engine-loss calibration's), taken independent
-// between the drives. Nothing (cells 0) when fewer than two cells are shared or the speeds are too
+// torque bias's sigma (the engine-loss calibration's), one bias shared by both drives as by every
+// later drive of the truck: the fitted CdA's error correlates with it. Nothing (cells 0) when fewer than two cells are shared or the speeds are too
 // close to separate drag from rolling resistance.
 AeroCalibration fit_cda(const AeroDrive& a, const AeroDrive& b, double cda_prior_m2, double torque_sigma_nm);
 

@@ -3,6 +3,7 @@
 // capture-time order; the CRR filter ticks at each wheel-speed message; offline, a fixed-interval
 // smoother then gives every cell the data on both sides of it. Pure: the caller reads the files.
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -134,7 +135,10 @@ class DriveAnalyzer {
   // The smoothed state at a tick (the filter's own after the last prediction).
   void nis_statistics();
   CrrFilter::Vec state_at(const Tick& k) const;
-  CrrFilter::Mat covariance_at(const Tick& k) const;
+  using Smoother = ekf::RtsSmoother<CrrState::count>;
+  // The sigma of a weighted mean of smoothed CRR: the shared parts (CdA, torque bias) and the
+  // correlation between neighbouring ticks both kept.
+  double crr_sigma_of_mean(std::span<const Smoother::Weight> weights) const;
   void fill_resistances(Tick& k) const;
   void tick(CaptureTime t, double wheel_speed_mps);
   model::ForceInputs force_inputs(CaptureTime t, double s_front_m, const TractionEstimate& tr, Unusable why) const;
@@ -155,7 +159,7 @@ class DriveAnalyzer {
   DriveSignals signals_;
   j1939::Pgn ccvs1_pgn_ = 0;
   CrrFilter filter_;
-  ekf::RtsSmoother<CrrState::count> smoother_;
+  Smoother smoother_;
   std::vector<Tick> ticks_;
   std::vector<FuelBreakdown> cell_fuel_;
   struct LiveCell {

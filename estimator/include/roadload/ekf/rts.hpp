@@ -2,6 +2,7 @@
 // Fixed-interval Rauch-Tung-Striebel smoother over the steps a KalmanCore took: offline, each
 // step's estimate then uses the data on both sides of it. Storage is reserved up front.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -14,12 +15,17 @@ class RtsSmoother {
  public:
   using Vec = Eigen::Matrix<double, N, 1>;
   using Mat = Eigen::Matrix<double, N, N>;
+  using Row = Eigen::Matrix<double, 1, N>;
+  struct Weight {
+    std::size_t step;  // as smoothed(): size() is the final estimate
+    double weight;
+  };
 
   explicit RtsSmoother(std::size_t capacity) { steps_.reserve(capacity); }
 
   // One prediction: the filtered estimate before it, its Jacobian, and the predicted estimate.
   void record_predict(const Vec& x_filtered, const Mat& p_filtered, const Mat& f, const Vec& x_pred, const Mat& p_pred) {
-    steps_.push_back({x_filtered, p_filtered, f, x_pred, p_pred, x_filtered, p_filtered});
+    steps_.push_back({x_filtered, p_filtered, f, x_pred, p_pred, x_filtered, p_filtered, Mat::Zero()});
   }
   // The filtered estimate at the end of the recorded interval (after the last update).
   void finish(const Vec& x_last, const Mat& p_last) {
@@ -36,6 +42,7 @@ class RtsSmoother {
       // G = P_f F' P_pred^-1, from a factorisation of the (symmetric) predicted covariance.
       const Eigen::LDLT<Mat> ldlt(s.p_pred);
       const Mat g = ldlt.solve(s.f * s.p_filtered).transpose();
+      s.gain = g;
       s.x_smoothed = s.x_filtered + g * (xs - s.x_pred);
       s.p_smoothed = s.p_filtered + g * (ps - s.p_pred) * g.transpose();
       s.p_smoothed = 0.5 * (s.p_smoothed + s.p_smoothed.transpose());
@@ -45,8 +52,26 @@ class RtsSmoother {
   }
 
   std::size_t size() const { return steps_.size(); }
-  const Vec& x(std::size_t k) const { return steps_[k].x_smoothed; }
-  const Mat& p(std::size_t k) const { return steps_[k].p_smoothed; }
+  const Vec& x(std::size_t k) const { return k < steps_.size() ? steps_[k].x_smoothed : x_last_; }
+  const Mat& p(std::size_t k) const { return k < steps_.size() ? steps_[k].p_smoothed : p_last_; }
+
+  // Variance of sum_k w_k e'x_k over smoothed estimates, `weights` in step order. The estimates of
+  // neighbouring steps share most of their data: for i < j their covariance is
+  // G_i G_i+1 ... G_j-1 P_j, so the sum is carried forward in one pass rather than taken as
+  // independent (too narrow) or as one estimate (too wide).
+  double variance_of_sum(const Vec& e, std::span<const Weight> weights) const {
+    if (weights.empty()) return 0.0;
+    Row carried = Row::Zero();  // sum over earlier steps i of w_i e' G_i ... G_k-1
+    double var = 0;
+    std::size_t k = weights.front().step;
+    for (const Weight& w : weights) {
+      for (; k < w.step; ++k) carried = carried * steps_[k].gain;
+      const Vec pe = p(k) * e;
+      var += w.weight * w.weight * e.dot(pe) + 2.0 * w.weight * (carried * pe).value();
+      carried += w.weight * e.transpose();
+    }
+    return var;
+  }
   void clear() { steps_.clear(); }
 
  private:
@@ -58,6 +83,7 @@ class RtsSmoother {
     Mat p_pred;
     Vec x_smoothed;
     Mat p_smoothed;
+    Mat gain;  // ties this step's smoothed estimate to the next one's
   };
   std::vector<Step> steps_;
   Vec x_last_ = Vec::Zero();

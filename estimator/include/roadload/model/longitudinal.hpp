@@ -20,6 +20,9 @@ struct TruckModel {
   double driveline_inertia_kgm2 = 0.5;
   double cda_prior_m2 = 6.2;
   double cda_sigma_m2 = 0.6;
+  // Between CdA's error and the flywheel torque bias's: a CdA calibrated from two speeds took up
+  // the engine-loss calibration's error, which the same truck carries into every later drive.
+  double cda_torque_bias_correlation = 0.0;
   double crr_prior = 0.0055;
   double crr_sigma = 0.002;
   // Friction + accessories by engine speed from a standstill calibration; empty: EEC3's.

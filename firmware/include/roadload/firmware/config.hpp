@@ -64,6 +64,7 @@ struct EstimatorConfig {
   // standard error; empty or 0: EEC3's whole percent and the built-in prior.
   std::string engine_losses;
   double cda_m2 = 0, cda_sigma_m2 = 0;
+  double cda_torque_correlation = 0;  // between CdA's error and the flywheel torque's (calibrate --aero)
 };
 
 struct DaemonConfig {
