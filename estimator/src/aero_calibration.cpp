@@ -52,11 +52,12 @@ AeroCalibration fit_cda(const AeroDrive& a, const AeroDrive& b, double cda_prior
   // Below one sigma of a cell per m^2 of CdA in total, drag and rolling resistance stay confounded.
   if (cells.size() < 2 || swdd < 1.0) return out;
   const double shift = swdx / swdd;  // c - CdA
-  double chi2 = 0, lag1 = 0;
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const double z = std::sqrt(cells[i].w) * (cells[i].x - cells[i].d * shift);
+  double chi2 = 0, lag1 = 0, previous = 0;
+  for (const Cell& c : cells) {
+    const double z = std::sqrt(c.w) * (c.x - c.d * shift);  // the first cell's previous is 0
     chi2 += z * z;
-    if (i > 0) lag1 += z * std::sqrt(cells[i - 1].w) * (cells[i - 1].x - cells[i - 1].d * shift);
+    lag1 += z * previous;
+    previous = z;
   }
   out.cells = cells.size();
   out.chi2_per_dof = chi2 / static_cast<double>(cells.size() - 1);

@@ -229,19 +229,28 @@ void DriveAnalyzer::nis_statistics() {
   if (batch_means.n >= 2) trip_.mean_nis_se = batch_means.std() / std::sqrt(static_cast<double>(batch_means.n));
 }
 
-CrrFilter::Vec DriveAnalyzer::state_at(const Tick& k) const {
-  return k.step >= smoother_.size() ? filter_.core().x() : smoother_.x(k.step);
+CrrFilter::Vec DriveAnalyzer::state_at(std::size_t step) const {
+  return step >= smoother_.size() ? filter_.core().x() : smoother_.x(step);
 }
 
-double DriveAnalyzer::crr_sigma_of_mean(std::span<const Smoother::Weight> weights) const {
+DriveAnalyzer::CrrMean DriveAnalyzer::crr_mean(std::span<const std::size_t> steps) const {
+  const double w = 1.0 / static_cast<double>(steps.size());
+  std::vector<Smoother::Weight> weights;
+  weights.reserve(steps.size());
+  CrrMean m;
+  for (const std::size_t step : steps) {
+    m.crr += w * state_at(step)(CrrState::crr);
+    weights.push_back({step, w});
+  }
   CrrFilter::Vec e = CrrFilter::Vec::Zero();
   e(CrrState::crr) = 1.0;
-  return std::sqrt(std::max(0.0, smoother_.variance_of_sum(e, weights)));
+  m.sigma = std::sqrt(std::max(0.0, smoother_.variance_of_sum(e, weights)));
+  return m;
 }
 
 // The resistances over the interval before a tick, from the smoothed CRR and CdA.
 void DriveAnalyzer::fill_resistances(Tick& k) const {
-  const CrrFilter::Vec x = state_at(k);
+  const CrrFilter::Vec x = state_at(k.step);
   PowerInterval& p = k.power;
   const double v = 0.5 * (p.speed_from_mps + p.speed_to_mps);
   const double v_air = v + k.headwind_mps;
@@ -264,18 +273,14 @@ void DriveAnalyzer::finish() {
   }
   // The trip's CRR is the smoothed CRR averaged over every usable tick (a distance average at
   // steady speed), its sigma that of the average.
-  std::vector<Smoother::Weight> usable;
-  double crr = 0;
+  std::vector<std::size_t> usable;
   for (const Tick& k : ticks_) {
-    if (!k.usable) continue;
-    crr += state_at(k)(CrrState::crr);
-    usable.push_back({k.step, 1.0});
+    if (k.usable) usable.push_back(k.step);
   }
   if (!usable.empty()) {
-    const auto n = static_cast<double>(usable.size());
-    for (Smoother::Weight& w : usable) w.weight = 1.0 / n;
-    trip_.crr = crr / n;
-    trip_.crr_sigma = crr_sigma_of_mean(usable);
+    const CrrMean m = crr_mean(usable);
+    trip_.crr = m.crr;
+    trip_.crr_sigma = m.sigma;
   } else {
     trip_.crr = filter_.crr();
     trip_.crr_sigma = filter_.crr_sigma();
@@ -350,8 +355,8 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
     r.id = c.id;
     r.start_m = c.start_m;
     r.end_m = c.end_m;
-    double crr = 0, speed = 0;
-    std::vector<Smoother::Weight> usable;
+    double speed = 0;
+    std::vector<std::size_t> usable;
     std::size_t seen = 0;
     std::array<std::size_t, kUnusableCount> why{};
     for (const Tick& k : ticks_) {
@@ -359,8 +364,7 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
       ++seen;
       ++why[static_cast<std::size_t>(k.why)];
       if (!k.usable) continue;
-      crr += state_at(k)(CrrState::crr);
-      usable.push_back({k.step, 1.0});
+      usable.push_back(k.step);
       speed += k.speed_mps;
       ++r.samples;
     }
@@ -374,9 +378,9 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
       continue;
     }
     const auto n = static_cast<double>(r.samples);
-    for (Smoother::Weight& w : usable) w.weight = 1.0 / n;
-    r.crr = crr / n;
-    r.crr_sigma = crr_sigma_of_mean(usable);
+    const CrrMean m = crr_mean(usable);
+    r.crr = m.crr;
+    r.crr_sigma = m.sigma;
     r.crr_lo = r.crr - config_.interval_z * r.crr_sigma;
     r.crr_hi = r.crr + config_.interval_z * r.crr_sigma;
     r.speed_mps = speed / n;

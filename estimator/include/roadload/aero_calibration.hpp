@@ -39,8 +39,9 @@ struct AeroCalibration {
 
 // Weighted least squares over the cells both drives estimated. `torque_sigma_nm` is the flywheel
 // torque bias's sigma (the engine-loss calibration's), one bias shared by both drives as by every
-// later drive of the truck: the fitted CdA's error correlates with it. Nothing (cells 0) when fewer than two cells are shared or the speeds are too
-// close to separate drag from rolling resistance.
+// later drive of the truck: the fitted CdA's error correlates with it. Nothing (cells 0) when
+// fewer than two cells are shared or the speeds are too close to separate drag from rolling
+// resistance.
 AeroCalibration fit_cda(const AeroDrive& a, const AeroDrive& b, double cda_prior_m2, double torque_sigma_nm);
 
 }  // namespace roadload

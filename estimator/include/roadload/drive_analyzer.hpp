@@ -132,13 +132,16 @@ class DriveAnalyzer {
     PowerInterval power;  // since the previous tick; its resistances are filled in after smoothing
     double air_density_kgpm3, headwind_mps, grade_rad;
   };
-  // The smoothed state at a tick (the filter's own after the last prediction).
   void nis_statistics();
-  CrrFilter::Vec state_at(const Tick& k) const;
+  // The smoothed state at a tick's smoother step (the filter's own after the last prediction).
+  CrrFilter::Vec state_at(std::size_t step) const;
   using Smoother = ekf::RtsSmoother<CrrState::count>;
-  // The sigma of a weighted mean of smoothed CRR: the shared parts (CdA, torque bias) and the
-  // correlation between neighbouring ticks both kept.
-  double crr_sigma_of_mean(std::span<const Smoother::Weight> weights) const;
+  struct CrrMean {
+    double crr = 0, sigma = 0;
+  };
+  // The mean smoothed CRR over ticks (their smoother steps) and its sigma: the shared parts (CdA,
+  // torque bias) and the correlation between neighbouring ticks both kept. Needs a step.
+  CrrMean crr_mean(std::span<const std::size_t> steps) const;
   void fill_resistances(Tick& k) const;
   void tick(CaptureTime t, double wheel_speed_mps);
   model::ForceInputs force_inputs(CaptureTime t, double s_front_m, const TractionEstimate& tr, Unusable why) const;

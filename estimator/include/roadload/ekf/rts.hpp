@@ -52,7 +52,8 @@ class RtsSmoother {
   }
 
   std::size_t size() const { return steps_.size(); }
-  const Vec& x(std::size_t k) const { return k < steps_.size() ? steps_[k].x_smoothed : x_last_; }
+  const Vec& x(std::size_t k) const { return steps_[k].x_smoothed; }
+  // k = size() is the final estimate, as in variance_of_sum.
   const Mat& p(std::size_t k) const { return k < steps_.size() ? steps_[k].p_smoothed : p_last_; }
 
   // Variance of sum_k w_k e'x_k over smoothed estimates, `weights` in step order. The estimates of
