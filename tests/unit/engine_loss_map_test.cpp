@@ -1,6 +1,9 @@
 // The engine-loss table: linear between calibrated speeds, nothing outside them, speeds in order.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "roadload/model/engine_losses.hpp"
 
 namespace roadload::model {
@@ -18,7 +21,6 @@ TEST(EngineLossMap, InterpolatesBetweenCalibratedSpeedsAndGuessesNothingOutside)
   EXPECT_DOUBLE_EQ(*m.loss_nm(1300), 250);
   EXPECT_FALSE(m.loss_nm(999.9).has_value());
   EXPECT_FALSE(m.loss_nm(1300.1).has_value());
-  EXPECT_DOUBLE_EQ(m.sigma_nm(), 0.9);
 }
 
 TEST(EngineLossMap, RefusesSpeedsOutOfOrderAndBeyondItsCapacity) {
@@ -49,6 +51,36 @@ TEST(EngineLossMap, OneSpeedIsThatSpeedOnly) {
   ASSERT_TRUE(m.add({1200, 224, 0.9}));
   EXPECT_DOUBLE_EQ(*m.loss_nm(1200), 224);
   EXPECT_FALSE(m.loss_nm(1201).has_value());
+}
+
+// Each point's error is its own hold's rounding: drawn independently here, the map's error at
+// engine speeds spread evenly over its range has the RMS sigma_nm() states, below the largest
+// point sigma because interpolation between two points averages their errors.
+TEST(EngineLossMap, ItsSigmaIsTheRmsOfTheInterpolatedErrorOverItsRange) {
+  const EngineLossPoint points[] = {{1000, 200, 0.8}, {1100, 210, 0.9}, {1300, 250, 0.7}};
+  EngineLossMap exact;
+  for (const EngineLossPoint& p : points) ASSERT_TRUE(exact.add(p));
+  EXPECT_NEAR(exact.sigma_nm(), std::sqrt((100 * (0.64 + 0.81) + 200 * (0.81 + 0.49)) / 3.0 / 300.0), 1e-12);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> unit;
+  std::uniform_real_distribution<double> rpm(1000, 1300);
+  double sum = 0;
+  constexpr int kMaps = 20000, kSpeeds = 10;
+  for (int i = 0; i < kMaps; ++i) {
+    EngineLossMap drawn;
+    for (const EngineLossPoint& p : points) ASSERT_TRUE(drawn.add({p.rpm, p.loss_nm + p.sigma_nm * unit(rng), p.sigma_nm}));
+    for (int k = 0; k < kSpeeds; ++k) {
+      const double r = rpm(rng);
+      const double e = *drawn.loss_nm(r) - *exact.loss_nm(r);
+      sum += e * e;
+    }
+  }
+  EXPECT_NEAR(std::sqrt(sum / (kMaps * kSpeeds)), exact.sigma_nm(), 0.01 * exact.sigma_nm());
+  EXPECT_LT(exact.sigma_nm(), 0.9);
+  EngineLossMap one;
+  ASSERT_TRUE(one.add({1000, 200, 0.8}));
+  EXPECT_DOUBLE_EQ(one.sigma_nm(), 0.8);
+  EXPECT_DOUBLE_EQ(EngineLossMap{}.sigma_nm(), 0.0);
 }
 
 }  // namespace

@@ -42,9 +42,15 @@ EngineLossMap EngineLossMap::shifted(double offset_nm, double sigma_nm) const {
 }
 
 double EngineLossMap::sigma_nm() const {
-  double s = 0;
-  for (std::size_t i = 0; i < size_; ++i) s = std::max(s, points_[i].sigma_nm);
-  return s;
+  if (size_ < 2) return size_ == 0 ? 0.0 : points_[0].sigma_nm;
+  // Between two points the map's error is (1 - w) e_lo + w e_hi, the points' errors independent
+  // (each is its own hold's rounding): its variance averages (s_lo^2 + s_hi^2) / 3 over w.
+  double sum = 0;
+  for (std::size_t i = 1; i < size_; ++i) {
+    const double lo = points_[i - 1].sigma_nm, hi = points_[i].sigma_nm;
+    sum += (points_[i].rpm - points_[i - 1].rpm) * (lo * lo + hi * hi) / 3.0;
+  }
+  return std::sqrt(sum / (points_[size_ - 1].rpm - points_[0].rpm));
 }
 
 }  // namespace roadload::model

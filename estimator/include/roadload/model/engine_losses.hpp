@@ -34,7 +34,8 @@ class EngineLossMap {
   std::optional<double> loss_nm(double rpm) const;
   // The friction part of that loss, likewise; nothing where a neighbouring point has none.
   std::optional<double> friction_nm(double rpm) const;
-  // The largest point sigma: the error the map leaves in the flywheel torque.
+  // The error the map leaves in the flywheel torque at an engine speed anywhere in its range: RMS
+  // over the range of the interpolated error's sigma, the points' errors independent.
   double sigma_nm() const;
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
