@@ -30,6 +30,7 @@ struct Estimation {
   j1939::Database db;
   RouteGeometry route;
   std::vector<CellSpan> cells;
+  double iri_m_per_km = 2.0;  // the route's, where a cell states none
   PavementGroups groups;
   model::EngineLossMap engine_losses;
 };
@@ -42,7 +43,8 @@ std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) 
   auto geometry = RouteGeometry::build(route.value().points);
   if (!geometry) return ParseError{route.value().source_file, 0, "point", "the route's points do not make a route"};
   e.route = std::move(*geometry);
-  for (const CellDef& cell : route.value().cells) e.cells.push_back({cell.id, cell.start_m, cell.end_m});
+  e.cells = cell_spans(route.value().cells);
+  e.iri_m_per_km = route.value().default_iri_m_per_km;
   e.groups = pavement_groups(route.value().cells);
   if (!c.estimator.engine_losses.empty()) {
     auto losses = load_engine_loss_file(c.estimator.engine_losses);
@@ -127,6 +129,7 @@ int run(const CommandLine& cl) {
   setup.route = est.route;
   setup.cells = est.cells;
   setup.analyzer = recording::config_from_vehicle(setup.metadata.vehicle, std::nullopt);
+  setup.analyzer.roughness_iri_m_per_km = est.iri_m_per_km;
   model::TruckModel& truck = setup.analyzer.filter.truck;
   truck.engine_losses = est.engine_losses;
   if (c.estimator.cda_m2 > 0) truck.cda_prior_m2 = c.estimator.cda_m2;

@@ -122,6 +122,7 @@ int run_analyze(Args args) {
   if (cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *cda_sigma_m2;
   if (cda_torque_correlation) cfg.filter.truck.cda_torque_bias_correlation = *cda_torque_correlation;
   cfg.survey_elevation_sigma_m = survey_sigma;
+  cfg.roughness_iri_m_per_km = route.file.default_iri_m_per_km;
   if (!losses_file.empty()) {
     auto losses = load_engine_loss_file(losses_file);
     if (!losses) {
@@ -131,8 +132,7 @@ int run_analyze(Args args) {
     cfg.filter.truck.engine_losses = losses.value();
   }
 
-  std::vector<CellSpan> cells;
-  for (const CellDef& c : route.file.cells) cells.push_back({c.id, c.start_m, c.end_m});
+  const std::vector<CellSpan> cells = cell_spans(route.file.cells);
   const double route_length_m = route.geometry.length_m();
   DriveAnalyzer analyzer(db, std::move(route.geometry), cells, cfg);
   if (!grade_file.empty()) {

@@ -52,8 +52,7 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
   auto loaded = load_route("calibrate", o.route);
   if (const int* rc = std::get_if<int>(&loaded)) return *rc;
   const LoadedRoute& route = std::get<LoadedRoute>(loaded);
-  std::vector<CellSpan> cells;
-  for (const CellDef& c : route.file.cells) cells.push_back({c.id, c.start_m, c.end_m});
+  const std::vector<CellSpan> cells = cell_spans(route.file.cells);
   AeroDrive drives[2];
   double prior_m2 = 0;
   for (std::size_t k = 0; k < 2; ++k) {
@@ -65,6 +64,7 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
     }
     AnalyzerConfig cfg = recording::config_from_vehicle(meta.value().metadata().vehicle, std::nullopt);
     cfg.filter.truck.engine_losses = losses.value();
+    cfg.roughness_iri_m_per_km = route.file.default_iri_m_per_km;
     if (o.cda_prior_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_prior_m2;
     prior_m2 = cfg.filter.truck.cda_prior_m2;
     std::optional<ParseError> failed;

@@ -11,7 +11,7 @@ double eec3_quantization_sigma_nm(double reference_torque_nm) {
 
 void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> torque_bias_sigma_nm) {
   Vec x;
-  x << speed_mps, config_.truck.crr_prior, config_.truck.cda_prior_m2, 0.0, 0.0;
+  x << speed_mps, config_.truck.crr_prior, config_.truck.cda_prior_m2, 0.0, 0.0, 0.0;
   Mat p = Mat::Zero();
   p(CrrState::speed, CrrState::speed) = 0.25;
   p(CrrState::crr, CrrState::crr) = config_.truck.crr_sigma * config_.truck.crr_sigma;
@@ -72,6 +72,11 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
   f(CrrState::grade_error, CrrState::grade_error) = phi;
   next(CrrState::grade_error) = phi * x(CrrState::grade_error);
   q(CrrState::grade_error, CrrState::grade_error) = in.grade_sigma_rad * in.grade_sigma_rad * (1.0 - phi * phi);
+  // The ripple is a first-order Gauss-Markov process along the road, as the inputs give it.
+  const double phi_ripple = std::exp(-std::abs(v) * dt / std::max(in.ripple_correlation_m, 1e-3));
+  f(CrrState::ripple, CrrState::ripple) = phi_ripple;
+  next(CrrState::ripple) = phi_ripple * x(CrrState::ripple);
+  q(CrrState::ripple, CrrState::ripple) = in.ripple_sigma_mps * in.ripple_sigma_mps * (1.0 - phi_ripple * phi_ripple);
   const Vec x_before = core_.x();
   const Mat p_before = core_.p();
   core_.predict(next, f, q);
@@ -107,10 +112,11 @@ ekf::UpdateResult CrrFilter::update_speed(CaptureTime t, double speed_mps, doubl
   }
   Eigen::Matrix<double, 1, 1> z, zhat, r;
   z << speed_mps;
-  zhat << core_.x()(CrrState::speed);
+  zhat << core_.x()(CrrState::speed) + core_.x()(CrrState::ripple);
   r << sigma * sigma;
   Eigen::Matrix<double, 1, CrrState::count> h = Eigen::Matrix<double, 1, CrrState::count>::Zero();
   h(0, CrrState::speed) = 1.0;
+  h(0, CrrState::ripple) = 1.0;
   const ekf::UpdateResult res = core_.update<1>(z, zhat, h, r, config_.gate_nis);
   if (res.accepted) {
     ++counters_.updates;

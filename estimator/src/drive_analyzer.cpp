@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "roadload/model/road_roughness.hpp"
 #include "roadload/running_stats.hpp"
 
 namespace roadload {
@@ -35,6 +36,8 @@ DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std
   }
   std::sort(boundaries_m_.begin(), boundaries_m_.end());
   boundaries_m_.erase(std::unique(boundaries_m_.begin(), boundaries_m_.end()), boundaries_m_.end());
+  for (const AxleLoad& a : config_.axles) ripple_axles_.push_back({a.behind_front_m, a.load_kg * model::kGravity_mps2});
+  unit_height_m_ = model::roughness_height_sigma_m(1.0, config_.roughness_correlation_m);
 }
 
 CrrFilterConfig DriveAnalyzer::filter_config(const AnalyzerConfig& c, bool cells) {
@@ -140,7 +143,7 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   const TractionEstimate tr = traction(signals_, config_.filter.truck, t);
   const double grade = grade_.grade_rad(s_cg);
   const Unusable why = tr.reason == Unusable::none && std::isnan(grade) ? Unusable::no_elevation : tr.reason;
-  const model::ForceInputs in = force_inputs(t, s_front, tr, why);
+  const model::ForceInputs in = force_inputs(t, s_front, wheel_speed_mps, wheel_speed_mps * dt_s, tr, why);
   last_front_m_ = s_front;
   place_axles(t, s_front, in.grade_rad, wheel_speed_mps);
   filter_.predict_to(in);
@@ -163,7 +166,8 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   }
 }
 
-model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, const TractionEstimate& tr, Unusable why) const {
+model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, double speed_mps, double step_m,
+                                               const TractionEstimate& tr, Unusable why) const {
   const double s_cg = s_front_m - config_.cg_behind_front_m;
   const double grade = grade_.grade_rad(s_cg);
   const double grade_sigma = grade_.grade_sigma_rad(s_cg);
@@ -177,6 +181,17 @@ model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, 
   in.grade_rad = std::isnan(grade) ? 0.0 : grade;
   in.grade_sigma_rad = std::isnan(grade_sigma) ? 0.0 : grade_sigma;
   in.headwind_mps = wind_mps_ * std::cos((wind_from_deg_ - route_.heading_deg(s_cg)) * kDeg);
+  // Below walking pace the ripple would grow without bound; there the tires barely climb anyway.
+  // The ripple's sigma grows with the IRI in proportion; its correlation is the axles' over this
+  // tick's distance. Below walking pace it would grow without bound; there the tires barely climb.
+  const int cell = cell_at(s_cg);
+  const double iri = cell >= 0 && !std::isnan(cells_[static_cast<std::size_t>(cell)].iri_m_per_km)
+                         ? cells_[static_cast<std::size_t>(cell)].iri_m_per_km
+                         : config_.roughness_iri_m_per_km;
+  const model::RoughnessRipple ripple = model::roughness_ripple(ripple_axles_, config_.filter.truck.mass_kg, unit_height_m_,
+                                                                config_.roughness_correlation_m, step_m);
+  in.ripple_sigma_mps = ripple.sigma_m2ps * iri / std::max(speed_mps, 1.0);
+  in.ripple_correlation_m = ripple.correlation_m > 0 ? ripple.correlation_m : config_.roughness_correlation_m;
   in.usable = why == Unusable::none;
   return in;
 }

@@ -127,6 +127,7 @@ Calibration calibrate(const j1939::Database& db, std::uint64_t seed, const Truck
   for (std::size_t k = 0; k < 2; ++k) {
     // With the accelerometers: the fit takes the tires' CRR, without the road's dissipation.
     const sim::Scenario sc = scenario(names[k], truck);
+    base.roughness_iri_m_per_km = sim::test::analyzer_config(sc).roughness_iri_m_per_km;
     sim::Simulation sim(sc, seed, db);
     sim::test::MemorySink sink;
     sim.run(sink, nullptr);
@@ -226,8 +227,11 @@ void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database&
   sim::test::MemorySink sink;
   sim::TruthRecorder truth(sim.route(), sim.plant().truck());
   sim.run(sink, &truth);
-  tally(sc, sim, sink, truth, db, AnalyzerConfig{}, as_sent);
-  tally(sc, sim, sink, truth, db, calibrated, with_calibration);
+  const AnalyzerConfig sent = sim::test::analyzer_config(sc);
+  AnalyzerConfig with = calibrated;
+  with.roughness_iri_m_per_km = sent.roughness_iri_m_per_km;
+  tally(sc, sim, sink, truth, db, sent, as_sent);
+  tally(sc, sim, sink, truth, db, with, with_calibration);
 }
 
 // Quantile of chi-square(k) by Wilson and Hilferty's cube-root normal approximation.

@@ -36,7 +36,7 @@ Score estimate(const char* scenario, std::uint64_t seed) {
 
   auto route = RouteGeometry::build(sc.route.points);
   EXPECT_TRUE(route.has_value());
-  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), AnalyzerConfig{});
+  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), test::analyzer_config(sc));
   test::analyze(analyzer, sink);
 
   Score s;
@@ -116,7 +116,7 @@ std::vector<CellResult> cells_of_mainline(bool drop_transport, bool drop_elevati
   }
   auto route = RouteGeometry::build(points);
   EXPECT_TRUE(route.has_value());
-  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), AnalyzerConfig{});
+  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), test::analyzer_config(sc));
   test::analyze(analyzer, sink);
   return analyzer.cells();
 }
@@ -162,9 +162,9 @@ TEST(CrrEstimation, GnssGradeSigmaWidensTheIntervalsHonestly) {
   test::MemorySink sink;
   TruthRecorder truth(sim.route(), sim.plant().truck());
   sim.run(sink, &truth);
-  DriveAnalyzer survey(db, *route, test::cell_spans(sc), AnalyzerConfig{});
+  DriveAnalyzer survey(db, *route, test::cell_spans(sc), test::analyzer_config(sc));
   test::analyze(survey, sink);
-  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), AnalyzerConfig{});
+  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), test::analyzer_config(sc));
   analyzer.set_grade(gnss);
   test::analyze(analyzer, sink);
 
@@ -207,11 +207,11 @@ TEST(CrrEstimation, TheTripSigmaIsThatOfTheAverageOverCells) {
     }
     return std::pair{a.trip().crr_sigma, sigma / static_cast<double>(n)};
   };
-  const auto [trip, cell] = analyse(AnalyzerConfig{});
+  const auto [trip, cell] = analyse(test::analyzer_config(sc));
   const double cda_part = 0.6 * 0.5 * 1.19 * 13.4 * 13.4 / (36152 * 9.80665);
   EXPECT_GT(trip, 0.9 * cda_part);
   EXPECT_LE(trip, cell);
-  AnalyzerConfig known;
+  AnalyzerConfig known = test::analyzer_config(sc);
   known.filter.truck.cda_sigma_m2 = 1e-6;
   known.filter.torque_bias_sigma_nm = 1e-6;
   const auto [trip_known, cell_known] = analyse(known);

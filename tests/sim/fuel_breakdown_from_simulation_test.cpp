@@ -57,7 +57,7 @@ Outcome drive(const char* scenario) {
   sim.run(sink, nullptr);
   auto route = RouteGeometry::build(sc.route.points);
   EXPECT_TRUE(route.has_value());
-  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), AnalyzerConfig{});
+  DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), test::analyzer_config(sc));
   test::analyze(analyzer, sink.drive);
 
   Outcome o;

@@ -26,8 +26,16 @@ class MemorySink final : public SampleSink {
 // The cells of a scenario's route, as the estimator takes them.
 inline std::vector<CellSpan> cell_spans(const Scenario& sc) {
   std::vector<CellSpan> cells;
-  for (const Cell& c : sc.route.cells) cells.push_back({c.id, c.start_m, c.end_m});
+  for (const Cell& c : sc.route.cells) cells.push_back({c.id, c.start_m, c.end_m, iri_from_gd_m_per_km(c.gd_n0_m3)});
   return cells;
+}
+
+// The analyzer's defaults with the route's roughness where its cells state none, as `roadload
+// analyze` takes it from the route file.
+inline AnalyzerConfig analyzer_config(const Scenario& sc) {
+  AnalyzerConfig c;
+  c.roughness_iri_m_per_km = iri_from_gd_m_per_km(sc.route.default_gd_n0_m3);
+  return c;
 }
 
 // CAN, GNSS, weather and, with `accels`, the accelerometers in capture-time order, then the smoother.

@@ -20,6 +20,7 @@ using namespace std::chrono_literals;
 
 constexpr double kDt = 0.1;
 constexpr double kSpeedSigma = 0.03;
+constexpr double kRippleCorrelation_m = 120.0;
 
 // A truck driven by the filter's own force balance with white force noise: the reference for
 // consistency. Speed alternates between two cruise speeds so CRR and CdA separate.
@@ -30,7 +31,8 @@ struct Drive {
 };
 
 Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, const CrrFilterConfig& cfg,
-                 bool vary_speed = true, double crr_step_at_s = -1, double crr_after = 0, double torque_bias_nm = 0) {
+                 bool vary_speed = true, double crr_step_at_s = -1, double crr_after = 0, double torque_bias_nm = 0,
+                 double ripple_sigma_mps = 0) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n01(0.0, 1.0);
   const model::TruckModel& tm = cfg.truck;
@@ -38,7 +40,7 @@ Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, con
   const double gain = model::wheel_force_per_flywheel_nm(tm, 0.73);
   const double weight = tm.mass_kg * model::kGravity_mps2;
   Drive d;
-  double v = 20.0;
+  double v = 20.0, ripple = 0;
   const auto steps = static_cast<std::size_t>(seconds / kDt);
   for (std::size_t k = 0; k < steps; ++k) {
     const double t = static_cast<double>(k) * kDt;
@@ -57,12 +59,17 @@ Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, con
     in.effective_mass_kg = m_eff;
     in.wheel_force_per_flywheel_nm = gain;
     in.usable = true;
+    in.ripple_sigma_mps = ripple_sigma_mps;
+    in.ripple_correlation_m = kRippleCorrelation_m;
     // The force noise the filter assumes: a floor and a share of the aero drag.
     const double w = std::hypot(cfg.force_noise_n, cfg.aero_force_noise_per_sqrt_hz * aero) * std::sqrt(1.0 / kDt) * n01(rng);
     // The signals understate the flywheel torque by the bias the filter only considers.
     v += kDt * (tractive + gain * torque_bias_nm - resist + w) / m_eff;
     d.inputs.push_back(in);
-    d.speed_meas.push_back(v + kSpeedSigma * n01(rng));
+    // A rough road's ripple: the speed its heights lend and take back, correlated along the road.
+    const double phi = std::exp(-v * kDt / kRippleCorrelation_m);
+    ripple = phi * ripple + ripple_sigma_mps * std::sqrt(1.0 - phi * phi) * n01(rng);
+    d.speed_meas.push_back(v + ripple + kSpeedSigma * n01(rng));
     d.crr_true.push_back(c);
   }
   return d;
@@ -126,6 +133,43 @@ TEST(CrrFilter, NeesAndNisLieInTheir95PercentBandsWithATorqueBiasOnlyConsidered)
   EXPECT_LT(nees_sum, 129.6);
   // Mean NIS of ~300,000 one-dimensional innovations: 1 within a few per mille; allow 3 %.
   EXPECT_NEAR(nis_sum / static_cast<double>(nis_n), 1.0, 0.03);
+}
+
+// A rough road's speed ripple, bounded, is its own state: with it the innovations and CRR's error
+// are what the filter states; a filter told of no ripple reads it as force, and NIS is far above 1.
+TEST(CrrFilter, ARoughRoadsSpeedRippleIsItsOwnStateNotForce) {
+  const CrrFilterConfig cfg = config();
+  constexpr int kRuns = 20;
+  constexpr double kRipple = 0.06;
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> bias(0.0, cfg.torque_bias_sigma_nm);
+  double nees = 0, nis_told = 0, nis_untold = 0;
+  std::size_t n = 0;
+  for (int run = 0; run < kRuns; ++run) {
+    const Drive d = make_drive(300 + static_cast<std::uint64_t>(run), 600, 0.0055, 6.2, cfg, true, -1, 0, bias(rng), kRipple);
+    CrrFilter told(cfg), untold(cfg);
+    told.start(capture_time_from_ns(0), d.speed_meas[0]);
+    untold.start(capture_time_from_ns(0), d.speed_meas[0]);
+    for (std::size_t k = 0; k < d.inputs.size(); ++k) {
+      model::ForceInputs smooth = d.inputs[k];
+      smooth.ripple_sigma_mps = 0;
+      told.predict_to(d.inputs[k]);
+      untold.predict_to(smooth);
+      const auto a = told.update_speed(d.inputs[k].t, d.speed_meas[k], kSpeedSigma);
+      const auto b = untold.update_speed(d.inputs[k].t, d.speed_meas[k], kSpeedSigma);
+      if (k > 50) {
+        nis_told += a.nis;
+        nis_untold += b.nis;
+        ++n;
+      }
+    }
+    nees += (told.crr() - 0.0055) * (told.crr() - 0.0055) / (told.crr_sigma() * told.crr_sigma());
+  }
+  // Sum of 20 chi-square(1) is chi-square(20): 95 % band [9.59, 34.17].
+  EXPECT_GT(nees, 9.59);
+  EXPECT_LT(nees, 34.17);
+  EXPECT_NEAR(nis_told / static_cast<double>(n), 1.0, 0.05);
+  EXPECT_GT(nis_untold / static_cast<double>(n), 1.5);
 }
 
 // A CdA calibrated from two speeds took up the engine-loss map's torque bias b: its error is k b

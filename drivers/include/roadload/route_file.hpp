@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "roadload/cell_span.hpp"
 #include "roadload/geo_point.hpp"
 #include "roadload/parse_error.hpp"
 #include "roadload/pavement_groups.hpp"
@@ -38,6 +39,8 @@ struct RouteFile {
 Parsed<RouteFile> load_route_file(const std::string& path);
 // The cells' pavement groups (surface and panel length), for spectra per pavement.
 PavementGroups pavement_groups(const std::vector<CellDef>& cells);
+// The cells as the estimator takes them, with the IRI each states (a class alone is not converted).
+std::vector<CellSpan> cell_spans(const std::vector<CellDef>& cells);
 // A route argument: a route file, or the name of a built-in route (data_dir()/routes/NAME.toml).
 std::string resolve_route(const std::string& name_or_path);
 

@@ -17,9 +17,11 @@ namespace roadload {
 
 // Named state indices; the size is fixed at compile time.
 struct CrrState {
-  enum Index : int { speed = 0, crr = 1, cda = 2, torque_bias = 3, grade_error = 4, count = 5 };
+  // ripple: the speed the road's roughness lends and takes back (road_roughness.hpp); the wheel
+  // speed is speed + ripple.
+  enum Index : int { speed = 0, crr = 1, cda = 2, torque_bias = 3, grade_error = 4, ripple = 5, count = 6 };
 };
-static_assert(CrrState::count == 5, "CrrFilter matrices are sized by CrrState::count");
+static_assert(CrrState::count == 6, "CrrFilter matrices are sized by CrrState::count");
 
 // One whole-percent step of EEC3's friction (SPN 514) and parasitic (SPN 2978) torque each, as
 // uniform rounding errors: the flywheel torque the J1939 signals cannot resolve.
@@ -27,11 +29,12 @@ double eec3_quantization_sigma_nm(double reference_torque_nm);
 
 struct CrrFilterConfig {
   model::TruckModel truck;
-  // Error of the force balance, white, N per sqrt(Hz): a floor (torque resolution, driveline and
-  // tire ripple) and a share of the aero drag (gusts scale with it). Both set so that the mean NIS
-  // is near 1 on the simulated Mainline (30 mph) and highways (55 mph).
-  double force_noise_n = 20.0;
-  double aero_force_noise_per_sqrt_hz = 0.030;
+  // Error of the force balance, white, N per sqrt(Hz): a floor (torque resolution, driveline) and a
+  // share of the aero drag (gusts scale with it). With the roughness ripple (its own state) both set
+  // so that the mean NIS is near 1 on the simulated Mainline (30 mph) and highways (55 mph); without
+  // it they had to be 20 N and 0.03, and read the ripple as force a trip would average.
+  double force_noise_n = 8.0;
+  double aero_force_noise_per_sqrt_hz = 0.020;
   double unusable_force_noise_n = 20000.0; // while braking or shifting: speed follows the measurements
   double crr_walk_per_sqrt_s = 3e-4;       // CRR changes from pavement to pavement (no cells known)
   double cda_walk_per_sqrt_s = 1e-4;

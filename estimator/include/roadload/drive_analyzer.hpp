@@ -8,22 +8,19 @@
 #include <vector>
 
 #include "roadload/can_frame.hpp"
+#include "roadload/cell_span.hpp"
 #include "roadload/contact_forces.hpp"
 #include "roadload/crr_filter.hpp"
 #include "roadload/drive_signals.hpp"
 #include "roadload/fuel_breakdown.hpp"
 #include "roadload/grade_profile.hpp"
+#include "roadload/model/road_roughness.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "roadload/route_geometry.hpp"
 #include "roadload/samples.hpp"
 #include "roadload/vibration.hpp"
 
 namespace roadload {
-
-struct CellSpan {
-  std::string id;
-  double start_m = 0, end_m = 0;
-};
 
 // An axle: where it sits behind the front axle and the share of the weight it carries.
 struct AxleLoad {
@@ -42,12 +39,18 @@ struct AnalyzerConfig {
   // The report's runs hold one speed: CdA then keeps its prior (crr_filter.hpp, estimate_cda).
   bool estimate_cda = false;
   double cell_crr_jump_sigma = 0.003;
-  double wheel_speed_sigma_mps = 0.00042;  // CCVS1 rounds to 1/256 km/h; with NIS near 1 on simulated drives
+  // CCVS1 rounds to 1/256 km/h, 0.00031 m/s if each rounding were independent; a speed moving less
+  // than a step between ticks rounds alike, and 0.0002 gives NIS near 1 on the simulated drives.
+  double wheel_speed_sigma_mps = 0.0002;
   double antenna_behind_front_m = 2.5;  // GNSS antenna behind the front axle
   double cg_behind_front_m = 9.74;      // from the axle loads of Table 6.2
   double max_gnss_offset_m = 30.0;      // fixes farther from the route are not on it
   double interval_z = 1.645;            // 90 % two-sided
   double survey_elevation_sigma_m = 0.0;  // the route survey's height error (0: taken as exact)
+  // The road's roughness, which ripples the speed (road_roughness.hpp), where a cell states none:
+  // agencies measure IRI; 2.0 m/km is a fair highway's, and route files give their own.
+  double roughness_iri_m_per_km = 2.0;
+  double roughness_correlation_m = 30.0;  // longer waves are the grade profile's
   // Offline, every tick is kept for the smoother and the cells; live (roadloadd), only the filter
   // runs, in fixed memory, and cells() gives each cell the filter's estimate at the last usable
   // tick in it: everything the cell taught the filter, without the data after it.
@@ -144,7 +147,8 @@ class DriveAnalyzer {
   CrrMean crr_mean(std::span<const std::size_t> steps) const;
   void fill_resistances(Tick& k) const;
   void tick(CaptureTime t, double wheel_speed_mps);
-  model::ForceInputs force_inputs(CaptureTime t, double s_front_m, const TractionEstimate& tr, Unusable why) const;
+  model::ForceInputs force_inputs(CaptureTime t, double s_front_m, double speed_mps, double step_m, const TractionEstimate& tr,
+                                  Unusable why) const;
   void place_axles(CaptureTime t, double s_front_m, double grade_rad, double speed_mps);
   PowerInterval power_since_last_tick(double dt_s, const TractionEstimate& tr, double wheel_speed_mps);
   // Variance of the CRR change as axles cross cell boundaries between two front-axle positions.
@@ -181,6 +185,8 @@ class DriveAnalyzer {
   bool started_ = false;
   CaptureTime last_tick_{};
   double odometer_m_ = 0;
+  std::vector<model::AxleWeight> ripple_axles_;
+  double unit_height_m_ = 0;  // the roughness's height sigma at 1 m/km of IRI
   double last_front_m_ = 0;
   double last_speed_mps_ = 0;
   std::vector<double> boundaries_m_;  // every cell start and end, sorted

@@ -55,6 +55,8 @@ struct ForceInputs {
   double effective_mass_kg = 0;
   double wheel_force_per_flywheel_nm = 0;  // d(tractive force)/d(flywheel torque) in this gear, N per N m
   double crr_jump_variance = 0;  // CRR change allowed over this interval: axles crossing into a new cell
+  double ripple_sigma_mps = 0;   // the road's roughness in the speed here (road_roughness.hpp)
+  double ripple_correlation_m = 1.0;  // and the distance it stays correlated over
   bool usable = false;           // false while braking, shifting or declutched
 };
 
