@@ -27,8 +27,8 @@ struct AxleWeight {
 // d apart, and the ripple their weighted sum, whose sigma times the speed is
 // sqrt(sum_ij F_i F_j exp(-d_ij / L)) s_h / m. As a single Gauss-Markov process it is given the
 // correlation length whose change over `step_m` (the distance between speed updates) is the sum's:
-// axles close together climb nearly the same heights, and over a short step their changes are
-// nearly independent, so the lumped process is smoother than any one axle's.
+// the axles share the long waves but, over a short step, few of their changes, so the lumped
+// process is smoother than any one axle's.
 struct RoughnessRipple {
   double sigma_m2ps = 0;
   double correlation_m = 0;
