@@ -30,7 +30,7 @@ struct Estimation {
   j1939::Database db;
   RouteGeometry route;
   std::vector<CellSpan> cells;
-  double iri_m_per_km = 2.0;  // the route's, where a cell states none
+  double iri_m_per_km = AnalyzerConfig{}.roughness_iri_m_per_km;  // the route's, where a cell states none
   PavementGroups groups;
   model::EngineLossMap engine_losses;
 };

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "roadload/model/road_roughness.hpp"
 #include "roadload/running_stats.hpp"
 
 namespace roadload {
@@ -143,7 +142,9 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   const TractionEstimate tr = traction(signals_, config_.filter.truck, t);
   const double grade = grade_.grade_rad(s_cg);
   const Unusable why = tr.reason == Unusable::none && std::isnan(grade) ? Unusable::no_elevation : tr.reason;
-  const model::ForceInputs in = force_inputs(t, s_front, wheel_speed_mps, wheel_speed_mps * dt_s, tr, why);
+  const int cell = cell_at(s_cg);
+  model::ForceInputs in = force_inputs(t, s_front, tr, why);
+  add_ripple(in, cell, wheel_speed_mps, wheel_speed_mps * dt_s);
   last_front_m_ = s_front;
   place_axles(t, s_front, in.grade_rad, wheel_speed_mps);
   filter_.predict_to(in);
@@ -155,7 +156,7 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
                       smoother_.size(), power, in.air_density_kgpm3, in.headwind_mps, in.grade_rad});
   }
   if (!config_.keep_history) note_live_cell(s_front, s_cg, wheel_speed_mps, in.usable, why);
-  live_ = {t, true, wheel_speed_mps, s_front, cell_at(s_cg), filter_.crr(), 0, 0, filter_.crr_identified(), in.usable};
+  live_ = {t, true, wheel_speed_mps, s_front, cell, filter_.crr(), 0, 0, filter_.crr_identified(), in.usable};
   live_.crr_lo = live_.crr - config_.interval_z * filter_.crr_sigma();
   live_.crr_hi = live_.crr + config_.interval_z * filter_.crr_sigma();
   ++trip_.ticks;
@@ -166,8 +167,7 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   }
 }
 
-model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, double speed_mps, double step_m,
-                                               const TractionEstimate& tr, Unusable why) const {
+model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, const TractionEstimate& tr, Unusable why) const {
   const double s_cg = s_front_m - config_.cg_behind_front_m;
   const double grade = grade_.grade_rad(s_cg);
   const double grade_sigma = grade_.grade_sigma_rad(s_cg);
@@ -181,10 +181,14 @@ model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, 
   in.grade_rad = std::isnan(grade) ? 0.0 : grade;
   in.grade_sigma_rad = std::isnan(grade_sigma) ? 0.0 : grade_sigma;
   in.headwind_mps = wind_mps_ * std::cos((wind_from_deg_ - route_.heading_deg(s_cg)) * kDeg);
-  // Below walking pace the ripple would grow without bound; there the tires barely climb anyway.
-  // The ripple's sigma grows with the IRI in proportion; its correlation is the axles' over this
-  // tick's distance. Below walking pace it would grow without bound; there the tires barely climb.
-  const int cell = cell_at(s_cg);
+  in.usable = why == Unusable::none;
+  return in;
+}
+
+// The ripple's sigma grows with the IRI of the cell under the truck in proportion; its correlation
+// is the axles' over this tick's distance. Below walking pace it would grow without bound; there
+// the tires barely climb.
+void DriveAnalyzer::add_ripple(model::ForceInputs& in, int cell, double speed_mps, double step_m) const {
   const double iri = cell >= 0 && !std::isnan(cells_[static_cast<std::size_t>(cell)].iri_m_per_km)
                          ? cells_[static_cast<std::size_t>(cell)].iri_m_per_km
                          : config_.roughness_iri_m_per_km;
@@ -192,8 +196,6 @@ model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, 
                                                                 config_.roughness_correlation_m, step_m);
   in.ripple_sigma_mps = ripple.sigma_m2ps * iri / std::max(speed_mps, 1.0);
   in.ripple_correlation_m = ripple.correlation_m > 0 ? ripple.correlation_m : config_.roughness_correlation_m;
-  in.usable = why == Unusable::none;
-  return in;
 }
 
 // Every axle in the cell under it, for the contact forces.

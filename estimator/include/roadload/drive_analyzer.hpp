@@ -147,8 +147,8 @@ class DriveAnalyzer {
   CrrMean crr_mean(std::span<const std::size_t> steps) const;
   void fill_resistances(Tick& k) const;
   void tick(CaptureTime t, double wheel_speed_mps);
-  model::ForceInputs force_inputs(CaptureTime t, double s_front_m, double speed_mps, double step_m, const TractionEstimate& tr,
-                                  Unusable why) const;
+  model::ForceInputs force_inputs(CaptureTime t, double s_front_m, const TractionEstimate& tr, Unusable why) const;
+  void add_ripple(model::ForceInputs& in, int cell, double speed_mps, double step_m) const;
   void place_axles(CaptureTime t, double s_front_m, double grade_rad, double speed_mps);
   PowerInterval power_since_last_tick(double dt_s, const TractionEstimate& tr, double wheel_speed_mps);
   // Variance of the CRR change as axles cross cell boundaries between two front-axle positions.
