@@ -5,6 +5,26 @@
 
 namespace roadload {
 
+namespace {
+
+struct Offset {
+  double sigma = 0, phi = 1;  // stationary sigma, decay over the step
+};
+struct Decay {
+  double phi = 1, q = 0;
+};
+
+// Two independent stationary speed offsets carried as one first-order Gauss-Markov state: the
+// sum's variance, and the decay that gives the sum's change over the step.
+Decay lumped(Offset a, Offset b) {
+  const double variance = a.sigma * a.sigma + b.sigma * b.sigma;
+  const double change = a.sigma * a.sigma * (1.0 - a.phi * a.phi) + b.sigma * b.sigma * (1.0 - b.phi * b.phi);
+  if (!(variance > 0)) return {a.phi, 0.0};
+  return {std::sqrt(std::max(0.0, 1.0 - change / variance)), change};
+}
+
+}  // namespace
+
 double eec3_quantization_sigma_nm(double reference_torque_nm) {
   return reference_torque_nm * 0.01 * std::sqrt(2.0 / 12.0);
 }
@@ -72,11 +92,17 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
   f(CrrState::grade_error, CrrState::grade_error) = phi;
   next(CrrState::grade_error) = phi * x(CrrState::grade_error);
   q(CrrState::grade_error, CrrState::grade_error) = in.grade_sigma_rad * in.grade_sigma_rad * (1.0 - phi * phi);
-  // The ripple is a first-order Gauss-Markov process along the road, as the inputs give it.
-  const double phi_ripple = std::exp(-std::abs(v) * dt / std::max(in.ripple_correlation_m, 1e-3));
-  f(CrrState::ripple, CrrState::ripple) = phi_ripple;
-  next(CrrState::ripple) = phi_ripple * x(CrrState::ripple);
-  q(CrrState::ripple, CrrState::ripple) = in.ripple_sigma_mps * in.ripple_sigma_mps * (1.0 - phi_ripple * phi_ripple);
+  // The ripple: the road's, a Gauss-Markov process along the road as the inputs give it, and the
+  // force errors that integrate to nothing, one in time (config); each tick's share of the latter
+  // has the density of white force noise of the same size.
+  const double phi_road = std::exp(-std::abs(v) * dt / std::max(in.ripple_correlation_m, 1e-3));
+  const double tau_s = config_.bounded_force_correlation_s;
+  const double bounded_n = config_.bounded_aero_force_noise_per_sqrt_hz * std::abs(aero);
+  const double bounded_mps = bounded_n / m_eff * std::sqrt(tau_s / 2.0);
+  const Decay ripple = lumped({in.ripple_sigma_mps, phi_road}, {bounded_mps, std::exp(-dt / tau_s)});
+  f(CrrState::ripple, CrrState::ripple) = ripple.phi;
+  next(CrrState::ripple) = ripple.phi * x(CrrState::ripple);
+  q(CrrState::ripple, CrrState::ripple) = ripple.q;
   const Vec x_before = core_.x();
   const Mat p_before = core_.p();
   core_.predict(next, f, q);

@@ -40,7 +40,7 @@ Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, con
   const double gain = model::wheel_force_per_flywheel_nm(tm, 0.73);
   const double weight = tm.mass_kg * model::kGravity_mps2;
   Drive d;
-  double v = 20.0, ripple = 0;
+  double v = 20.0, ripple = 0, offset = 0;
   const auto steps = static_cast<std::size_t>(seconds / kDt);
   for (std::size_t k = 0; k < steps; ++k) {
     const double t = static_cast<double>(k) * kDt;
@@ -61,7 +61,7 @@ Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, con
     in.usable = true;
     in.ripple_sigma_mps = ripple_sigma_mps;
     in.ripple_correlation_m = kRippleCorrelation_m;
-    // The force noise the filter assumes: a floor and a share of the aero drag.
+    // The white force noise the filter assumes: a floor and a share of the aero drag.
     const double w = std::hypot(cfg.force_noise_n, cfg.aero_force_noise_per_sqrt_hz * aero) * std::sqrt(1.0 / kDt) * n01(rng);
     // The signals understate the flywheel torque by the bias the filter only considers.
     v += kDt * (tractive + gain * torque_bias_nm - resist + w) / m_eff;
@@ -69,7 +69,11 @@ Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, con
     // A rough road's ripple: the speed its heights lend and take back, correlated along the road.
     const double phi = std::exp(-v * kDt / kRippleCorrelation_m);
     ripple = phi * ripple + ripple_sigma_mps * std::sqrt(1.0 - phi * phi) * n01(rng);
-    d.speed_meas.push_back(v + ripple + kSpeedSigma * n01(rng));
+    // The force errors that integrate to nothing: a speed offset correlated in time.
+    const double tau = cfg.bounded_force_correlation_s, phi_b = std::exp(-kDt / tau);
+    const double bounded_mps = cfg.bounded_aero_force_noise_per_sqrt_hz * aero / m_eff * std::sqrt(tau / 2.0);
+    offset = phi_b * offset + bounded_mps * std::sqrt(1.0 - phi_b * phi_b) * n01(rng);
+    d.speed_meas.push_back(v + ripple + offset + kSpeedSigma * n01(rng));
     d.crr_true.push_back(c);
   }
   return d;
@@ -100,7 +104,9 @@ TEST(CrrFilter, ConvergesToTheTrueCrrAndCdaWhenSpeedVaries) {
   EXPECT_LT(f.crr_sigma(), 0.0002);
   EXPECT_NEAR(f.cda_m2(), 5.8, 3 * std::sqrt(f.core().p()(CrrState::cda, CrrState::cda)));
   EXPECT_TRUE(f.crr_identified());
-  EXPECT_EQ(f.counters().outliers, 0u);
+  // The gate rejects 1e-4 of consistent updates: 1.2 of these 12,000 on average.
+  EXPECT_LE(f.counters().outliers, 5u);
+  EXPECT_NEAR(f.counters().mean_nis(), 1.0, 0.05);
 }
 
 TEST(CrrFilter, NeesAndNisLieInTheir95PercentBandsWithATorqueBiasOnlyConsidered) {

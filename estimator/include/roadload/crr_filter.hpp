@@ -1,6 +1,6 @@
 #pragma once
-// The real-time CRR filter: a fixed-size EKF over [speed, CRR, CdA, torque bias, grade error]
-// driven by the force balance (model/longitudinal.hpp) and corrected by measured speed. Push API in
+// The real-time CRR filter: a fixed-size EKF over [speed, CRR, CdA, torque bias, grade error,
+// ripple] driven by the force balance (model/longitudinal.hpp) and corrected by measured speed. Push API in
 // capture time; no I/O and no heap after construction. CRR, CdA, a flywheel torque bias and the
 // grade's error are confounded at one steady speed in one gear: the last three carry priors
 // (config, and the grade profile's sigma along the road), and the filter reports CRR as identified
@@ -17,8 +17,8 @@ namespace roadload {
 
 // Named state indices; the size is fixed at compile time.
 struct CrrState {
-  // ripple: the speed the road's roughness lends and takes back (road_roughness.hpp); the wheel
-  // speed is speed + ripple.
+  // ripple: the speed the road's roughness lends and takes back (road_roughness.hpp), with the
+  // force errors that integrate to nothing; the wheel speed is speed + ripple.
   enum Index : int { speed = 0, crr = 1, cda = 2, torque_bias = 3, grade_error = 4, ripple = 5, count = 6 };
 };
 static_assert(CrrState::count == 6, "CrrFilter matrices are sized by CrrState::count");
@@ -33,8 +33,16 @@ struct CrrFilterConfig {
   // share of the aero drag (gusts scale with it). With the roughness ripple (its own state) both set
   // so that the mean NIS is near 1 on the simulated Mainline (30 mph) and highways (55 mph); without
   // it they had to be 20 N and 0.03, and read the ripple as force a trip would average.
-  double force_noise_n = 8.0;
-  double aero_force_noise_per_sqrt_hz = 0.020;
+  double force_noise_n = 8;
+  double aero_force_noise_per_sqrt_hz = 0.010;
+  // Force errors whose time integral stays bounded: a torque sampled before or after the speed it
+  // meets, the torque changing between EEC1 frames. At a tick they look like white force noise of
+  // this density (a share of the aero drag, as the speed sets how fast the road changes the
+  // torque); over a trip they move the speed, not the energy. They ride on the ripple state as a
+  // speed offset correlated over `bounded_force_correlation_s`. The split from the white share is
+  // sized with CdA and the engine's losses known (docs/estimator.md, "Noise").
+  double bounded_aero_force_noise_per_sqrt_hz = 0.0173;
+  double bounded_force_correlation_s = 5.0;
   double unusable_force_noise_n = 20000.0; // while braking or shifting: speed follows the measurements
   double crr_walk_per_sqrt_s = 3e-4;       // CRR changes from pavement to pavement (no cells known)
   double cda_walk_per_sqrt_s = 1e-4;
