@@ -1,6 +1,7 @@
 # The standard library, Eigen and GoogleTest headers make up most of each file's compile time, and
 # CI has 20 minutes on 2 cores: every target parses them once, not once per file.
 option(ROADLOAD_PCH "Precompile the standard library, Eigen and GoogleTest headers" ON)
+find_package(Eigen3 REQUIRED NO_MODULE)
 
 set(ROADLOAD_PCH_HEADERS
   <algorithm> <array> <cmath> <cstdint> <cstdio> <filesystem> <fstream> <map> <memory> <optional>
@@ -19,6 +20,8 @@ function(roadload_precompiled_headers target)
   endif()
   # One header per kind for the whole build, made by its first target and reused by the others:
   # the flags are the same everywhere, and the definitions that differ appear in no header of it.
+  # Eigen is in the header even for targets that use none of it (the simulator, the drivers).
+  target_link_libraries(${target} PRIVATE Eigen3::Eigen)
   get_property(owner GLOBAL PROPERTY ROADLOAD_PCH_OWNER_${kind})
   if(owner)
     target_precompile_headers(${target} REUSE_FROM ${owner})

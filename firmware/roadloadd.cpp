@@ -13,8 +13,11 @@
 #include "roadload/firmware/daemon.hpp"
 #include "roadload/firmware/sources.hpp"
 #include "roadload/firmware/status_log.hpp"
+#include "roadload/io/posix_time.hpp"
+#include "roadload/recording/metadata_vehicle.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/route_file.hpp"
+#include "roadload/vehicle_file.hpp"
 
 namespace {
 
@@ -27,6 +30,7 @@ int fail(const std::string& what) {
 }
 
 struct Estimation {
+  Vehicle vehicle;
   j1939::Database db;
   RouteGeometry route;
   std::vector<CellSpan> cells;
@@ -36,6 +40,9 @@ struct Estimation {
 };
 
 std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) {
+  auto vehicle = load_vehicle_file(c.estimator.vehicle.empty() ? default_vehicle_path() : resolve_vehicle(c.estimator.vehicle));
+  if (!vehicle) return vehicle.error();
+  e.vehicle = std::move(vehicle.value());
   if (auto err = load_dbc_file(e.db, core_dbc_path())) return err;
   if (c.estimator.route.empty()) return std::nullopt;
   auto route = load_route_file(resolve_route(c.estimator.route));
@@ -71,8 +78,8 @@ std::optional<RecorderConfig> recorder_config(const RecordingConfig& r) {
   if (!r.enabled) return std::nullopt;
   RecorderConfig rc;
   rc.data_dir = r.data_dir;
-  rc.fsync_interval = Nanoseconds{static_cast<std::int64_t>(r.fsync_interval_s * 1e9)};
-  rc.segment_max = Nanoseconds{static_cast<std::int64_t>(r.segment_max_s * 1e9)};
+  rc.fsync_interval = std::chrono::round<Nanoseconds>(r.fsync_interval);
+  rc.segment_max = std::chrono::round<Nanoseconds>(r.segment_max);
   rc.segment_max_bytes = static_cast<std::uint64_t>(r.segment_max_mib * 1048576.0);
   rc.quota_bytes = static_cast<std::uint64_t>(r.quota_mib * 1048576.0);
   return rc;
@@ -80,8 +87,7 @@ std::optional<RecorderConfig> recorder_config(const RecordingConfig& r) {
 
 // Runs until SIGTERM/SIGINT (or the replays end, with --exit-when-done); SIGHUP reopens and rotates.
 void serve(Daemon& daemon, StatusLog& log, const CommandLine& cl, const sigset_t& signals) {
-  const double interval_s = cl.config.status.interval_s;
-  const timespec wait{static_cast<time_t>(interval_s), static_cast<long>((interval_s - static_cast<double>(static_cast<time_t>(interval_s))) * 1e9)};
+  const timespec wait = io::to_timespec(std::chrono::round<Nanoseconds>(cl.config.status.interval));
   for (;;) {
     const int sig = sigtimedwait(&signals, nullptr, &wait);
     if (sig == SIGTERM || sig == SIGINT) return;
@@ -128,7 +134,9 @@ int run(const CommandLine& cl) {
   if (setup.db == nullptr) notes.push_back("estimator: no route configured, CRR not estimated");
   setup.route = est.route;
   setup.cells = est.cells;
-  setup.analyzer = recording::config_from_vehicle(setup.metadata.vehicle, std::nullopt);
+  // A replay's recording states its truck over the configured vehicle.
+  const Vehicle vehicle = recording::vehicle_from_metadata(est.vehicle, setup.metadata);
+  setup.analyzer = recording::analyzer_config_for(vehicle, setup.metadata, std::nullopt);
   setup.analyzer.roughness_iri_m_per_km = est.iri_m_per_km;
   model::TruckModel& truck = setup.analyzer.filter.truck;
   truck.engine_losses = est.engine_losses;
@@ -136,7 +144,7 @@ int run(const CommandLine& cl) {
   if (c.estimator.cda_sigma_m2 > 0) truck.cda_sigma_m2 = c.estimator.cda_sigma_m2;
   truck.cda_torque_bias_correlation = c.estimator.cda_torque_correlation;
   if (setup.db != nullptr) {
-    recording::LayoutResult layout = recording::axle_layout(setup.metadata, "accelerometers");
+    recording::LayoutResult layout = recording::axle_layout(setup.metadata, vehicle, "accelerometers");
     if (layout.layout) {
       setup.layout = std::move(layout.layout);
       setup.accelerometers = recording::accelerometers(setup.metadata);

@@ -31,7 +31,7 @@ constexpr const char* kHelp =
     "Per cell also: the fuel breakdown (engine, driveline, accessories, aero, rolling, grade,\n"
     "acceleration, braking; litres at 35.8 MJ/L) and, from the accelerometers, the contact force\n"
     "per axle (report Eq. 2.1) and the power the dampers and tires dissipate (dynamic rolling\n"
-    "resistance, Eq. 2.7-2.8; 20,000 N s/m per axle, 4,000 N s/m per tire). Per pavement group\n"
+    "resistance, Eq. 2.7-2.8; the vehicle file's dampers and tire damping). Per pavement group\n"
     "(surface and panel length): PSDs, vibration modes and the concrete joint line.\n\n"
     "  --route R       route file or built-in route name (config/routes): geometry, grade, cells, IRI\n"
     "  --out DIR       write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval; fuel breakdown per cell\n"
@@ -41,8 +41,8 @@ constexpr const char* kHelp =
     "  --truth DIR     a simulation's ground truth: the true CRR beside each cell, RMSE and coverage, and\n"
     "                  the true fuel breakdown beside the estimate\n"
     "  --estimate-cda  fit CdA from the drive (drives across speeds); otherwise CdA keeps its prior\n"
-    "  --cda M2 [--cda-sigma M2]  CdA's prior and its standard error (default 6.2 +- 0.6: the MnROAD\n"
-    "                  truck's, known to 10 %); a measured value, for example `roadload calibrate --aero`\n"
+    "  --cda M2 [--cda-sigma M2]  CdA's prior and its standard error (default: the vehicle file's, the\n"
+    "                  type's value and spread); a measured value, for example `roadload calibrate --aero`\n"
     "  --cda-torque-correlation R  between that CdA's error and the flywheel torque's (-1..1; what\n"
     "                  `roadload calibrate --aero` prints: its CdA took up the engine-loss table's error)\n"
     "  --grade FILE    grade and its sigma from FILE (`roadload grade`) instead of the route's survey\n"
@@ -50,7 +50,7 @@ constexpr const char* kHelp =
     "                  instead of EEC3's whole percent; engine speeds outside it are not used\n"
     "  --survey-sigma M  the route survey's height error, carried into the force balance (default 0:\n"
     "                  the survey taken as exact)\n"
-    "  --mass KG       vehicle mass (default: meta.toml vehicle.mass_kg, else 36152)\n"
+    "  --mass KG       vehicle mass (default: meta.toml vehicle.mass_kg, else the vehicle file's axle loads)\n"
     "  --dbc FILE      load FILE after the built-in definitions; repeatable\n"
     "  -q, --quiet     no table on standard output\n"
     "  -h, --help      this text\n";
@@ -117,7 +117,9 @@ int run_analyze(Args args) {
     std::fprintf(stderr, "roadload analyze: %s\n", reader.error().to_string().c_str());
     return kExitNoInput;
   }
-  AnalyzerConfig cfg = recording::config_from_vehicle(reader.value().metadata().vehicle, mass);
+  auto vehicle = recording_vehicle("analyze", reader.value().metadata());
+  if (const int* rc = std::get_if<int>(&vehicle)) return *rc;
+  AnalyzerConfig cfg = recording::analyzer_config_for(std::get<Vehicle>(vehicle), reader.value().metadata(), mass);
   cfg.estimate_cda = estimate_cda;
   if (cda_m2) cfg.filter.truck.cda_prior_m2 = *cda_m2;
   if (cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *cda_sigma_m2;
@@ -148,7 +150,7 @@ int run_analyze(Args args) {
   std::optional<ContactForces> contact;
   std::optional<VibrationAnalysis> vibration;
   const PavementGroups groups = pavement_groups(route.file.cells);
-  auto layout = recording::axle_layout(reader.value().metadata(), recording + "/meta.toml");
+  auto layout = recording::axle_layout(reader.value().metadata(), std::get<Vehicle>(vehicle), recording + "/meta.toml");
   if (!layout.layout) {
     std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.why_not.c_str());
   }

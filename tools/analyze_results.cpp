@@ -10,7 +10,6 @@
 #include "roadload/spectra/dynamic_power.hpp"
 #include "roadload/recording/writer.hpp"
 #include "roadload/tire_crr.hpp"
-#include "roadload/toml_fields.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -31,56 +30,7 @@ const double* true_crr(const Truth* t, const std::string& cell) {
   return it == t->crr.end() ? nullptr : &it->second;
 }
 
-Parsed<Truth> read_truth_cells(const std::string& path) {
-  constexpr std::string_view kColumns[] = {"cell", "crr", "damper_power_w", "tire_power_w", "time_s"};
-  auto csv = recording::CsvReader::open(path, kColumns);
-  if (!csv) return csv.error();
-  Truth t;
-  std::span<const std::string_view> row;
-  for (recording::CsvReader::Status st; (st = csv.value().next(row)) != recording::CsvReader::Status::end;) {
-    if (st == recording::CsvReader::Status::bad_row) return *csv.value().error();
-    std::array<double, 4> v{};
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      const auto value = recording::parse_f64(row[i + 1]);
-      if (!value) return csv.value().field_error(i + 1, "expected a number");
-      v[i] = *value;
-    }
-    const std::string cell(row[0]);
-    t.crr[cell] = v[0];
-    t.damper_w[cell] = v[1];
-    t.tire_w[cell] = v[2];
-    t.time_s[cell] = v[3];
-  }
-  if (csv.value().error()) return *csv.value().error();
-  return t;
-}
-
-Parsed<std::map<std::string, double>> read_truth_energy(const std::string& path) {
-  std::map<std::string, double> energy;
-  auto parsed = detail::parse_toml_file(path);
-  if (!parsed) return parsed.error();
-  const toml::table* section = parsed.value()["fuel_breakdown"].as_table();
-  if (section == nullptr) return energy;
-  const detail::TomlFields f(path);
-  try {
-    for (const auto& [key, node] : *section) energy[std::string(key.str())] = f.required_number(*section, key.str(), "fuel_breakdown.");
-  } catch (const detail::TomlFailure& e) {
-    return e.error;
-  }
-  return energy;
-}
-
 }  // namespace
-
-Parsed<Truth> read_truth(const std::string& dir) {
-  auto cells = read_truth_cells(dir + "/cells.csv");
-  if (!cells) return cells.error();
-  Truth t = std::move(cells.value());
-  auto energy = read_truth_energy(dir + "/truth.toml");
-  if (!energy) return energy.error();
-  t.energy_j = std::move(energy.value());
-  return t;
-}
 
 void print_cells(const std::vector<CellResult>& cells, const Truth* truth) {
   std::printf("%-6s %9s %9s %9s %7s %9s%s\n", "cell", "crr", "crr_lo", "crr_hi", "samples", "roll_l", truth ? "     truth  inside" : "");

@@ -19,12 +19,12 @@ namespace {
 // truck's accelerometers, the tires' own CRR (tire_crr.hpp). The road's dissipation grows with
 // speed; left in, it would be fitted as drag.
 Parsed<std::vector<CellResult>> analyse(const std::string& path, const j1939::Database& db, const LoadedRoute& route,
-                                        const std::vector<CellSpan>& cells, const AnalyzerConfig& cfg) {
+                                        const std::vector<CellSpan>& cells, const AnalyzerConfig& cfg, const Vehicle& vehicle) {
   auto reader = recording::RecordingReader::open(path);
   if (!reader) return reader.error();
   DriveAnalyzer analyzer(db, route.geometry, cells, cfg);
   std::optional<VibrationAnalysis> vibration;
-  const recording::LayoutResult layout = recording::axle_layout(reader.value().metadata(), path + "/meta.toml");
+  const recording::LayoutResult layout = recording::axle_layout(reader.value().metadata(), vehicle, path + "/meta.toml");
   if (layout.layout) {
     const PavementGroups groups = pavement_groups(route.file.cells);
     vibration.emplace(*layout.layout, recording::accelerometers(reader.value().metadata()), cells.size(), groups.cell_group,
@@ -62,14 +62,16 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
       std::fprintf(stderr, "roadload calibrate: %s\n", meta.error().to_string().c_str());
       return kExitNoInput;
     }
-    AnalyzerConfig cfg = recording::config_from_vehicle(meta.value().metadata().vehicle, std::nullopt);
+    auto vehicle = recording_vehicle("calibrate", meta.value().metadata());
+    if (const int* rc = std::get_if<int>(&vehicle)) return *rc;
+    AnalyzerConfig cfg = recording::analyzer_config_for(std::get<Vehicle>(vehicle), meta.value().metadata(), std::nullopt);
     cfg.filter.truck.engine_losses = losses.value();
     cfg.roughness_iri_m_per_km = route.file.default_iri_m_per_km;
     if (o.cda_prior_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_prior_m2;
     prior_m2 = cfg.filter.truck.cda_prior_m2;
     std::optional<ParseError> failed;
     drives[k] = analyse_for_aero(cfg, [&](const AnalyzerConfig& c) {
-      auto r = analyse(path, db, route, cells, c);
+      auto r = analyse(path, db, route, cells, c, std::get<Vehicle>(vehicle));
       if (r) return std::move(r.value());
       failed = r.error();
       return std::vector<CellResult>{};

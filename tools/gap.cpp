@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "command.hpp"
-#include "gap/engine.hpp"
-#include "gap/model_choice.hpp"
-#include "gap/output.hpp"
+#include "roadload/gap/engine.hpp"
+#include "roadload/gap/model_choice.hpp"
+#include "roadload/gap/output.hpp"
 #include "gap_commands.hpp"
 #include "options.hpp"
 #include "roadload/definitions.hpp"

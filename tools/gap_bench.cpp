@@ -5,7 +5,7 @@
 #include <string>
 
 #include "command.hpp"
-#include "gap/bench.hpp"
+#include "roadload/gap/bench.hpp"
 #include "gap_commands.hpp"
 #include "roadload/definitions.hpp"
 

@@ -3,8 +3,8 @@
 #include <string>
 
 #include "command.hpp"
-#include "gap/output.hpp"
-#include "gap/tables.hpp"
+#include "roadload/gap/output.hpp"
+#include "roadload/gap/tables.hpp"
 #include "gap_commands.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/results/json.hpp"

@@ -4,6 +4,8 @@
 #include <cstdio>
 
 #include "roadload/definitions.hpp"
+#include "roadload/recording/metadata_vehicle.hpp"
+#include "roadload/vehicle_file.hpp"
 
 namespace roadload::cli {
 
@@ -105,6 +107,16 @@ std::variant<LoadedRoute, int> load_route(std::string_view command, const std::s
     return kExitDataErr;
   }
   return LoadedRoute{std::move(route.value()), std::move(*geometry)};
+}
+
+std::variant<Vehicle, int> recording_vehicle(std::string_view command, const recording::Metadata& meta) {
+  auto vehicle = load_vehicle_file(default_vehicle_path());
+  if (!vehicle) {
+    std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(),
+                 vehicle.error().to_string().c_str());
+    return vehicle.error().line > 0 ? kExitDataErr : kExitNoInput;
+  }
+  return recording::vehicle_from_metadata(vehicle.value(), meta);
 }
 
 }  // namespace roadload::cli

@@ -10,8 +10,10 @@
 
 #include "command.hpp"
 #include "roadload/j1939/database.hpp"
+#include "roadload/recording/metadata.hpp"
 #include "roadload/route_file.hpp"
 #include "roadload/route_geometry.hpp"
+#include "roadload/vehicle.hpp"
 
 namespace roadload::cli {
 
@@ -51,5 +53,9 @@ struct LoadedRoute {
   RouteGeometry geometry;
 };
 std::variant<LoadedRoute, int> load_route(std::string_view command, const std::string& name);
+
+// The vehicle a recording was made with: the default vehicle file with what its meta.toml states
+// over it; on failure the error is printed as above and the exit code returned.
+std::variant<Vehicle, int> recording_vehicle(std::string_view command, const recording::Metadata& meta);
 
 }  // namespace roadload::cli

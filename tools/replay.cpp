@@ -13,6 +13,7 @@
 #include "command.hpp"
 #include "options.hpp"
 #include "roadload/can/socketcan_sender.hpp"
+#include "roadload/io/posix_time.hpp"
 #include "roadload/io/replay_origin.hpp"
 #include "replay_injector.hpp"
 #include "roadload/recording/candump.hpp"
@@ -52,21 +53,14 @@ constexpr const char* kHelp =
 
 // Steps CLOCK_REALTIME as an NTP daemon stepping a gateway's clock would.
 bool step_wall_clock(Nanoseconds by) {
-  timespec ts{};
-  clock_gettime(CLOCK_REALTIME, &ts);
-  const std::int64_t ns = static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec + by.count();
-  ts = {static_cast<time_t>(ns / 1'000'000'000), static_cast<long>(ns % 1'000'000'000)};
+  const timespec ts = io::to_timespec(io::read_clock(CLOCK_REALTIME) + by);
   return clock_settime(CLOCK_REALTIME, &ts) == 0;
 }
 
-std::int64_t mono_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
+std::int64_t mono_ns() { return io::read_clock(CLOCK_MONOTONIC).count(); }
 
 void sleep_until_ns(std::int64_t t) {
-  const timespec ts{static_cast<time_t>(t / 1'000'000'000), static_cast<long>(t % 1'000'000'000)};
+  const timespec ts = io::to_timespec(Nanoseconds{t});
   clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
 }
 

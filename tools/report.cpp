@@ -7,7 +7,7 @@
 #include "analyze_results.hpp"
 #include "command.hpp"
 #include "options.hpp"
-#include "report/report_page.hpp"
+#include "roadload/report/report_page.hpp"
 
 namespace roadload::cli {
 namespace {

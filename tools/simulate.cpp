@@ -101,7 +101,7 @@ int run_simulate(Args args) {
   for (const auto& e : effects) {
     if (auto err = scenario.value().effects.parse_and_set(e)) return opt.fail("--effect " + *err);
   }
-  if (duration) scenario.value().duration_s = duration;
+  if (duration) scenario.value().duration = Seconds{*duration};
 
   j1939::Database db;
   if (auto err = load_dbc_file(db, core_dbc_path())) {

@@ -32,92 +32,83 @@ Found find_sensor(std::span<const SensorPlacement> sensors, std::string_view bas
   return best;
 }
 
-std::optional<double> number(const std::map<std::string, double>& vehicle, const std::string& key) {
-  const auto it = vehicle.find(key);
-  if (it == vehicle.end()) return std::nullopt;
-  return it->second;
+// An axle's own frame sensor first; else the unit's nearest, same side first.
+struct Frame {
+  Found sensor;
+  std::size_t axle = 0;
+};
+Frame find_frame(std::span<const SensorPlacement> sensors, const Vehicle& v, std::size_t i, bool left) {
+  Frame best{{}, i};
+  double best_score = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < v.axles.size(); ++j) {
+    if (v.axles[j].unit != v.axles[i].unit) continue;
+    const Found f = find_sensor(sensors, v.axles[j].frame_mount);
+    if (f.id < 0) continue;
+    const double score =
+        std::abs(v.axles[j].position_m - v.axles[i].position_m) + (j == i ? -1e6 : 0.0) + (f.left == left ? 0.0 : 1e3);
+    if (score < best_score) {
+      best_score = score;
+      best = {f, j};
+    }
+  }
+  return best;
 }
 
 }  // namespace
 
-Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, const std::map<std::string, double>& vehicle,
+Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, const Vehicle& vehicle,
                                      std::string_view source, LayoutOptions options) {
   auto fail = [&](std::string field, std::string message) {
     return ParseError{std::string(source), 0, std::move(field), std::move(message)};
   };
-  // Axle positions, for ranking the frame sensors of a unit.
-  std::array<double, kMnroadAxles.size()> position{};
-  for (std::size_t i = 0; i < kMnroadAxles.size(); ++i) {
-    position[i] = number(vehicle, std::string(kMnroadAxles[i].name) + "_position_m").value_or(kMnroadAxles[i].position_m);
-  }
   AxleLayout layout;
-  bool any_load = false;
-  for (std::size_t i = 0; i < kMnroadAxles.size(); ++i) {
-    const AxleDefaults& d = kMnroadAxles[i];
-    const std::string load_key = std::string(d.name) + "_load_kg";
-    const auto load = number(vehicle, load_key);
-    if (!load) continue;
-    any_load = true;
-    if (!(*load > 0) || !std::isfinite(*load)) return fail("vehicle." + load_key, "axle load must be a positive number");
-    const std::string unsprung_key = std::string(d.name) + "_unsprung_kg";
-    const double unsprung = number(vehicle, unsprung_key).value_or(d.unsprung_kg);
-    if (!(unsprung > 0) || !(unsprung < *load)) {
-      return fail("vehicle." + unsprung_key, "unsprung mass " + std::to_string(unsprung) + " kg must be above 0 and below the axle load " +
-                                                 std::to_string(*load) + " kg");
+  if (vehicle.axles.empty()) return fail("vehicle", "the vehicle has no axles");
+  for (std::size_t i = 0; i < vehicle.axles.size(); ++i) {
+    const VehicleAxle& d = vehicle.axles[i];
+    if (!(d.load_kg > 0) || !std::isfinite(d.load_kg)) return fail("vehicle." + d.name + "_load_kg", "axle load must be a positive number");
+    if (!(d.unsprung_kg > 0) || !(d.unsprung_kg < d.load_kg)) {
+      return fail("vehicle." + d.name + "_unsprung_kg", "unsprung mass " + std::to_string(d.unsprung_kg) +
+                                                            " kg must be above 0 and below the axle load " +
+                                                            std::to_string(d.load_kg) + " kg");
     }
-
     auto skip_or_fail = [&](std::string field, std::string message) -> std::optional<ParseError> {
       if (!options.skip_axles_without_sensors) return fail(std::move(field), std::move(message));
-      layout.skipped.push_back(std::string(d.name) + ": " + message);
+      layout.skipped.push_back(d.name + ": " + message);
       return std::nullopt;
     };
-    const Found axle = find_sensor(sensors, d.axle_position);
+    const Found axle = find_sensor(sensors, d.axle_mount);
     if (axle.id < 0) {
-      if (auto e = skip_or_fail("[[sensor]] position", "no accelerometer at '" + std::string(d.axle_position) +
-                                                             "-left' (or -right) for axle " + d.name)) {
+      if (auto e = skip_or_fail("[[sensor]] position", "no accelerometer at '" + d.axle_mount + "-left' (or -right) for axle " + d.name)) {
         return *e;
       }
       continue;
     }
-    // Own frame sensor first; else the nearest of the unit, same side first.
-    Found frame;
-    std::size_t frame_axle = i;
-    double best_score = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < kMnroadAxles.size(); ++j) {
-      if (std::string_view(kMnroadAxles[j].unit) != d.unit) continue;
-      const Found f = find_sensor(sensors, kMnroadAxles[j].frame_position);
-      if (f.id < 0) continue;
-      const double score = std::abs(position[j] - position[i]) + (j == i ? -1e6 : 0.0) + (f.left == axle.left ? 0.0 : 1e3);
-      if (score < best_score) {
-        best_score = score;
-        frame = f;
-        frame_axle = j;
-      }
-    }
-    if (frame.id < 0) {
-      if (auto e = skip_or_fail("[[sensor]] position", "no frame accelerometer on the " + std::string(d.unit) + " for axle " + d.name +
-                                                             " (looked for '" + d.frame_position + "-left' and the unit's other frame positions)")) {
+    const Frame frame = find_frame(sensors, vehicle, i, axle.left);
+    if (frame.sensor.id < 0) {
+      if (auto e = skip_or_fail("[[sensor]] position", "no frame accelerometer on the " + d.unit + " for axle " + d.name +
+                                                             " (looked for '" + d.frame_mount +
+                                                             "-left' and the unit's other frame positions)")) {
         return *e;
       }
       continue;
     }
-    if (axle.id > 255 || frame.id > 255) {
-      return fail("[[sensor]] id", "accelerometer id above 255 for axle " + std::string(d.name) + " (accel.csv sensor is 0-255)");
+    if (axle.id > 255 || frame.sensor.id > 255) {
+      return fail("[[sensor]] id", "accelerometer id above 255 for axle " + d.name + " (accel.csv sensor is 0-255)");
     }
     if (layout.axles.size() == kMaxContactAxles) break;
     AxleContact a;
     a.name = d.name;
-    a.load_kg = *load;
-    a.unsprung_kg = unsprung;
-    a.sprung_kg = *load - unsprung;
-    a.position_m = position[i];
+    a.load_kg = d.load_kg;
+    a.unsprung_kg = d.unsprung_kg;
+    a.sprung_kg = d.load_kg - d.unsprung_kg;
+    a.position_m = d.position_m;
     a.axle_sensor = static_cast<std::uint8_t>(axle.id);
-    a.frame_sensor = static_cast<std::uint8_t>(frame.id);
-    a.frame_of = kMnroadAxles[frame_axle].name;
-    a.frame_ahead_m = position[i] - position[frame_axle];
+    a.frame_sensor = static_cast<std::uint8_t>(frame.sensor.id);
+    a.frame_of = vehicle.axles[frame.axle].name;
+    a.frame_ahead_m = d.position_m - vehicle.axles[frame.axle].position_m;
+    a.suspension = d.suspension;
     layout.axles.push_back(std::move(a));
   }
-  if (!any_load) return fail("vehicle.front_load_kg", "no axle load in [vehicle] (<axle>_load_kg for front, drive1, drive2, trailer1, trailer2)");
   if (layout.axles.empty()) {
     return fail("[[sensor]] position", "no axle has both an axle and a frame accelerometer (" +
                                            (layout.skipped.empty() ? std::string() : layout.skipped.front()) + ")");
@@ -166,10 +157,10 @@ void ContactForces::History::add(CaptureTime t, double d) {
   size = std::min(size + 1, kFrameHistory);
 }
 
-ContactForces::History::Found ContactForces::History::at(CaptureTime t, double max_gap_s, double& out) const {
+ContactForces::History::Found ContactForces::History::at(CaptureTime t, Seconds max_gap, double& out) const {
   if (size == 0) return Found::stale;
   const std::int64_t want = to_ns(t);
-  const auto max_gap_ns = static_cast<std::int64_t>(max_gap_s * 1e9);
+  const auto max_gap_ns = std::chrono::duration_cast<Nanoseconds>(max_gap).count();
   auto index = [&](std::size_t k) { return (next + kFrameHistory - size + k) % kFrameHistory; };  // k = 0: oldest
   const std::size_t newest = index(size - 1);
   if (want >= t_ns[newest]) {
@@ -224,7 +215,7 @@ void ContactForces::set_axle_cells(CaptureTime t, std::span<const int> cells, do
 
 bool ContactForces::update_sensor(SensorState& st, const AccelSample& s) {
   const double z = s.z_mps2;
-  if (st.started && to_seconds(s.t - st.last) > config_.gap_reset_s) {
+  if (st.started && to_seconds(s.t - st.last) > config_.gap_reset.count()) {
     st.started = false;
     ++restarts_;
   }
@@ -241,7 +232,7 @@ bool ContactForces::update_sensor(SensorState& st, const AccelSample& s) {
   st.mean += alpha * (z - st.mean);
   st.deviation = z - st.mean;
   st.last = s.t;
-  return to_seconds(s.t - st.first) >= config_.warmup_s;
+  return to_seconds(s.t - st.first) >= config_.warmup.count();
 }
 
 void ContactForces::push(const AccelSample& s) {
@@ -261,7 +252,7 @@ void ContactForces::push(const AccelSample& s) {
     return;
   }
   const SensorState& frame = sensors_[layout_.axles[axle].frame_sensor];
-  if (!frame.started || to_seconds(frame.last - frame.first) < config_.warmup_s) {
+  if (!frame.started || to_seconds(frame.last - frame.first) < config_.warmup.count()) {
     ++c.no_frame;
     return;
   }
@@ -269,11 +260,11 @@ void ContactForces::push(const AccelSample& s) {
   const SensorRole& frame_role = roles_[a.frame_sensor];
   if (frame_role.history != kNone && a.frame_ahead_m > 0) {
     // A borrowed frame ahead of this axle: its body motion frame_ahead_m / speed ago.
-    const bool placed = position_set_ && to_seconds(s.t - position_t_) <= config_.max_position_age_s;
+    const bool placed = position_set_ && to_seconds(s.t - position_t_) <= config_.max_position_age.count();
     if (placed && speed_mps_ >= config_.min_delay_speed_mps) {  // false for NaN
       const auto delay = Nanoseconds{std::llround(a.frame_ahead_m / speed_mps_ * 1e9)};
       double a_c = 0;
-      switch (histories_[static_cast<std::size_t>(frame_role.history)].at(s.t - delay, config_.max_pair_age_s, a_c)) {
+      switch (histories_[static_cast<std::size_t>(frame_role.history)].at(s.t - delay, config_.max_pair_age, a_c)) {
         case History::Found::ok:
           ++c.paired;
           add_force(axle, s.t, st.deviation, a_c);
@@ -290,7 +281,7 @@ void ContactForces::push(const AccelSample& s) {
     ++c.undelayed;  // the frame sensor is behind this axle: its motion then is still to come
   }
   const auto age = s.t >= frame.last ? s.t - frame.last : frame.last - s.t;
-  if (to_seconds(age) > config_.max_pair_age_s) {
+  if (to_seconds(age) > config_.max_pair_age.count()) {
     ++c.stale_frame;
     return;
   }
@@ -306,7 +297,7 @@ void ContactForces::add_force(std::size_t axle, CaptureTime t, double a_w, doubl
   trip_[axle].fz.add(fz);
   trip_[axle].dynamic.add(dynamic);
   const int cell = cell_[axle];
-  const bool placed = position_set_ && to_seconds(t - position_t_) <= config_.max_position_age_s;
+  const bool placed = position_set_ && to_seconds(t - position_t_) <= config_.max_position_age.count();
   if (!placed || cell < 0 || static_cast<std::size_t>(cell) >= cell_count_) {
     ++counters_[axle].no_cell;
     return;

@@ -58,11 +58,11 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
   const double v_air = v + in.headwind_mps;
   const double weight = m * model::kGravity_mps2;
   const double half_rho = 0.5 * in.air_density_kgpm3;
-  const double aero = half_rho * x(CrrState::cda) * v_air * std::abs(v_air);
-  const double rolling = x(CrrState::crr) * weight * std::cos(in.grade_rad);
+  const model::Resistances r = model::resistances(m, x(CrrState::crr), x(CrrState::cda), in.air_density_kgpm3, v_air,
+                                                  in.grade_rad, x(CrrState::grade_error));
+  const double aero = r.aero_n;
   const double bias_n = in.wheel_force_per_flywheel_nm * x(CrrState::torque_bias);
-  const double grade_n = weight * (std::sin(in.grade_rad) + std::cos(in.grade_rad) * x(CrrState::grade_error));
-  const double accel = (in.tractive_n + bias_n - aero - grade_n - rolling) / m_eff;
+  const double accel = (in.tractive_n + bias_n - aero - r.grade_n - r.rolling_n) / m_eff;
 
   Vec next = x;
   Mat f = Mat::Identity();
@@ -96,7 +96,7 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
   // force errors that integrate to nothing, one in time (config); each tick's share of the latter
   // has the density of white force noise of the same size.
   const double phi_road = std::exp(-std::abs(v) * dt / std::max(in.ripple_correlation_m, 1e-3));
-  const double tau_s = config_.bounded_force_correlation_s;
+  const double tau_s = config_.bounded_force_correlation.count();
   const double bounded_n = config_.bounded_aero_force_noise_per_sqrt_hz * std::abs(aero);
   const double bounded_mps = bounded_n / m_eff * std::sqrt(tau_s / 2.0);
   const Decay ripple = lumped({in.ripple_sigma_mps, phi_road}, {bounded_mps, std::exp(-dt / tau_s)});

@@ -4,32 +4,48 @@
 #include <cmath>
 #include <numbers>
 
-#include "roadload/running_stats.hpp"
-
 namespace roadload {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr std::uint64_t kNisBatch = 50;  // 5 s at CCVS1's 10 Hz, longer than the innovations' memory
+constexpr std::size_t kSmootherCapacity = 36000;  // an hour at CCVS1's 10 Hz before it grows
+
+}  // namespace
+
+AnalyzerConfig analyzer_config(const Vehicle& vehicle) {
+  AnalyzerConfig c;
+  c.filter.truck = model::truck_model(vehicle);
+  c.filter.torque_bias_sigma_nm = eec3_quantization_sigma_nm(vehicle.engine.reference_torque_nm);
+  for (const VehicleAxle& a : vehicle.axles) c.axles.push_back({a.position_m, a.load_kg});
+  c.cg_behind_front_m = vehicle.cg_behind_front_m();
+  c.antenna_behind_front_m = vehicle.gnss_antenna_behind_front_m;
+  return c;
+}
+
+namespace {
+
+double truck_length_m(const std::vector<AxleLoad>& axles) {
+  double len = 0;
+  for (const AxleLoad& a : axles) len = std::max(len, a.behind_front_m);
+  return len;
+}
 
 }  // namespace
 
 DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std::vector<CellSpan> cells,
                              AnalyzerConfig config)
-    : db_(db),
-      route_(std::move(route)),
+    : route_(std::move(route)),
       grade_(GradeProfile::from_survey(route_, config.survey_elevation_sigma_m)),
-      cells_(std::move(cells)),
-      config_(config),
-      signals_(db),
-      filter_(filter_config(config, !cells_.empty())),
-      smoother_(config.keep_history ? 36000 : 0) {
-  if (const auto* m = db_.find_name("CCVS1")) ccvs1_pgn_ = m->pgn;
-  if (config_.keep_history) {
-    filter_.attach(&smoother_);
-  } else {
-    live_cells_.resize(cells_.size());
-  }
-  for (const CellSpan& c : cells_) {
+      config_(std::move(config)),
+      feed_(db),
+      position_(config_.antenna_behind_front_m, config_.max_gnss_offset_m),
+      cells_(std::move(cells), truck_length_m(config_.axles), config_.keep_history),
+      filter_(filter_config(config_, !cells_.spans().empty())),
+      smoother_(config_.keep_history ? kSmootherCapacity : 0) {
+  if (const auto* m = db.find_name("CCVS1")) ccvs1_pgn_ = m->pgn;
+  if (config_.keep_history) filter_.attach(&smoother_);
+  for (const CellSpan& c : cells_.spans()) {
     boundaries_m_.push_back(c.start_m);
     boundaries_m_.push_back(c.end_m);
   }
@@ -46,12 +62,6 @@ CrrFilterConfig DriveAnalyzer::filter_config(const AnalyzerConfig& c, bool cells
   return f;
 }
 
-double DriveAnalyzer::truck_length_m() const {
-  double len = 0;
-  for (const AxleLoad& a : config_.axles) len = std::max(len, a.behind_front_m);
-  return len;
-}
-
 double DriveAnalyzer::crr_jump_variance(double from_front_m, double to_front_m) const {
   double total = 0;
   for (const AxleLoad& a : config_.axles) total += a.load_kg;
@@ -66,25 +76,16 @@ double DriveAnalyzer::crr_jump_variance(double from_front_m, double to_front_m) 
 }
 
 void DriveAnalyzer::push(const CanFrame& frame) {
-  const auto m = assembler_.push(frame);
-  if (!m) return;
-  signals_.push(*m);
-  if (m->pgn != ccvs1_pgn_) return;
-  const Reading& wheel = signals_.get(Quantity::wheel_speed_mps);
-  if (wheel.seen && wheel.t == m->t) tick(m->t, wheel.value);
+  const auto m = feed_.push(frame);
+  if (!m || m->pgn != ccvs1_pgn_) return;
+  if (feed_.fresh(Quantity::wheel_speed_mps, m->t)) tick(m->t, feed_.get(Quantity::wheel_speed_mps).value);
 }
 
 void DriveAnalyzer::push(const GnssFix& fix) {
   if (fix.mode == GnssFixMode::none || !started_) return;
-  const RouteGeometry::Projection p = route_.project(fix.lat_deg, fix.lon_deg);
-  if (p.offset_m > config_.max_gnss_offset_m) {
-    ++trip_.gnss_off_route;
-    return;
-  }
-  // The fix is late by its receiver latency at most a tick; odometry carries position between.
-  offset_sum_m_ += p.s_m + config_.antenna_behind_front_m - odometer_m_;
-  ++gnss_n_;
-  ++trip_.gnss_used;
+  position_.place(fix, route_);
+  trip_.gnss_used = position_.fixes_used();
+  trip_.gnss_off_route = position_.fixes_off_route();
 }
 
 void DriveAnalyzer::push(const WeatherSample& w) {
@@ -104,45 +105,43 @@ void DriveAnalyzer::push(const AccelSample& sample) {
   if (vibration_ != nullptr) vibration_->push(sample);
 }
 
-int DriveAnalyzer::cell_at(double s_m) const {
-  for (std::size_t i = 0; i < cells_.size(); ++i) {
-    if (s_m >= cells_[i].start_m && s_m < cells_[i].end_m) return static_cast<int>(i);
+// The flywheel torque's error: the engine-loss calibration's where there is one, else EEC3's rounding.
+void DriveAnalyzer::start(CaptureTime t, double wheel_speed_mps) {
+  const Reading& ref = feed_.get(Quantity::reference_torque_nm);
+  const model::EngineLossMap& losses = config_.filter.truck.engine_losses;
+  std::optional<double> bias_sigma_nm;
+  if (!losses.empty()) {
+    bias_sigma_nm = losses.sigma_nm();
+  } else if (ref.seen) {
+    bias_sigma_nm = eec3_quantization_sigma_nm(ref.value);
   }
-  return -1;
+  filter_.start(t, wheel_speed_mps, bias_sigma_nm);
+  started_ = true;
+  last_tick_ = t;
+  last_front_m_ = position_.front_m();
+  last_speed_mps_ = wheel_speed_mps;
+}
+
+void DriveAnalyzer::update_air() {
+  if (station_air_) return;
+  const Reading& temp = feed_.get(Quantity::ambient_temp_c);
+  const Reading& press = feed_.get(Quantity::pressure_pa);
+  if (temp.seen) air_temp_c_ = temp.value;
+  if (press.seen) pressure_pa_ = press.value;
 }
 
 void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
-  if (!started_) {
-    const Reading& ref = signals_.get(Quantity::reference_torque_nm);
-    // The flywheel torque's error: the engine-loss calibration's where there is one, else EEC3's rounding.
-    const model::EngineLossMap& losses = config_.filter.truck.engine_losses;
-    std::optional<double> bias_sigma_nm;
-    if (!losses.empty()) {
-      bias_sigma_nm = losses.sigma_nm();
-    } else if (ref.seen) {
-      bias_sigma_nm = eec3_quantization_sigma_nm(ref.value);
-    }
-    filter_.start(t, wheel_speed_mps, bias_sigma_nm);
-    started_ = true;
-    last_tick_ = t;
-    last_front_m_ = position_front_m();
-    last_speed_mps_ = wheel_speed_mps;
-  }
+  if (!started_) start(t, wheel_speed_mps);
   const double dt_s = to_seconds(t - last_tick_);
-  odometer_m_ += wheel_speed_mps * dt_s;
+  position_.advance(t, wheel_speed_mps);
   last_tick_ = t;
-  if (!station_air_) {
-    const Reading& temp = signals_.get(Quantity::ambient_temp_c);
-    const Reading& press = signals_.get(Quantity::pressure_pa);
-    if (temp.seen) air_temp_c_ = temp.value;
-    if (press.seen) pressure_pa_ = press.value;
-  }
-  const double s_front = position_front_m();
+  update_air();
+  const double s_front = position_.front_m();
   const double s_cg = s_front - config_.cg_behind_front_m;
-  const TractionEstimate tr = traction(signals_, config_.filter.truck, t);
+  const TractionEstimate tr = traction(feed_.signals(), config_.filter.truck, t);
   const double grade = grade_.grade_rad(s_cg);
   const Unusable why = tr.reason == Unusable::none && std::isnan(grade) ? Unusable::no_elevation : tr.reason;
-  const int cell = cell_at(s_cg);
+  const int cell = cells_.cell_at(s_cg);
   model::ForceInputs in = force_inputs(t, s_front, tr, why);
   add_ripple(in, cell, wheel_speed_mps, wheel_speed_mps * dt_s);
   last_front_m_ = s_front;
@@ -151,19 +150,31 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   const ekf::UpdateResult upd = filter_.update_speed(t, wheel_speed_mps, config_.wheel_speed_sigma_mps);
   const PowerInterval power = power_since_last_tick(dt_s, tr, wheel_speed_mps);
   last_speed_mps_ = wheel_speed_mps;
+  const CrrMean now{filter_.crr(), filter_.crr_sigma()};
+  cells_.tick(s_front, s_cg, wheel_speed_mps, why, now, smoother_.size());
   if (config_.keep_history) {
-    ticks_.push_back({t, s_front, s_cg, wheel_speed_mps, in.usable, why, upd.accepted ? upd.nis : std::nan(""),
-                      smoother_.size(), power, in.air_density_kgpm3, in.headwind_mps, in.grade_rad});
+    fuel_.add({power, smoother_.size(), cell, in.air_density_kgpm3, in.headwind_mps, in.grade_rad});
+    if (in.usable) usable_steps_.push_back(smoother_.size());
   }
-  if (!config_.keep_history) note_live_cell(s_front, s_cg, wheel_speed_mps, in.usable, why);
-  live_ = {t, true, wheel_speed_mps, s_front, cell, filter_.crr(), 0, 0, filter_.crr_identified(), in.usable};
-  live_.crr_lo = live_.crr - config_.interval_z * filter_.crr_sigma();
-  live_.crr_hi = live_.crr + config_.interval_z * filter_.crr_sigma();
+  live_ = {t, true, wheel_speed_mps, s_front, cell, now.crr, 0, 0, filter_.crr_identified(), in.usable};
+  live_.crr_lo = live_.crr - config_.interval_z * now.sigma;
+  live_.crr_hi = live_.crr + config_.interval_z * now.sigma;
+  count(in, why, upd);
+}
+
+void DriveAnalyzer::count(const model::ForceInputs& in, Unusable why, const ekf::UpdateResult& update) {
   ++trip_.ticks;
   if (in.usable) {
     ++trip_.usable_ticks;
   } else {
     ++trip_.unusable[static_cast<std::size_t>(why)];
+  }
+  if (!config_.keep_history || !update.accepted) return;
+  nis_.add(update.nis);
+  nis_batch_.add(update.nis);
+  if (nis_batch_.n == kNisBatch) {
+    nis_batch_means_.add(nis_batch_.mean);
+    nis_batch_ = {};
   }
 }
 
@@ -189,8 +200,9 @@ model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, 
 // is the axles' over this tick's distance. Below walking pace it would grow without bound; there
 // the tires barely climb.
 void DriveAnalyzer::add_ripple(model::ForceInputs& in, int cell, double speed_mps, double step_m) const {
-  const double iri = cell >= 0 && !std::isnan(cells_[static_cast<std::size_t>(cell)].iri_m_per_km)
-                         ? cells_[static_cast<std::size_t>(cell)].iri_m_per_km
+  const std::vector<CellSpan>& spans = cells_.spans();
+  const double iri = cell >= 0 && !std::isnan(spans[static_cast<std::size_t>(cell)].iri_m_per_km)
+                         ? spans[static_cast<std::size_t>(cell)].iri_m_per_km
                          : config_.roughness_iri_m_per_km;
   const model::RoughnessRipple ripple = model::roughness_ripple(ripple_axles_, config_.filter.truck.mass_kg, unit_height_m_,
                                                                 config_.roughness_correlation_m, step_m);
@@ -204,7 +216,7 @@ void DriveAnalyzer::place_axles(CaptureTime t, double s_front_m, double grade_ra
   std::array<int, kMaxContactAxles> under{};
   const auto& axles = contact_ != nullptr ? contact_->layout().axles : vibration_->layout().axles;
   const std::size_t n = std::min(axles.size(), under.size());
-  for (std::size_t i = 0; i < n; ++i) under[i] = cell_at(s_front_m - axles[i].position_m);
+  for (std::size_t i = 0; i < n; ++i) under[i] = cells_.cell_at(s_front_m - axles[i].position_m);
   if (contact_ != nullptr) contact_->set_axle_cells(t, std::span(under.data(), n), grade_rad, speed_mps);
   if (vibration_ != nullptr) vibration_->set_axle_cells(t, std::span(under.data(), n), speed_mps, s_front_m);
 }
@@ -212,10 +224,10 @@ void DriveAnalyzer::place_axles(CaptureTime t, double s_front_m, double grade_ra
 PowerInterval DriveAnalyzer::power_since_last_tick(double dt_s, const TractionEstimate& tr, double wheel_speed_mps) {
   PowerInterval power;
   power.dt_s = dt_s;
-  const Reading& fuel = signals_.get(Quantity::fuel_rate_lph);
+  const Reading& fuel = feed_.get(Quantity::fuel_rate_lph);
   power.fuel_rate_lph = fuel.seen ? fuel.value : 0.0;
   if (!fuel.seen) ++trip_.no_fuel_rate;
-  power.engine_speed_rpm = signals_.get(Quantity::engine_speed_rpm).value;
+  power.engine_speed_rpm = feed_.get(Quantity::engine_speed_rpm).value;
   power.indicated_nm = tr.indicated_nm;
   power.friction_nm = tr.friction_nm;
   power.parasitic_nm = tr.parasitic_nm;
@@ -230,27 +242,11 @@ PowerInterval DriveAnalyzer::power_since_last_tick(double dt_s, const TractionEs
   return power;
 }
 
-void DriveAnalyzer::nis_statistics() {
-  constexpr std::uint64_t kBatch = 50;  // 5 s at CCVS1's 10 Hz, longer than the innovations' memory
-  RunningStats all, batch, batch_means;
-  for (const Tick& k : ticks_) {
-    if (std::isnan(k.nis)) continue;
-    all.add(k.nis);
-    batch.add(k.nis);
-    if (batch.n == kBatch) {
-      batch_means.add(batch.mean);
-      batch = {};
-    }
-  }
-  trip_.mean_nis = all.mean;
-  if (batch_means.n >= 2) trip_.mean_nis_se = batch_means.std() / std::sqrt(static_cast<double>(batch_means.n));
-}
-
 CrrFilter::Vec DriveAnalyzer::state_at(std::size_t step) const {
   return step >= smoother_.size() ? filter_.core().x() : smoother_.x(step);
 }
 
-DriveAnalyzer::CrrMean DriveAnalyzer::crr_mean(std::span<const std::size_t> steps) const {
+CrrMean DriveAnalyzer::crr_mean(std::span<const std::size_t> steps) const {
   const double w = 1.0 / static_cast<double>(steps.size());
   std::vector<Smoother::Weight> weights;
   weights.reserve(steps.size());
@@ -265,37 +261,17 @@ DriveAnalyzer::CrrMean DriveAnalyzer::crr_mean(std::span<const std::size_t> step
   return m;
 }
 
-// The resistances over the interval before a tick, from the smoothed CRR and CdA.
-void DriveAnalyzer::fill_resistances(Tick& k) const {
-  const CrrFilter::Vec x = state_at(k.step);
-  PowerInterval& p = k.power;
-  const double v = 0.5 * (p.speed_from_mps + p.speed_to_mps);
-  const double v_air = v + k.headwind_mps;
-  const double weight = config_.filter.truck.mass_kg * model::kGravity_mps2;
-  p.aero_n = 0.5 * k.air_density_kgpm3 * x(CrrState::cda) * v_air * std::abs(v_air);
-  p.rolling_n = x(CrrState::crr) * weight * std::cos(k.grade_rad);
-  p.grade_n = weight * std::sin(k.grade_rad);
-}
-
 void DriveAnalyzer::finish() {
   if (finished_) return;
   finished_ = true;
   smoother_.finish(filter_.core().x(), filter_.core().p());
   smoother_.smooth();
-  cell_fuel_.assign(cells_.size(), FuelBreakdown{});
-  for (Tick& k : ticks_) {
-    fill_resistances(k);
-    trip_.fuel.add(k.power);
-    if (const int c = cell_at(k.s_cg_m); c >= 0) cell_fuel_[static_cast<std::size_t>(c)].add(k.power);
-  }
+  fuel_.finish(config_.filter.truck.mass_kg, cells_.spans().size(), [this](std::size_t step) { return state_at(step); });
+  trip_.fuel = fuel_.trip();
   // The trip's CRR is the smoothed CRR averaged over every usable tick (a distance average at
   // steady speed), its sigma that of the average.
-  std::vector<std::size_t> usable;
-  for (const Tick& k : ticks_) {
-    if (k.usable) usable.push_back(k.step);
-  }
-  if (!usable.empty()) {
-    const CrrMean m = crr_mean(usable);
+  if (!usable_steps_.empty()) {
+    const CrrMean m = crr_mean(usable_steps_);
     trip_.crr = m.crr;
     trip_.crr_sigma = m.sigma;
   } else {
@@ -305,111 +281,26 @@ void DriveAnalyzer::finish() {
   trip_.cda_m2 = filter_.cda_m2();
   trip_.torque_bias_nm = filter_.torque_bias_nm();
   trip_.torque_bias_sigma_nm = std::sqrt(filter_.core().p()(CrrState::torque_bias, CrrState::torque_bias));
-  trip_.identified = !usable.empty() && trip_.crr_sigma <= config_.filter.identified_crr_sigma;
+  trip_.identified = !usable_steps_.empty() && trip_.crr_sigma <= config_.filter.identified_crr_sigma;
   trip_.filter = filter_.counters();
-  nis_statistics();
+  trip_.mean_nis = nis_.mean;
+  if (nis_batch_means_.n >= 2) trip_.mean_nis_se = nis_batch_means_.std() / std::sqrt(static_cast<double>(nis_batch_means_.n));
 }
 
-// A cell longer than the truck is read while the whole truck is on it; a shorter one while its
-// centre of gravity is.
-bool DriveAnalyzer::inside(const CellSpan& c, double s_front_m, double s_cg_m) const {
-  const double len = truck_length_m();
-  return c.end_m - c.start_m > len ? s_front_m - len >= c.start_m && s_front_m < c.end_m
-                                   : s_cg_m >= c.start_m && s_cg_m < c.end_m;
-}
-
-void DriveAnalyzer::note_live_cell(double s_front_m, double s_cg_m, double speed_mps, bool usable, Unusable why) {
-  for (std::size_t i = 0; i < cells_.size(); ++i) {
-    if (!inside(cells_[i], s_front_m, s_cg_m)) continue;
-    LiveCell& c = live_cells_[i];
-    ++c.seen;
-    ++c.why[static_cast<std::size_t>(why)];
-    if (!usable) continue;
-    c.crr = filter_.crr();
-    c.crr_sigma = filter_.crr_sigma();
-    c.speed_sum_mps += speed_mps;
-    ++c.samples;
-  }
-}
-
-CellResult DriveAnalyzer::live_cell_result(std::size_t i) const {
-  const LiveCell& l = live_cells_[i];
-  CellResult r;
-  r.id = cells_[i].id;
-  r.start_m = cells_[i].start_m;
-  r.end_m = cells_[i].end_m;
-  r.samples = l.samples;
-  if (l.samples == 0) {
-    const auto worst = static_cast<std::size_t>(std::max_element(l.why.begin() + 1, l.why.end()) - l.why.begin());
-    r.reason = l.seen == 0 ? std::string("not driven")
-                           : std::string("no usable force balance: ") + to_string(static_cast<Unusable>(worst));
-    return r;
-  }
-  r.crr = l.crr;
-  r.crr_sigma = l.crr_sigma;
-  r.crr_lo = r.crr - config_.interval_z * r.crr_sigma;
-  r.crr_hi = r.crr + config_.interval_z * r.crr_sigma;
-  r.speed_mps = l.speed_sum_mps / static_cast<double>(l.samples);
-  r.weight_n = config_.filter.truck.mass_kg * model::kGravity_mps2;
-  r.roll_force_n = r.crr * r.weight_n;
-  r.identified = r.crr_sigma <= config_.filter.identified_crr_sigma;
-  if (!r.identified) r.reason = "CRR not identified: its uncertainty exceeds the configured limit";
-  return r;
+CellLimits DriveAnalyzer::cell_limits() const {
+  return {config_.filter.truck.mass_kg * model::kGravity_mps2, config_.interval_z, config_.filter.identified_crr_sigma};
 }
 
 std::vector<CellResult> DriveAnalyzer::cells() const {
-  std::vector<CellResult> out;
-  if (!config_.keep_history) {
-    for (std::size_t i = 0; i < cells_.size(); ++i) out.push_back(live_cell_result(i));
-    return out;
-  }
-  const double weight = config_.filter.truck.mass_kg * model::kGravity_mps2;
-  for (std::size_t i = 0; i < cells_.size(); ++i) {
-    const CellSpan& c = cells_[i];
-    CellResult r;
-    if (i < cell_fuel_.size()) r.fuel = cell_fuel_[i];
-    for (std::size_t a = 0; contact_ != nullptr && a < contact_->axle_count(); ++a) r.contact.push_back(contact_->cell(i, a));
-    r.id = c.id;
-    r.start_m = c.start_m;
-    r.end_m = c.end_m;
-    double speed = 0;
-    std::vector<std::size_t> usable;
-    std::size_t seen = 0;
-    std::array<std::size_t, kUnusableCount> why{};
-    for (const Tick& k : ticks_) {
-      if (!inside(c, k.s_front_m, k.s_cg_m)) continue;
-      ++seen;
-      ++why[static_cast<std::size_t>(k.why)];
-      if (!k.usable) continue;
-      usable.push_back(k.step);
-      speed += k.speed_mps;
-      ++r.samples;
-    }
-    if (r.samples == 0) {
-      // Name the commonest reason, so a missing input shows as itself and not as a blank.
-      const auto worst = static_cast<std::size_t>(std::max_element(why.begin() + 1, why.end()) - why.begin());
-      r.reason = seen == 0 ? std::string("not driven")
-                           : std::string("no usable force balance: ") + to_string(static_cast<Unusable>(worst)) + " (" +
-                                 std::to_string(why[worst]) + " of " + std::to_string(seen) + " ticks)";
-      out.push_back(r);
-      continue;
-    }
-    const auto n = static_cast<double>(r.samples);
-    const CrrMean m = crr_mean(usable);
-    r.crr = m.crr;
-    r.crr_sigma = m.sigma;
-    r.crr_lo = r.crr - config_.interval_z * r.crr_sigma;
-    r.crr_hi = r.crr + config_.interval_z * r.crr_sigma;
-    r.speed_mps = speed / n;
-    r.weight_n = weight;
-    r.roll_force_n = r.crr * weight;
-    r.identified = r.crr_sigma <= config_.filter.identified_crr_sigma;
-    if (!r.identified) r.reason = "CRR not identified: its uncertainty exceeds the configured limit";
-    out.push_back(r);
+  std::vector<CellResult> out =
+      cells_.results(cell_limits(), [this](std::span<const std::size_t> steps) { return crr_mean(steps); });
+  if (!config_.keep_history) return out;
+  const std::vector<FuelBreakdown>& fuel = fuel_.cells();
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (i < fuel.size()) out[i].fuel = fuel[i];
+    for (std::size_t a = 0; contact_ != nullptr && a < contact_->axle_count(); ++a) out[i].contact.push_back(contact_->cell(i, a));
   }
   return out;
 }
-
-TripResult DriveAnalyzer::trip() const { return trip_; }
 
 }  // namespace roadload

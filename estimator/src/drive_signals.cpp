@@ -31,6 +31,7 @@ constexpr Wanted kWanted[] = {
     {"AMB", "AmbientAirTemperature", Quantity::ambient_temp_c, 1.0, false},
     {"AMB", "BarometricPressure", Quantity::pressure_pa, 1000.0, false},
     {"LFE1", "EngineFuelRate", Quantity::fuel_rate_lph, 1.0, false},
+    {"FD1", "FanSpeed", Quantity::fan_speed_rpm, 1.0, false},
 };
 static_assert(std::size(kWanted) <= kQuantityCount + 1);
 

@@ -8,7 +8,7 @@ namespace roadload {
 
 void EngineLossCalibration::push(const EngineReading& r) {
   const bool continues = open_ && r.standing && std::abs(r.rpm - anchor_rpm_) <= config_.steady_band_rpm &&
-                         to_seconds(r.t - last_) <= config_.max_gap_s;
+                         to_seconds(r.t - last_) <= config_.max_gap.count();
   if (!continues) {
     close_hold();
     if (!r.standing) return;
@@ -20,11 +20,11 @@ void EngineLossCalibration::push(const EngineReading& r) {
     tail_.clear();
   }
   last_ = r.t;
-  if (to_seconds(r.t - start_) < config_.settle_s) return;
-  // A reading counts once the hold has gone on tail_s past it: the engine accelerating toward the
+  if (to_seconds(r.t - start_) < config_.settle.count()) return;
+  // A reading counts once the hold has gone on `tail` past it: the engine accelerating toward the
   // next speed (its inertia torque, 75 N m for 50 rpm in 0.3 s) stays in the tail when it ends.
   tail_.push_back(r);
-  while (to_seconds(r.t - tail_.front().t) > config_.tail_s) {
+  while (to_seconds(r.t - tail_.front().t) > config_.tail.count()) {
     keep(tail_.front());
     tail_.pop_front();
   }
@@ -44,7 +44,7 @@ void EngineLossCalibration::close_hold() {
   if (!open_) return;
   open_ = false;
   const double kept_s = to_seconds(last_kept_ - first_kept_);
-  if (rpm_.n < 2 || kept_s < config_.min_hold_s) return;
+  if (rpm_.n < 2 || kept_s < config_.min_hold.count()) return;
   // A steady engine reports one value for seconds: its scatter says nothing of the rounding, a
   // uniform error of one resolution step, which bounds the point's error from below.
   const double rounding_nm = resolution_nm_ / std::sqrt(12.0);

@@ -18,14 +18,7 @@ int slot_of(std::span<const VibrationSensor> sensors, std::uint8_t id) {
   return -1;
 }
 
-const AxleDefaults* defaults(std::string_view name) {
-  for (const AxleDefaults& d : kMnroadAxles)
-    if (name == d.name) return &d;
-  return nullptr;
-}
-
-std::vector<spectra::SuspensionAxle> suspension_axles(const AxleLayout& layout, std::span<const VibrationSensor> sensors,
-                                                      const VibrationConfig& c) {
+std::vector<spectra::SuspensionAxle> suspension_axles(const AxleLayout& layout, std::span<const VibrationSensor> sensors) {
   std::vector<spectra::SuspensionAxle> out;
   for (const AxleContact& a : layout.axles) {
     spectra::SuspensionAxle s;
@@ -35,10 +28,9 @@ std::vector<spectra::SuspensionAxle> suspension_axles(const AxleLayout& layout, 
     s.frame_ahead_m = a.frame_ahead_m;
     s.unsprung_kg = a.unsprung_kg;
     s.sprung_kg = a.sprung_kg;
-    s.damper_nspm = c.damper_nspm;
-    const AxleDefaults* d = defaults(a.name);
-    s.tire_damping_nspm = c.tire_damping_per_tire_nspm * (d ? d->tires : 4);
-    s.tire_stiffness_npm = d ? d->tire_stiffness_npm : 3.4e6;
+    s.damper_nspm = a.suspension.damper_nspm;
+    s.tire_damping_nspm = a.suspension.tire_damping_nspm;
+    s.tire_stiffness_npm = a.suspension.tire_stiffness_npm;
     out.push_back(std::move(s));
   }
   return out;
@@ -66,7 +58,7 @@ VibrationAnalysis::VibrationAnalysis(const AxleLayout& layout, std::span<const V
       cell_group_(cell_group),
       grid_(grid_sensors(sensors), config.grid),
       history_(config.placement_history),
-      suspension_(suspension_axles(layout, sensors, config), cell_count, grid_, config.suspension),
+      suspension_(suspension_axles(layout, sensors), cell_count, grid_, config.suspension),
       modes_(mode_sensors(layout, sensors), std::move(cell_group), group_count, grid_.rate_hz(), config.modes) {}
 
 namespace {

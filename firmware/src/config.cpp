@@ -72,8 +72,8 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
     RecordingConfig& r = c.recording;
     r.enabled = f.flag(*t, "enabled", w).value_or(r.enabled);
     r.data_dir = f.text(*t, "data_dir", w).value_or(r.data_dir);
-    r.fsync_interval_s = f.number(*t, "fsync_interval_s", w, r.fsync_interval_s);
-    r.segment_max_s = f.number(*t, "segment_max_s", w, r.segment_max_s);
+    r.fsync_interval = Seconds{f.number(*t, "fsync_interval_s", w, r.fsync_interval.count())};
+    r.segment_max = Seconds{f.number(*t, "segment_max_s", w, r.segment_max.count())};
     r.segment_max_mib = f.number(*t, "segment_max_mib", w, r.segment_max_mib);
     r.quota_mib = f.number(*t, "quota_mib", w, r.quota_mib);
   }
@@ -81,7 +81,7 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
     f.only(*t, {"text_file", "json_file", "interval_s"}, "status.");
     c.status.text_file = f.text(*t, "text_file", "status.").value_or(c.status.text_file);
     c.status.json_file = f.text(*t, "json_file", "status.").value_or(c.status.json_file);
-    c.status.interval_s = f.number(*t, "interval_s", "status.", c.status.interval_s);
+    c.status.interval = Seconds{f.number(*t, "interval_s", "status.", c.status.interval.count())};
   }
   if (const toml::table* t = f.table(root, "replay")) {
     f.only(*t, {"recording", "rate", "can", "origin_file"}, "replay.");
@@ -91,17 +91,19 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
     c.replay.can = f.flag(*t, "can", "replay.").value_or(c.replay.can);
   }
   if (const toml::table* t = f.table(root, "estimator")) {
-    f.only(*t, {"route", "results_dir", "engine_losses", "cda_m2", "cda_sigma_m2", "cda_torque_correlation"}, "estimator.");
+    f.only(*t, {"vehicle", "route", "results_dir", "engine_losses", "cda_m2", "cda_sigma_m2", "cda_torque_correlation"},
+           "estimator.");
+    c.estimator.vehicle = f.text(*t, "vehicle", "estimator.").value_or("");
     c.estimator.route = f.text(*t, "route", "estimator.").value_or("");
     c.estimator.results_dir = f.text(*t, "results_dir", "estimator.").value_or("");
     c.estimator.engine_losses = f.text(*t, "engine_losses", "estimator.").value_or("");
     c.estimator.cda_m2 = f.number(*t, "cda_m2", "estimator.", c.estimator.cda_m2);
     if (c.estimator.cda_m2 != 0 && (c.estimator.cda_m2 < 0.5 || c.estimator.cda_m2 > 30)) {
-      f.fail(t->get("cda_m2"), "estimator.cda_m2", "outside 0.5-30 m^2 (0: the built-in prior)");
+      f.fail(t->get("cda_m2"), "estimator.cda_m2", "outside 0.5-30 m^2 (0: the vehicle file's prior)");
     }
     c.estimator.cda_sigma_m2 = f.number(*t, "cda_sigma_m2", "estimator.", c.estimator.cda_sigma_m2);
     if (c.estimator.cda_sigma_m2 < 0 || c.estimator.cda_sigma_m2 > 10) {
-      f.fail(t->get("cda_sigma_m2"), "estimator.cda_sigma_m2", "outside 0-10 m^2 (0: the built-in prior's)");
+      f.fail(t->get("cda_sigma_m2"), "estimator.cda_sigma_m2", "outside 0-10 m^2 (0: the vehicle file's prior's)");
     }
     c.estimator.cda_torque_correlation = f.number(*t, "cda_torque_correlation", "estimator.", c.estimator.cda_torque_correlation);
     if (c.estimator.cda_torque_correlation < -1 || c.estimator.cda_torque_correlation > 1) {
@@ -170,12 +172,19 @@ std::optional<ParseError> validate(const DaemonConfig& c) {
   if (c.accelerometers.size() > 16) return field_error("accelerometer", "at most 16 accelerometers");
   const RecordingConfig& r = c.recording;
   if (r.data_dir.empty()) return field_error("recording.data_dir", "must not be empty");
-  if (!(r.fsync_interval_s >= 0.05 && r.fsync_interval_s <= 60)) return field_error("recording.fsync_interval_s", "expected 0.05 to 60");
-  if (!(r.segment_max_s >= 10)) return field_error("recording.segment_max_s", "expected at least 10");
+  if (!(r.fsync_interval.count() >= 0.05 && r.fsync_interval.count() <= 60)) {
+    return field_error("recording.fsync_interval_s", "expected 0.05 to 60");
+  }
+  // A year at most: a segment's length must convert to the recorder's nanoseconds.
+  if (!(r.segment_max.count() >= 10 && r.segment_max.count() <= 31'536'000)) {
+    return field_error("recording.segment_max_s", "expected 10 to 31536000 (a year)");
+  }
   if (!(r.segment_max_mib >= 1)) return field_error("recording.segment_max_mib", "expected at least 1");
   if (!(r.quota_mib >= 2 * r.segment_max_mib)) return field_error("recording.quota_mib", "expected at least twice segment_max_mib");
   if (c.status.text_file.empty()) return field_error("status.text_file", "must not be empty");
-  if (!(c.status.interval_s >= 0.1 && c.status.interval_s <= 60)) return field_error("status.interval_s", "expected 0.1 to 60");
+  if (!(c.status.interval.count() >= 0.1 && c.status.interval.count() <= 60)) {
+    return field_error("status.interval_s", "expected 0.1 to 60");
+  }
   if (!(c.replay.rate >= 0 && c.replay.rate <= 1000)) return field_error("replay.rate", "expected 0 (as fast as read) to 1000");
   if (c.replay.can && c.replay.recording.empty()) return field_error("replay.can", "needs replay.recording");
   if (!c.replay.origin_file.empty() && c.replay.recording.empty()) return field_error("replay.origin_file", "needs replay.recording");
@@ -198,13 +207,13 @@ std::string format_config(const DaemonConfig& c) {
     << "\nport = " << quoted(c.gnss.port) << "\n";
   const RecordingConfig& r = c.recording;
   o << "\n[recording]\nenabled = " << (r.enabled ? "true" : "false") << "\ndata_dir = " << quoted(r.data_dir)
-    << "\nfsync_interval_s = " << r.fsync_interval_s << "\nsegment_max_s = " << r.segment_max_s
+    << "\nfsync_interval_s = " << r.fsync_interval.count() << "\nsegment_max_s = " << r.segment_max.count()
     << "\nsegment_max_mib = " << r.segment_max_mib << "\nquota_mib = " << r.quota_mib << "\n";
   o << "\n[status]\ntext_file = " << quoted(c.status.text_file) << "\njson_file = " << quoted(c.status.json_file)
-    << "\ninterval_s = " << c.status.interval_s << "\n";
+    << "\ninterval_s = " << c.status.interval.count() << "\n";
   o << "\n[replay]\nrecording = " << quoted(c.replay.recording) << "\nrate = " << c.replay.rate
     << "\ncan = " << (c.replay.can ? "true" : "false") << "\norigin_file = " << quoted(c.replay.origin_file) << "\n";
-  o << "\n[estimator]\nroute = " << quoted(c.estimator.route) << "\nresults_dir = " << quoted(c.estimator.results_dir)
+  o << "\n[estimator]\nvehicle = " << quoted(c.estimator.vehicle) << "\nroute = " << quoted(c.estimator.route) << "\nresults_dir = " << quoted(c.estimator.results_dir)
     << "\nengine_losses = " << quoted(c.estimator.engine_losses) << "\ncda_m2 = " << c.estimator.cda_m2
     << "\ncda_sigma_m2 = " << c.estimator.cda_sigma_m2 << "\ncda_torque_correlation = " << c.estimator.cda_torque_correlation
     << "\n";

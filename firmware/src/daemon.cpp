@@ -1,10 +1,10 @@
 #include "roadload/firmware/daemon.hpp"
 
-#include <time.h>
-
 #include <filesystem>
 #include <type_traits>
 
+#include "roadload/io/posix_time.hpp"
+#include "roadload/merge.hpp"
 #include "roadload/results/results_files.hpp"
 
 namespace roadload::firmware {
@@ -26,11 +26,7 @@ std::size_t drain(Ring& ring, std::size_t max, Fn&& fn) {
   return n;
 }
 
-std::int64_t utc_now_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_REALTIME, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
+std::int64_t utc_now_ns() { return io::read_clock(CLOCK_REALTIME).count(); }
 
 }  // namespace
 
@@ -68,10 +64,7 @@ void Daemon::start() {
   // The first segment exists before the first item arrives.
   if (recorder_) recorder_->tick(started_);
   const bool feed = analyzer_.has_value();
-  for (auto& c : sources_.can) c->start(stop_sources_, feed, clock_);
-  for (auto& c : sources_.accel) c->start(stop_sources_, feed, clock_);
-  if (sources_.gnss) sources_.gnss->start(stop_sources_, feed, clock_);
-  if (sources_.weather) sources_.weather->start(stop_sources_, feed, clock_);
+  sources_.for_each([&](auto& c) { c.start(stop_sources_, feed, clock_); });
   writer_ = std::thread([this] { write_loop(); });
   estimator_ = std::thread([this] { estimate_loop(); });
 }
@@ -80,10 +73,7 @@ void Daemon::stop() {
   if (!running_) return;
   running_ = false;
   stop_sources_.store(true);
-  for (auto& c : sources_.can) c->join();
-  for (auto& c : sources_.accel) c->join();
-  if (sources_.gnss) sources_.gnss->join();
-  if (sources_.weather) sources_.weather->join();
+  sources_.for_each([](auto& c) { c.join(); });
   // The workers see the flag only once the sources are quiet, and then drain what is left.
   stop_workers_.store(true);
   writer_.join();
@@ -92,28 +82,20 @@ void Daemon::stop() {
 
 bool Daemon::replays_finished() {
   std::size_t replays = 0, ended = 0;
-  auto count = [&](auto& c) {
-    if (!c->is_replay()) return;
+  sources_.for_each([&](auto& c) {
+    if (!c.is_replay()) return;
     ++replays;
-    if (c->finished()) ++ended;
-  };
-  for (auto& c : sources_.can) count(c);
-  for (auto& c : sources_.accel) count(c);
-  if (sources_.gnss) count(sources_.gnss);
-  if (sources_.weather) count(sources_.weather);
+    if (c.finished()) ++ended;
+  });
   return replays > 0 && ended == replays;
 }
 
 // Items up to here can be merged: every source has delivered what it stamped before it, less the
 // merge delay for stamps that reach their thread late (a FIFO read, a kernel queue), and at most
 // the longest merge wait behind now.
-CaptureTime Daemon::merge_horizon(CaptureTime now) const {
+CaptureTime Daemon::merge_horizon(CaptureTime now) {
   CaptureTime through = CaptureTime::max();
-  auto lower = [&](const auto& c) { through = std::min(through, c->delivered_through()); };
-  for (const auto& c : sources_.can) lower(c);
-  for (const auto& c : sources_.accel) lower(c);
-  if (sources_.gnss) lower(sources_.gnss);
-  if (sources_.weather) lower(sources_.weather);
+  sources_.for_each([&](const auto& c) { through = std::min(through, c.delivered_through()); });
   if (through == CaptureTime::max()) return through;
   return std::max(now - setup_.max_merge_wait, through - setup_.merge_delay);
 }
@@ -125,18 +107,17 @@ template <typename Channels, typename Fn>
 std::size_t merge(Channels& channels, CaptureTime horizon, std::size_t max, Fn&& fn) {
   std::size_t n = 0;
   while (n < max) {
-    std::size_t best = channels.size();
     bool complete = true;
-    for (std::size_t i = 0; i < channels.size(); ++i) {
+    const auto best = oldest_head(channels.size(), [&](std::size_t i) -> std::optional<CaptureTime> {
       const auto* head = channels[i]->to_writer().peek();
       if (head == nullptr) {
         complete = complete && channels[i]->finished();
-        continue;
+        return std::nullopt;
       }
-      if (best == channels.size() || head->t < channels[best]->to_writer().peek()->t) best = i;
-    }
-    if (best == channels.size()) break;
-    auto& ring = channels[best]->to_writer();
+      return head->t;
+    });
+    if (!best) break;
+    auto& ring = channels[*best]->to_writer();
     if (!complete && ring.peek()->t > horizon) break;
     typename std::remove_reference_t<decltype(ring)>::value_type item;
     ring.try_pop(item);
@@ -180,34 +161,23 @@ void Daemon::write_loop() {
 
 // The oldest item across every estimator ring, if it is at or before `horizon`.
 bool Daemon::estimate_next(CaptureTime horizon) {
-  CaptureTime best = horizon;
-  int kind = -1;
-  std::size_t index = 0;
-  auto consider = [&](auto& ring, int k, std::size_t i) {
-    if (const auto* head = ring.peek(); head != nullptr && head->t <= best) {
-      best = head->t;
-      kind = k;
-      index = i;
-    }
-  };
-  for (std::size_t i = 0; i < sources_.can.size(); ++i) consider(sources_.can[i]->to_estimator(), 0, i);
-  for (std::size_t i = 0; i < sources_.accel.size(); ++i) consider(sources_.accel[i]->to_estimator(), 1, i);
-  if (sources_.gnss) consider(sources_.gnss->to_estimator(), 2, 0);
-  if (sources_.weather) consider(sources_.weather->to_estimator(), 3, 0);
-  auto take = [this](auto& ring) {
+  const auto best = oldest_head(sources_.count(), [&](std::size_t i) {
+    return sources_.visit(i, [&](auto& c) -> std::optional<CaptureTime> {
+      const auto* head = c.to_estimator().peek();
+      if (head == nullptr || head->t > horizon) return std::nullopt;
+      return head->t;
+    });
+  });
+  if (!best) return false;
+  sources_.visit(*best, [this](auto& c) {
+    auto& ring = c.to_estimator();
     typename std::remove_reference_t<decltype(ring)>::value_type item;
     if (!ring.try_pop(item)) return;
     if (setup_.timeline) item.t = setup_.timeline->recorded(item.t);
     if constexpr (std::is_same_v<decltype(item), CanFrame>) cadence_.push(item);
     analyzer_->push(item);
-  };
-  switch (kind) {
-    case 0: take(sources_.can[index]->to_estimator()); return true;
-    case 1: take(sources_.accel[index]->to_estimator()); return true;
-    case 2: take(sources_.gnss->to_estimator()); return true;
-    case 3: take(sources_.weather->to_estimator()); return true;
-    default: return false;
-  }
+  });
+  return true;
 }
 
 void Daemon::estimate_loop() {
@@ -264,13 +234,8 @@ StatusReport Daemon::report() {
     r.cell = setup_.cells[static_cast<std::size_t>(r.estimate.cell)].id;
   }
   std::vector<std::uint64_t> bits;
-  for (std::size_t i = 0; i < sources_.can.size(); ++i) {
-    r.sources.push_back(sources_.can[i]->report());
-    bits.push_back(sources_.can[i]->bits());
-  }
-  for (auto& c : sources_.accel) r.sources.push_back(c->report());
-  if (sources_.gnss) r.sources.push_back(sources_.gnss->report());
-  if (sources_.weather) r.sources.push_back(sources_.weather->report());
+  for (const auto& c : sources_.can) bits.push_back(c->bits());
+  sources_.for_each([&](auto& c) { r.sources.push_back(c.report()); });
   const std::size_t n = r.sources.size();
   last_items_.resize(n, 0);
   last_dropped_.resize(n, 0);

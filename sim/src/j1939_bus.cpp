@@ -213,7 +213,7 @@ void J1939Bus::transmit(double ready_s, std::uint32_t id, std::span<const std::u
                         const std::function<void(const CanFrame&)>& emit) {
   const double start = std::max(ready_s, bus_free_s_);
   bus_free_s_ = start + frame_bits(data.size()) / options_.bitrate_bps;
-  const double rx = bus_free_s_ + options_.rx_latency_s + options_.rx_jitter_s * rng_.uniform();
+  const double rx = bus_free_s_ + options_.rx_latency.count() + options_.rx_jitter.count() * rng_.uniform();
   // Kernel receive stamps follow the order frames arrive in.
   const auto ns = std::max(static_cast<std::int64_t>(std::llround(rx * 1e9)), last_stamp_ns_);
   last_stamp_ns_ = ns;
@@ -241,7 +241,7 @@ void J1939Bus::run_until(double t_s, const BusView& view, const std::function<vo
     }
     if (next == nullptr) return;
     Schedule& s = *next;
-    const double ready = when + options_.task_jitter_s * rng_.uniform();
+    const double ready = when + options_.task_jitter.count() * rng_.uniform();
     if (s.bam_packet > 0 && s.bam_next_s <= s.next_ecu_s / s.rate) {
       std::array<std::uint8_t, 8> dt{};
       dt.fill(0xFF);

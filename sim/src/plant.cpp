@@ -19,9 +19,9 @@ constexpr double kGovernorTau_s = 0.3;
 constexpr double kUpshift_rpm = 1650.0, kDownshift_rpm = 900.0, kMinCruise_rpm = 1000.0;
 constexpr double kBrakeMargin_mps = 1.5;  // overspeed before the cruise control uses the service brake
 
-std::array<AxleParams, kTruckAxles> vertical_params(const TruckParams& t, const EffectSet& fx) {
-  std::array<AxleParams, kTruckAxles> p{};
-  for (std::size_t i = 0; i < kTruckAxles; ++i) {
+std::vector<AxleParams> vertical_params(const TruckParams& t, const EffectSet& fx) {
+  std::vector<AxleParams> p(t.axles.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
     p[i] = t.axles[i].vertical;
     if (fx.on(Effect::suspension_friction)) {
       // Leaf springs rub; air springs barely (0.2 kN against 1.5 kN on the front leaf).
@@ -52,13 +52,13 @@ double TruckPlant::road_height(std::size_t axle, double x_front_m) const {
 }
 
 double TruckPlant::engine_speed_radps(double speed_mps) const {
-  return total_ratio(truck_.driveline, state_.gear) * speed_mps / truck_.axles[1].tire_radius_m;
+  return total_ratio(truck_.driveline, state_.gear) * speed_mps / truck_.drive_radius_m();
 }
 
 double TruckPlant::effective_mass_kg() const {
   double m = mass_kg_ + wheel_inertia_mass_kg_;
   if (state_.clutch_engaged) {
-    const double k = total_ratio(truck_.driveline, state_.gear) / truck_.axles[1].tire_radius_m;
+    const double k = total_ratio(truck_.driveline, state_.gear) / truck_.drive_radius_m();
     m += (truck_.engine.inertia_kgm2 + truck_.driveline.inertia_kgm2) * k * k;
   }
   return m;
@@ -66,7 +66,7 @@ double TruckPlant::effective_mass_kg() const {
 
 AxleEnergy TruckPlant::vertical_energy() const {
   AxleEnergy sum;
-  for (std::size_t i = 0; i < kTruckAxles; ++i) {
+  for (std::size_t i = 0; i < truck_.axles.size(); ++i) {
     const AxleEnergy& e = vertical_.energy(i);
     sum.road_work_j += e.road_work_j;
     sum.damper_j += e.damper_j;
@@ -78,7 +78,7 @@ AxleEnergy TruckPlant::vertical_energy() const {
 
 double TruckPlant::vertical_stored_energy_j() const {
   double e = 0;
-  for (std::size_t i = 0; i < kTruckAxles; ++i) e += vertical_.stored_energy_j(i);
+  for (std::size_t i = 0; i < truck_.axles.size(); ++i) e += vertical_.stored_energy_j(i);
   return e;
 }
 
@@ -86,7 +86,7 @@ double TruckPlant::crr_of_axle(std::size_t axle, const Environment& env) const {
   double crr = route_.crr_at(state_.x_m - truck_.axles[axle].position_m);
   const auto& fx = effects_;
   if (fx.on(Effect::tire_warmup)) {
-    crr *= 1.0 + fx.magnitude(Effect::tire_warmup) * std::exp(-(state_.t_s + options_.warm_s) / 1200.0);
+    crr *= 1.0 + fx.magnitude(Effect::tire_warmup) * std::exp(-(state_.t_s + options_.warm.count()) / 1200.0);
   }
   if (fx.on(Effect::temperature_crr)) crr *= 1.0 - fx.magnitude(Effect::temperature_crr) * (env.air_temp_c - 14.3);
   if (fx.on(Effect::speed_crr)) crr *= 1.0 + fx.magnitude(Effect::speed_crr) * (state_.speed_mps - 13.4112);
@@ -158,7 +158,7 @@ void TruckPlant::update_gear(double dt_s) {
   if (rpm < kDownshift_rpm && state_.gear > 1) next = state_.gear - 1;
   if (next != state_.gear) {
     target_gear_ = next;
-    shift_left_s_ = d.shift_time_s;
+    shift_left_s_ = d.shift_time.count();
     state_.gear = 0;
     state_.clutch_engaged = false;
   }
@@ -172,7 +172,7 @@ void TruckPlant::start(double x_m, double speed_mps, const Environment& env) {
   const auto& d = truck_.driveline;
   state_.gear = 1;
   for (int g = static_cast<int>(d.gear_ratios.size()); g >= 1; --g) {
-    const double rpm = total_ratio(d, g) * speed_mps / truck_.axles[1].tire_radius_m / kRadps_per_rpm;
+    const double rpm = total_ratio(d, g) * speed_mps / truck_.drive_radius_m() / kRadps_per_rpm;
     if (rpm >= kMinCruise_rpm) {
       state_.gear = g;
       break;
@@ -183,18 +183,18 @@ void TruckPlant::start(double x_m, double speed_mps, const Environment& env) {
   const Route::Position p = route_.at(x_m);
   state_.heading_deg = p.heading_deg;
   state_.engine_rpm = state_.clutch_engaged ? engine_speed_radps(speed_mps) / kRadps_per_rpm : truck_.engine.idle_rpm;
-  std::array<double, kTruckAxles> z{};
-  for (std::size_t i = 0; i < kTruckAxles; ++i) z[i] = road_height(i, x_m);
+  std::array<double, kMaxAxles> z{};
+  for (std::size_t i = 0; i < truck_.axles.size(); ++i) z[i] = road_height(i, x_m);
   vertical_.reset(z);
-  for (std::size_t i = 0; i < kTruckAxles; ++i) state_.axles[i] = vertical_.outputs(i);
+  for (std::size_t i = 0; i < truck_.axles.size(); ++i) state_.axles[i] = vertical_.outputs(i);
   // Preload the controller with the steady force so the run starts at cruise, not in a transient.
   const double cg = truck_.cg_position_m();
   state_.grade_rad = route_.grade_rad(x_m - cg);
   double roll = 0;
-  for (std::size_t i = 0; i < kTruckAxles; ++i) roll += crr_of_axle(i, env) * state_.axles[i].tire_force_n;
+  for (std::size_t i = 0; i < truck_.axles.size(); ++i) roll += crr_of_axle(i, env) * state_.axles[i].tire_force_n;
   const double steady = roll + aero_force_n(env) + mass_kg_ * kGravity_mps2 * std::sin(state_.grade_rad);
   integrator_mps2_ = steady / effective_mass_kg();
-  const double wheel_nm = steady * truck_.axles[1].tire_radius_m;
+  const double wheel_nm = steady * truck_.drive_radius_m();
   const DrivelineLoss loss = driveline_loss(d, state_.gear, effects_.on(Effect::driveline_losses),
                                             effects_.magnitude(Effect::driveline_losses));
   const double omega = state_.engine_rpm * kRadps_per_rpm;
@@ -227,7 +227,7 @@ void TruckPlant::step(double dt_s, const Environment& env) {
     state_.engine_rpm = locked / kRadps_per_rpm;
   }
   const double omega0 = state_.engine_rpm * kRadps_per_rpm;
-  const double radius = truck_.axles[1].tire_radius_m;
+  const double radius = truck_.drive_radius_m();
   const Route::Position pos = route_.at(x0);
   state_.heading_deg = pos.heading_deg;
   const double cg = truck_.cg_position_m();
@@ -235,7 +235,7 @@ void TruckPlant::step(double dt_s, const Environment& env) {
 
   // Resisting forces at the start of the step.
   double roll = 0, profile = 0, fz_sum = 0;
-  for (std::size_t i = 0; i < kTruckAxles; ++i) {
+  for (std::size_t i = 0; i < truck_.axles.size(); ++i) {
     const double fz = state_.axles[i].tire_force_n;
     state_.crr[i] = crr_of_axle(i, env);
     roll += state_.crr[i] * fz;
@@ -349,8 +349,8 @@ void TruckPlant::step(double dt_s, const Environment& env) {
   }
 
   // Vertical motion over the same step, road heights under each axle at both ends.
-  std::array<double, kTruckAxles> z0{}, z1{};
-  for (std::size_t i = 0; i < kTruckAxles; ++i) {
+  std::array<double, kMaxAxles> z0{}, z1{};
+  for (std::size_t i = 0; i < truck_.axles.size(); ++i) {
     z0[i] = road_height(i, x0);
     z1[i] = road_height(i, x1);
   }
@@ -371,7 +371,7 @@ void TruckPlant::step(double dt_s, const Environment& env) {
   state_.profile_n = profile;
   state_.brake_n = brake;
   state_.crr_mean = fz_sum > 0 ? roll / fz_sum : 0.0;
-  for (std::size_t i = 0; i < kTruckAxles; ++i) state_.axles[i] = vertical_.outputs(i);
+  for (std::size_t i = 0; i < truck_.axles.size(); ++i) state_.axles[i] = vertical_.outputs(i);
 }
 
 }  // namespace roadload::sim

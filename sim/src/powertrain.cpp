@@ -8,11 +8,11 @@ namespace roadload::sim {
 double full_load_indicated_torque_nm(const EngineSpec& e, double rpm) {
   const auto& n = e.full_load_rpm;
   const auto& f = e.full_load_fraction;
-  if (rpm <= n.front()) return f.front() * e.ref_torque_nm;
+  if (rpm <= n.front()) return f.front() * e.reference_torque_nm;
   for (std::size_t i = 1; i < n.size(); ++i) {
     if (rpm <= n[i]) {
       const double w = (rpm - n[i - 1]) / (n[i] - n[i - 1]);
-      return (f[i - 1] + w * (f[i] - f[i - 1])) * e.ref_torque_nm;
+      return (f[i - 1] + w * (f[i] - f[i - 1])) * e.reference_torque_nm;
     }
   }
   return 0.0;
@@ -20,7 +20,7 @@ double full_load_indicated_torque_nm(const EngineSpec& e, double rpm) {
 
 double friction_torque_nm(const EngineSpec& e, double rpm) {
   const double k = rpm / 1000.0;
-  return (e.friction_a + e.friction_b * k + e.friction_c * k * k) / 100.0 * e.ref_torque_nm;
+  return (e.friction_a_pct + e.friction_b_pct * k + e.friction_c_pct * k * k) / 100.0 * e.reference_torque_nm;
 }
 
 double indicated_efficiency(const FuelSpec& f, double rpm) {

@@ -8,6 +8,7 @@
 
 #include "roadload/sim/units.hpp"
 #include "roadload/toml_fields.hpp"
+#include "roadload/vehicle_file.hpp"
 
 namespace roadload::sim {
 namespace {
@@ -49,13 +50,13 @@ void read_clocks(const detail::TomlFields& f, const toml::table& root, ClockSpec
   f.only(*t, {"can_rx_latency_s", "can_rx_jitter_s", "ecu_drift_ppm", "accel_offset_s", "accel_drift_ppm", "gnss_latency_s",
               "weather_offset_s"},
          "clocks.");
-  c.can_rx_latency_s = f.number(*t, "can_rx_latency_s", "clocks.", c.can_rx_latency_s);
-  c.can_rx_jitter_s = f.number(*t, "can_rx_jitter_s", "clocks.", c.can_rx_jitter_s);
+  c.can_rx_latency = Seconds{f.number(*t, "can_rx_latency_s", "clocks.", c.can_rx_latency.count())};
+  c.can_rx_jitter = Seconds{f.number(*t, "can_rx_jitter_s", "clocks.", c.can_rx_jitter.count())};
   c.ecu_drift_ppm = f.number(*t, "ecu_drift_ppm", "clocks.", c.ecu_drift_ppm);
-  c.accel_offset_s = f.number(*t, "accel_offset_s", "clocks.", c.accel_offset_s);
+  c.accel_offset = Seconds{f.number(*t, "accel_offset_s", "clocks.", c.accel_offset.count())};
   c.accel_drift_ppm = f.number(*t, "accel_drift_ppm", "clocks.", c.accel_drift_ppm);
-  c.gnss_latency_s = f.number(*t, "gnss_latency_s", "clocks.", c.gnss_latency_s);
-  c.weather_offset_s = f.number(*t, "weather_offset_s", "clocks.", c.weather_offset_s);
+  c.gnss_latency = Seconds{f.number(*t, "gnss_latency_s", "clocks.", c.gnss_latency.count())};
+  c.weather_offset = Seconds{f.number(*t, "weather_offset_s", "clocks.", c.weather_offset.count())};
   for (const char* key : {"can_rx_latency_s", "can_rx_jitter_s", "ecu_drift_ppm", "gnss_latency_s"}) {
     if (f.number(*t, key, "clocks.", 0.0) < 0) f.fail(t->get(key), std::string("clocks.") + key, "negative");
   }
@@ -77,7 +78,7 @@ void read_effects(const detail::TomlFields& f, const toml::table& root, EffectSe
   }
 }
 
-// Standing in neutral, the engine held at each speed for hold_s: nothing reaches the flywheel, so
+// Standing in neutral, the engine held at each speed for `hold_s`: nothing reaches the flywheel, so
 // the indicated torque the engine reports is its own losses (an engine-loss calibration).
 void read_rev_hold(const detail::TomlFields& f, const toml::table& root, Scenario& s) {
   const toml::node* list = root.get("hold_rpm");
@@ -88,21 +89,33 @@ void read_rev_hold(const detail::TomlFields& f, const toml::table& root, Scenari
     if (!rpm || *rpm < 500 || *rpm > 2500) f.fail(&n, "hold_rpm", "expected engine speeds between 500 and 2500 rpm");
     s.hold_rpm.push_back(*rpm);
   }
-  s.hold_s = f.required_number(root, "hold_s", "");
-  if (s.hold_s < 5 || s.hold_s > 600) f.fail(root.get("hold_s"), "hold_s", "outside 5-600 s");
+  s.hold = Seconds{f.required_number(root, "hold_s", "")};
+  if (s.hold.count() < 5 || s.hold.count() > 600) f.fail(root.get("hold_s"), "hold_s", "outside 5-600 s");
   if (root.contains("speed_mph") || root.contains("speed_mps")) {
     f.fail(root.get(root.contains("speed_mph") ? "speed_mph" : "speed_mps"), "mode", "rev-hold stands still: no speed");
   }
   s.coast = true;
-  s.duration_s = s.hold_s * static_cast<double>(s.hold_rpm.size());
+  s.duration = s.hold * static_cast<double>(s.hold_rpm.size());
 }
 
-Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::path& path) {
+// The scenario's truck: a vehicle file beside it (with an extension), a built-in one by name, or
+// the default vehicle.
+Vehicle read_vehicle(const detail::TomlFields& f, const toml::table& root, const fs::path& path, const std::string& data_dir) {
+  const std::string name = f.text(root, "vehicle", "").value_or(kDefaultVehicle);
+  const fs::path direct(name);
+  const std::string file = direct.has_extension() ? (direct.is_absolute() ? name : (path.parent_path() / direct).string())
+                                                  : resolve_vehicle(name, data_dir);
+  auto v = load_vehicle_file(file);
+  if (!v) throw detail::TomlFailure{v.error()};
+  return std::move(v.value());
+}
+
+Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::path& path, const std::string& data_dir) {
   Scenario s;
   s.source = path.string();
   f.only(root, {"name", "description", "route", "speed_mph", "speed_mps", "start_m", "end_m", "duration_s", "start_utc",
                 "road_seed", "load_scale", "engine_friction_scale", "accessory_scale", "cda_scale", "accel_rate_hz", "accelerometers", "gnss_rate_hz", "physics_rate_hz", "unsprung", "mode",
-                "hold_rpm", "hold_s", "weather", "clocks", "effects"},
+                "hold_rpm", "hold_s", "weather", "clocks", "effects", "vehicle"},
          "");
   s.name = f.required_text(root, "name", "");
   s.description = f.text(root, "description", "").value_or("");
@@ -110,6 +123,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
   auto route = load_route(resolve_route(route_name, path));
   if (!route) throw detail::TomlFailure{route.error()};
   s.route = std::move(route.value());
+  s.vehicle = read_vehicle(f, root, path, data_dir);
   const auto mode = f.text(root, "mode", "");
   if (mode && *mode != "cruise" && *mode != "coast" && *mode != "rev-hold") {
     f.fail(root.get("mode"), "mode", "expected \"cruise\", \"coast\" or \"rev-hold\"");
@@ -128,7 +142,9 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
   }
   s.start_m = f.number(root, "start_m", "", 0.0);
   if (auto end = f.number(root, "end_m", "")) s.end_m = *end;
-  if (s.hold_rpm.empty()) s.duration_s = f.number(root, "duration_s", "");
+  if (s.hold_rpm.empty()) {
+    if (auto d = f.number(root, "duration_s", "")) s.duration = Seconds{*d};
+  }
   if (const toml::node* utc = root.get("start_utc")) {
     const auto* dt = utc->as_date_time();
     if (dt == nullptr) f.fail(utc, "start_utc", "expected a TOML date-time such as 2014-10-20T10:00:00Z");
@@ -178,7 +194,7 @@ Parsed<Scenario> load_scenario(std::string_view name_or_path, const std::string&
   if (!parsed) return parsed.error();
   detail::TomlFields f(path.string());
   try {
-    Scenario s = read(f, parsed.value(), path);
+    Scenario s = read(f, parsed.value(), path, data_dir);
     // Build the route once here so that a scenario that loads is one that runs.
     auto built = Route::build(s.route);
     if (!built) return built.error();

@@ -27,27 +27,20 @@ Kinematics lerp(const Kinematics& a, const Kinematics& b, double t_s) {
   k.accel_long_mps2 = a.accel_long_mps2 + w * (b.accel_long_mps2 - a.accel_long_mps2);
   k.gravity_along_mps2 = a.gravity_along_mps2 + w * (b.gravity_along_mps2 - a.gravity_along_mps2);
   k.gravity_normal_mps2 = a.gravity_normal_mps2 + w * (b.gravity_normal_mps2 - a.gravity_normal_mps2);
-  for (std::size_t i = 0; i < kTruckAxles; ++i) {
+  for (std::size_t i = 0; i < kMaxAxles; ++i) {
     k.sprung_mps2[i] = a.sprung_mps2[i] + w * (b.sprung_mps2[i] - a.sprung_mps2[i]);
     k.unsprung_mps2[i] = a.unsprung_mps2[i] + w * (b.unsprung_mps2[i] - a.unsprung_mps2[i]);
   }
   return k;
 }
 
-std::vector<AccelMount> default_accel_mounts(std::size_t count) {
-  // Axle sensors see axle hop at several g on rough roads: +-8 g; frame sensors +-2 g.
-  const std::vector<AccelMount> all = {
-      {"TLF1", "tractor-front-axle-left", 0, true, 8.192},
-      {"TLF2", "tractor-front-frame-left", 0, false, 2.048},
-      {"TLR1", "tractor-drive1-axle-left", 1, true, 8.192},
-      {"TLR2", "tractor-drive1-frame-left", 1, false, 2.048},
-      {"TLR3", "tractor-drive2-axle-left", 2, true, 8.192},
-      {"TRL1", "trailer-axle1-left", 3, true, 8.192},
-      {"TRL2", "trailer-axle1-frame-left", 3, false, 2.048},
-      {"TRL3", "trailer-axle2-left", 4, true, 8.192},
-  };
+std::vector<AccelMount> accel_mounts(const TruckParams& truck, std::size_t count) {
+  std::vector<AccelMount> all;
+  for (const AccelerometerMount& m : truck.accelerometers) {
+    all.push_back({m.name, m.position, std::min(truck.axle_index(m.axle), kMaxAxles - 1), m.on_axle, m.range_g});
+  }
   std::vector<AccelMount> out;
-  for (std::size_t i = 0; i < count; ++i) {
+  for (std::size_t i = 0; i < count && !all.empty(); ++i) {
     AccelMount m = all[i % all.size()];
     if (i >= all.size()) m.name += "-" + std::to_string(i / all.size());
     out.push_back(m);

@@ -16,8 +16,6 @@
 namespace roadload::sim {
 namespace {
 
-constexpr double kAntennaBehind_m = 2.5;    // GNSS antenna on the cab's rear wall
-constexpr double kAntennaHeight_m = 4.0;
 constexpr double kOdometerStart_m = 412345600.0;
 constexpr std::uint8_t kWeatherStationId = 100;
 constexpr std::uint8_t kGnssId = 200;
@@ -36,15 +34,15 @@ Route build_route(const Scenario& s) {
 }
 
 TruckParams scenario_truck(const Scenario& s) {
-  TruckParams t = mnroad_truck(s.unsprung);
+  TruckParams t = truck_from_vehicle(s.vehicle, s.unsprung);
   for (auto& a : t.axles) {
     a.vertical.sprung_kg += (s.load_scale - 1.0) * a.load_kg;
     a.load_kg *= s.load_scale;
   }
   t.cda_m2 *= s.cda_scale;
-  t.engine.friction_a *= s.engine_friction_scale;
-  t.engine.friction_b *= s.engine_friction_scale;
-  t.engine.friction_c *= s.engine_friction_scale;
+  t.engine.friction_a_pct *= s.engine_friction_scale;
+  t.engine.friction_b_pct *= s.engine_friction_scale;
+  t.engine.friction_c_pct *= s.engine_friction_scale;
   for (double* w : {&t.accessories.alternator_w, &t.accessories.steering_w, &t.accessories.compressor_w,
                     &t.accessories.fan_engaged_w, &t.accessories.fan_idle_w}) {
     *w *= s.accessory_scale;
@@ -54,8 +52,8 @@ TruckParams scenario_truck(const Scenario& s) {
 
 BusOptions bus_options(const ClockSpec& c) {
   BusOptions o;
-  o.rx_latency_s = c.can_rx_latency_s;
-  o.rx_jitter_s = c.can_rx_jitter_s;
+  o.rx_latency = c.can_rx_latency;
+  o.rx_jitter = c.can_rx_jitter;
   o.ecu_drift_ppm = c.ecu_drift_ppm;
   return o;
 }
@@ -72,11 +70,11 @@ struct Simulation::Parts {
         plant(truck, route, profile, sc.effects, sd),
         wind(sc.weather, sc.effects.magnitude(Effect::wind_gusts), Rng(sd, kWind)),
         bus(db, bus_options(sc.clocks), Rng(sd, kBus)),
-        gnss(sc.gnss_rate_hz, sc.start_utc_ns, sc.clocks.gnss_latency_s, sc.effects.magnitude(Effect::gnss_elevation_bias),
+        gnss(sc.gnss_rate_hz, sc.start_utc_ns, sc.clocks.gnss_latency.count(), sc.effects.magnitude(Effect::gnss_elevation_bias),
              Rng(sd, kGnss)),
-        mast(sc.effects.magnitude(Effect::air_density_error), sc.clocks.weather_offset_s, Rng(sd, kMast)),
+        mast(sc.effects.magnitude(Effect::air_density_error), sc.clocks.weather_offset.count(), Rng(sd, kMast)),
         vp1_rng(sd, kVp1) {
-    const auto mounts = default_accel_mounts(sc.accelerometers);
+    const auto mounts = accel_mounts(truck, sc.accelerometers);
     for (std::size_t i = 0; i < mounts.size(); ++i) {
       accels.emplace_back(static_cast<std::uint8_t>(i), mounts[i], sc.accel_rate_hz, Rng(sd, kAccelBase + i));
     }
@@ -84,7 +82,7 @@ struct Simulation::Parts {
 
   BusView view(const TruckState& s, const Environment& env) {
     const auto& e = truck.engine;
-    const double ref = e.ref_torque_nm;
+    const double ref = e.reference_torque_nm;
     BusView v;
     const double bias = scenario.effects.magnitude(Effect::torque_bias);
     v.engine_rpm = s.engine_rpm;
@@ -107,7 +105,7 @@ struct Simulation::Parts {
     v.gear_ratio = s.gear > 0 ? truck.driveline.gear_ratios[static_cast<std::size_t>(s.gear - 1)] : 0.0;
     v.driveline_engaged = s.clutch_engaged;
     v.shift_in_process = !s.clutch_engaged && !scenario.coast;
-    v.output_shaft_rpm = s.speed_mps / truck.axles[1].tire_radius_m * truck.driveline.final_drive * 60.0 / (2 * std::numbers::pi);
+    v.output_shaft_rpm = s.speed_mps / truck.drive_radius_m() * truck.driveline.final_drive * 60.0 / (2 * std::numbers::pi);
     v.pressure_kpa = env.pressure_pa / 1000.0;
     v.ambient_c = env.air_temp_c + 0.3;  // the truck's sensor sits near warm parts
     v.intake_c = env.air_temp_c + 5.0;
@@ -135,7 +133,7 @@ struct Simulation::Parts {
     k.accel_long_mps2 = s.accel_mps2;
     k.gravity_along_mps2 = kGravity_mps2 * std::sin(s.grade_rad);
     k.gravity_normal_mps2 = kGravity_mps2 * std::cos(s.grade_rad);
-    for (std::size_t i = 0; i < kTruckAxles; ++i) {
+    for (std::size_t i = 0; i < truck.axles.size(); ++i) {
       k.sprung_mps2[i] = s.axles[i].sprung_accel_mps2;
       k.unsprung_mps2[i] = s.axles[i].unsprung_accel_mps2;
     }
@@ -146,7 +144,7 @@ struct Simulation::Parts {
   // and drift, plus the CAN-accelerometer offset effect (late, drifting 20 ppm).
   double accel_stamp(double t_s) const {
     const ClockSpec& c = scenario.clocks;
-    double stamp = t_s + c.accel_offset_s + c.accel_drift_ppm * 1e-6 * t_s;
+    double stamp = t_s + c.accel_offset.count() + c.accel_drift_ppm * 1e-6 * t_s;
     if (scenario.effects.on(Effect::can_accel_offset)) {
       stamp += scenario.effects.magnitude(Effect::can_accel_offset) + 20e-6 * t_s;
     }
@@ -186,7 +184,7 @@ recording::Metadata Simulation::metadata() const {
   const double scale = 1.0 + sc.effects.magnitude(Effect::mass_error);
   const TruckParams& t = p_->truck;
   m.vehicle_text["vin"] = t.vin;
-  m.vehicle_text["description"] = "International WorkStar 6x4 tractor, tandem semitrailer (MnROAD test truck)";
+  m.vehicle_text["description"] = t.description;
   m.vehicle["mass_kg"] = t.total_mass_kg() * scale;
   for (const auto& a : t.axles) {
     m.vehicle[a.name + "_load_kg"] = a.load_kg * scale;
@@ -194,8 +192,8 @@ recording::Metadata Simulation::metadata() const {
     // Eq. 2.1's M_w. Not scaled by the mass-error effect: that is cargo, the axles weigh the same.
     m.vehicle[a.name + "_unsprung_kg"] = a.vertical.unsprung_kg;
   }
-  m.vehicle["gnss_antenna_behind_front_axle_m"] = kAntennaBehind_m;
-  m.vehicle["gnss_antenna_height_m"] = kAntennaHeight_m;
+  m.vehicle["gnss_antenna_behind_front_axle_m"] = t.gnss_antenna_behind_front_m;
+  m.vehicle["gnss_antenna_height_m"] = t.gnss_antenna_height_m;
   for (const auto& a : p_->accels) {
     recording::SensorInfo s;
     s.id = static_cast<std::int64_t>(&a - p_->accels.data());
@@ -260,7 +258,7 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
     p.wind.advance(dt);
     const Environment air = p.wind.at_truck();
     if (holding) {
-      const auto step = static_cast<std::size_t>(p.plant.state().t_s / sc.hold_s);
+      const auto step = static_cast<std::size_t>(p.plant.state().t_s / sc.hold.count());
       p.plant.set_hold_rpm(sc.hold_rpm[std::min(step, sc.hold_rpm.size() - 1)]);
     }
     p.plant.step(dt, air);
@@ -282,8 +280,8 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
       const double t = p.gnss.next_true_s();
       const double w = (t - before.t_s) / dt;
       const double x = x_before + w * (s.x_m - x_before);
-      const Route::Position pos = p.route.at(x - kAntennaBehind_m);
-      const GnssTruth g{t, pos.lat_deg, pos.lon_deg, pos.elev_m + kAntennaHeight_m,
+      const Route::Position pos = p.route.at(x - p.truck.gnss_antenna_behind_front_m);
+      const GnssTruth g{t, pos.lat_deg, pos.lon_deg, pos.elev_m + p.truck.gnss_antenna_height_m,
                         v_before + w * (s.speed_mps - v_before), pos.heading_deg};
       GnssFix fix = p.gnss.fix(g);
       sink.gnss(fix);
@@ -298,7 +296,7 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
     }
     if (s.t_s >= p.vp1_next_s) {
       // The truck's own 1 Hz GPS feeds VP1: metres of noise, no DGPS.
-      const Route::Position pos = p.route.at(s.x_m - kAntennaBehind_m);
+      const Route::Position pos = p.route.at(s.x_m - p.truck.gnss_antenna_behind_front_m);
       p.vp1_lat = pos.lat_deg + 2.5 * p.vp1_rng.normal() / 111132.0;
       p.vp1_lon = pos.lon_deg + 2.5 * p.vp1_rng.normal() / (111320.0 * std::cos(pos.lat_deg * std::numbers::pi / 180.0));
       p.vp1_next_s += 1.0;
@@ -309,12 +307,12 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
     before = now;
     x_before = s.x_m;
     v_before = s.speed_mps;
-    const double done = holding ? s.t_s / *sc.duration_s : (s.x_m - sc.start_m) / total;
+    const double done = holding ? s.t_s / sc.duration->count() : (s.x_m - sc.start_m) / total;
     if (progress && done >= next_progress) {
       progress(std::min(done, 1.0));
       next_progress += 0.01;
     }
-    const bool timed_out = sc.duration_s && s.t_s >= *sc.duration_s;
+    const bool timed_out = sc.duration && s.t_s >= sc.duration->count();
     if (s.x_m >= sc.end_m || timed_out || (s.speed_mps <= 0.0 && !holding)) break;
   }
   sum.simulated_s = p.plant.state().t_s;

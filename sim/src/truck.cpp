@@ -14,42 +14,50 @@ double TruckParams::cg_position_m() const {
   return moment / total_mass_kg();
 }
 
-namespace {
-
-AxleSpec axle(const char* name, double position_m, double load_kg, double unsprung_kg, double k_susp, double k_tire,
-              double tires, double radius_m, bool driven) {
-  AxleSpec a;
-  a.name = name;
-  a.position_m = position_m;
-  a.load_kg = load_kg;
-  a.vertical.sprung_kg = load_kg - unsprung_kg;
-  a.vertical.unsprung_kg = unsprung_kg;
-  a.vertical.k_susp_npm = k_susp;
-  a.vertical.c_susp_nspm = 20000.0;      // S Ch. 6: per axle
-  a.vertical.k_tire_npm = k_tire;
-  a.vertical.c_tire_nspm = 4000.0 * tires;  // S Ch. 6: per tire
-  a.tire_radius_m = radius_m;
-  a.wheel_inertia_kgm2 = 13.0 * tires;   // tire, wheel, drum and hub per position
-  a.driven = driven;
-  return a;
+double TruckParams::drive_radius_m() const {
+  for (const auto& a : axles) {
+    if (a.driven) return a.tire_radius_m;
+  }
+  return axles.front().tire_radius_m;
 }
 
-}  // namespace
+std::size_t TruckParams::axle_index(const std::string& name) const {
+  for (std::size_t i = 0; i < axles.size(); ++i) {
+    if (axles[i].name == name) return i;
+  }
+  return axles.size();
+}
 
-TruckParams mnroad_truck(UnsprungDefinition unsprung) {
-  const bool report = unsprung == UnsprungDefinition::report;
-  // Report definition: tires and wheels scaled to Table 6.1's 1,463 kg (Table 6.2's parts give 1,458).
-  const double front_u = report ? 178.6 : 421.0;
-  const double drive_u = report ? 321.1 : 701.5;
-  const double trailer_u = report ? 321.1 : 595.0;
+TruckParams truck_from_vehicle(const Vehicle& v, UnsprungDefinition unsprung) {
   TruckParams t;
-  t.axles = {
-      axle("front", 0.0, 5307.0, front_u, 700e3, 1.9e6, 2, 0.530, false),
-      axle("drive1", 5.14, 7734.0, drive_u, 800e3, 3.4e6, 4, 0.500, true),
-      axle("drive2", 6.46, 7734.0, drive_u, 800e3, 3.4e6, 4, 0.500, true),
-      axle("trailer1", 16.45, 7688.5, trailer_u, 800e3, 3.4e6, 4, 0.500, false),
-      axle("trailer2", 17.69, 7688.5, trailer_u, 800e3, 3.4e6, 4, 0.500, false),
-  };
+  t.vin = v.vin;
+  t.description = v.description;
+  for (const VehicleAxle& va : v.axles) {
+    if (t.axles.size() == kMaxAxles) break;
+    AxleSpec a;
+    a.name = va.name;
+    a.position_m = va.position_m;
+    a.load_kg = va.load_kg;
+    const double unsprung_kg = unsprung == UnsprungDefinition::report ? va.report_unsprung_kg : va.unsprung_kg;
+    a.vertical.sprung_kg = va.load_kg - unsprung_kg;
+    a.vertical.unsprung_kg = unsprung_kg;
+    a.vertical.k_susp_npm = va.suspension.spring_npm;
+    a.vertical.c_susp_nspm = va.suspension.damper_nspm;
+    a.vertical.k_tire_npm = va.suspension.tire_stiffness_npm;
+    a.vertical.c_tire_nspm = va.suspension.tire_damping_nspm;
+    a.tire_radius_m = va.tire_radius_m;
+    a.wheel_inertia_kgm2 = va.wheel_inertia_kgm2;
+    a.driven = va.driven;
+    t.axles.push_back(a);
+  }
+  t.engine = v.engine;
+  t.fuel = v.fuel;
+  t.driveline = v.driveline;
+  t.accessories = v.accessories;
+  t.cda_m2 = v.cda_m2;
+  t.gnss_antenna_behind_front_m = v.gnss_antenna_behind_front_m;
+  t.gnss_antenna_height_m = v.gnss_antenna_height_m;
+  t.accelerometers = v.accelerometers;
   return t;
 }
 

@@ -36,7 +36,7 @@ std::optional<ParseError> TruthRecorder::open(const std::string& folder) {
 void TruthRecorder::observe(const TruckState& s, const Environment& env, double dt_s) {
   const auto& cells = route_.def().cells;
   // Each axle's dissipation goes to the cell under that axle; fuel and time to the cell under the CG.
-  for (std::size_t i = 0; i < kTruckAxles; ++i) {
+  for (std::size_t i = 0; i < truck_.axles.size(); ++i) {
     const Cell* c = route_.cell_at(s.x_m - truck_.axles[i].position_m);
     if (c == nullptr) continue;
     CellAcc& a = acc_[static_cast<std::size_t>(c - cells.data())];
@@ -108,7 +108,7 @@ std::vector<CellTruth> TruthRecorder::cells() const {
     t.start_m = cells[k].start_m;
     t.end_m = cells[k].end_m;
     if (a.fz_dt > 0) t.crr = a.crr_fz_dt / a.fz_dt;
-    for (std::size_t i = 0; i < kTruckAxles; ++i) {
+    for (std::size_t i = 0; i < truck_.axles.size(); ++i) {
       if (a.axle_time[i] <= 0) continue;
       t.damper_power_w += a.damper_j[i] / a.axle_time[i];
       t.tire_power_w += a.tire_j[i] / a.axle_time[i];
@@ -121,7 +121,7 @@ std::vector<CellTruth> TruthRecorder::cells() const {
     // Every axle entered at the start and left at the end (within one step of travel).
     t.complete = a.first_x <= cells[k].start_m + 0.5 && a.last_x >= cells[k].end_m - 0.5;
     bool all = true;
-    for (double at : a.axle_time) all = all && at > 0;
+    for (std::size_t i = 0; i < truck_.axles.size(); ++i) all = all && a.axle_time[i] > 0;
     t.complete = t.complete && all;
     out.push_back(t);
   }

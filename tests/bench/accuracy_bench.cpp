@@ -88,7 +88,7 @@ Truck truck_of(std::uint64_t seed) {
   Truck t;
   t.friction_scale = std::uniform_real_distribution<double>(0.9, 1.1)(rng);
   t.accessory_scale = std::uniform_real_distribution<double>(0.85, 1.15)(rng);
-  const model::TruckModel prior;
+  const model::TruckModel prior = model::truck_model(shipped::mnroad_vehicle());
   const double cda = std::normal_distribution<double>(prior.cda_prior_m2, prior.cda_sigma_m2)(rng);
   t.cda_scale = std::clamp(cda / prior.cda_prior_m2, 0.7, 1.3);
   return t;
@@ -120,7 +120,7 @@ Calibration calibrate(const j1939::Database& db, std::uint64_t seed, const Truck
   EngineLossFrames frames(db);
   for (const CanFrame& f : held.frames) frames.push(f);
   c.losses = engine_loss_map(frames.finish());
-  AnalyzerConfig base;
+  AnalyzerConfig base = analyzer_config(shipped::mnroad_vehicle());
   base.filter.truck.engine_losses = c.losses;
   AeroDrive drives[2];
   const char* names[2] = {"mnroad-mainline-30mph", "mnroad-mainline-64mph"};
@@ -213,7 +213,7 @@ void tally(const sim::Scenario& sc, const sim::Simulation& sim, const sim::test:
 }
 
 AnalyzerConfig calibrated_config(const Calibration& cal) {
-  AnalyzerConfig c;
+  AnalyzerConfig c = analyzer_config(shipped::mnroad_vehicle());
   c.filter.truck.engine_losses = cal.losses;
   c.filter.truck.cda_prior_m2 = cal.aero.cda_m2;
   c.filter.truck.cda_sigma_m2 = cal.aero.sigma_m2;
@@ -304,7 +304,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "\rbench_accuracy: calibrating the truck (engine losses standing, CdA at 30 and 64 mph) %d of %d", s, most);
     const Truck truck = truck_of(static_cast<std::uint64_t>(s));
     cals.push_back(calibrate(db, kCalibrationSeeds + static_cast<std::uint64_t>(s), truck));
-    const double true_cda = sim::mnroad_truck(sim::UnsprungDefinition::physical).cda_m2 * truck.cda_scale;
+    const double true_cda = shipped::mnroad_vehicle().cda_m2 * truck.cda_scale;
     cda_error_sigmas.add((cals.back().aero.cda_m2 - true_cda) / cals.back().aero.sigma_m2);
     cda_sigma.add(cals.back().aero.sigma_m2);
     loss_sigma.add(cals.back().losses.sigma_nm());

@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_daemon: %s\n", sc.error().to_string().c_str());
     return 1;
   }
-  sc.value().duration_s = 60;
+  sc.value().duration = Seconds{60};
   sc.value().accelerometers = 0;
   sim::Simulation simulation(sc.value(), 1, db);
   recording::Metadata meta = simulation.metadata();

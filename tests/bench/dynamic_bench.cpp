@@ -45,7 +45,7 @@ void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database&
   const PavementGroups groups = sim::test::pavement_groups(sc);
   VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()),
                        sc.route.cells.size(), groups.cell_group, groups.names.size());
-  DriveAnalyzer analyzer(db, *route, sim::test::cell_spans(sc), AnalyzerConfig{});
+  DriveAnalyzer analyzer(db, *route, sim::test::cell_spans(sc), analyzer_config(sc.vehicle));
   analyzer.attach(&va);
   sim::test::analyze(analyzer, sink, true);
 

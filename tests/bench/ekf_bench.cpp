@@ -5,6 +5,8 @@
 #include <cstdio>
 
 #include "roadload/crr_filter.hpp"
+#include "roadload/drive_analyzer.hpp"
+#include "vehicles.hpp"
 
 namespace {
 
@@ -21,7 +23,7 @@ double ns_per_call(long n, F&& f) {
 
 int main() {
   constexpr long kSteps = 2'000'000;
-  roadload::CrrFilterConfig cfg;
+  roadload::CrrFilterConfig cfg = roadload::analyzer_config(roadload::shipped::mnroad_vehicle()).filter;
   cfg.max_step = roadload::Nanoseconds{1'000'000'000};
   roadload::model::ForceInputs in;
   in.tractive_n = 4000;

@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench: %s\n", sc.error().to_string().c_str());
     return 1;
   }
-  sc.value().duration_s = duration_s;
+  sc.value().duration = roadload::Seconds{duration_s};
   roadload::j1939::Database db;
   if (auto e = roadload::load_dbc_file(db, std::string(ROADLOAD_CONFIG_DIR "/j1939-core.dbc"))) return 1;
 

@@ -22,6 +22,7 @@
 #include "roadload/contact_forces.hpp"
 #include "roadload/spectra/welch.hpp"
 #include "roadload/vibration.hpp"
+#include "vehicles.hpp"
 
 namespace {
 
@@ -73,10 +74,7 @@ double pipeline(const std::vector<std::vector<double>>& x) {
     placements.push_back({static_cast<std::int64_t>(s), "accelerometer", positions[s]});
     sensors.push_back({static_cast<std::uint8_t>(s), "S" + std::to_string(s), kFs});
   }
-  const std::map<std::string, double> vehicle = {{"front_load_kg", 5307},    {"drive1_load_kg", 7734},
-                                                 {"drive2_load_kg", 7734},   {"trailer1_load_kg", 7688.5},
-                                                 {"trailer2_load_kg", 7688.5}};
-  auto layout = roadload::build_axle_layout(placements, vehicle);
+  auto layout = roadload::build_axle_layout(placements, roadload::shipped::mnroad_vehicle());
   if (!layout) {
     std::fprintf(stderr, "bench_spectra: %s\n", layout.error().to_string().c_str());
     return 0;

@@ -19,7 +19,7 @@ namespace roadload::firmware::test {
 struct SimulatedDrive {
   explicit SimulatedDrive(double duration_s) : db(sim::test::core_database()) {
     scenario = sim::test::builtin("mnroad-mainline-30mph");
-    scenario.duration_s = duration_s;
+    scenario.duration = Seconds{duration_s};
     sim::Simulation s(scenario, 7, db);
     meta = s.metadata();
     s.run(sink, nullptr);

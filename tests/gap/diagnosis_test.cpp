@@ -6,7 +6,7 @@
 #include <random>
 #include <set>
 
-#include "gap/diagnosis.hpp"
+#include "roadload/gap/diagnosis.hpp"
 
 namespace roadload::gap {
 namespace {

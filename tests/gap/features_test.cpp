@@ -8,7 +8,7 @@
 
 #include <unistd.h>
 
-#include "gap/resimulate.hpp"
+#include "roadload/gap/resimulate.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/sim/recording_sink.hpp"
 #include "roadload/sim/simulation.hpp"
@@ -23,7 +23,7 @@ class GapFeatures : public ::testing::Test {
     auto s = sim::load_scenario("mnroad-mainline-30mph", ROADLOAD_CONFIG_DIR);
     ASSERT_TRUE(s) << s.error().to_string();
     scenario_ = s.value();
-    scenario_.duration_s = 75.0;
+    scenario_.duration = Seconds{75.0};
     scenario_.accel_rate_hz = 400;
     dir_ = std::filesystem::temp_directory_path() / "gap-features";
     dir_ += std::to_string(::getpid());
@@ -46,7 +46,7 @@ TEST_F(GapFeatures, ARecordingAndItsSimulationInMemoryGiveTheSameFeatures) {
     simulation.run(sink, nullptr);
     ASSERT_FALSE(writer.value().close());
   }
-  const auto disk = read_run(dir_.string(), db_, layout);
+  const auto disk = read_run(dir_.string(), db_, layout, scenario_.vehicle);
   ASSERT_TRUE(disk) << disk.error().to_string();
   const auto& a = memory.features.features;
   const auto& b = disk.value().features.features;
@@ -82,7 +82,7 @@ TEST_F(GapFeatures, TheReSimulationTakesSpeedWeatherAndMassFromTheRecording) {
   meta.vehicle["mass_kg"] = 36152.0 * 1.1;
   const sim::Scenario s = resimulation(scenario_, c, meta);
   EXPECT_DOUBLE_EQ(s.speed_mps, 20.0);
-  EXPECT_DOUBLE_EQ(*s.duration_s, 75.0);  // the model's shorter run is kept
+  EXPECT_DOUBLE_EQ(s.duration->count(), 75.0);  // the model's shorter run is kept
   EXPECT_DOUBLE_EQ(s.weather.air_temp_c, 25.0);
   EXPECT_DOUBLE_EQ(s.weather.pressure_pa, 97000.0);
   EXPECT_EQ(s.weather.wind_trace.size(), 2u);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "vehicles.hpp"
 #include "roadload/sim/air.hpp"
 #include "roadload/sim/plant.hpp"
 #include "roadload/sim/units.hpp"
@@ -19,7 +20,7 @@ TEST(CoastDown, From65MphMatchesTheAnalyticSolution) {
   ASSERT_TRUE(route.ok());
   const std::vector<ProfileSegment> segs = route.value().profile_segments(0, 8000, 0, 0);
   const RoadProfile profile = RoadProfile::generate(segs, 0, 8000, sc.road_seed);
-  const TruckParams truck = mnroad_truck();
+  const TruckParams truck = truck_from_vehicle(roadload::shipped::mnroad_vehicle());
   TruckPlant plant(truck, route.value(), profile, EffectSet{}, 1);
   Environment air;
   air.air_temp_c = sc.weather.air_temp_c;

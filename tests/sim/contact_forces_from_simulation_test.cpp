@@ -93,11 +93,11 @@ TEST(ContactForcesFromSimulation, MetadataCarriesEachAxlesUnsprungMass) {
 TEST(ContactForcesFromSimulation, MainlineAt30MphMatchesTheTrueTireForcePerAxle) {
   const j1939::Database db = test::core_database();
   Scenario sc = test::builtin("mnroad-mainline-30mph");
-  sc.duration_s = 60.0;
+  sc.duration = Seconds{60.0};
   Simulation sim(sc, 1, db);
   const ContactConfig config;
   ContactForces cf(test::axle_layout(sim.metadata()), sim.route().def().cells.size(), config);
-  ContactSink sink(sim, cf, config.warmup_s);
+  ContactSink sink(sim, cf, config.warmup.count());
   sim.run(sink, nullptr);
 
   for (std::size_t i = 0; i < cf.axle_count(); ++i) {

@@ -18,7 +18,7 @@ fs::path simulate(const std::string& tag, std::uint64_t seed) {
   const fs::path dir = fs::temp_directory_path() / ("roadload-determinism-" + tag);
   fs::remove_all(dir);
   Scenario sc = test::builtin("th10-55mph");
-  sc.duration_s = 8.0;
+  sc.duration = Seconds{8.0};
   sc.effects.set(Effect::wind_gusts, 1.0);
   sc.effects.set(Effect::fan_engagement, 0.2);
   const j1939::Database db = test::core_database();

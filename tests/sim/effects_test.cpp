@@ -61,7 +61,7 @@ Observed observe(std::optional<Effect> effect, double magnitude) {
   static const j1939::Database db = test::core_database();
   Scenario sc = test::builtin("th10-55mph");  // jointed concrete at 31 C: every effect has something to act on
   sc.effects = EffectSet{};
-  sc.duration_s = 30.0;
+  sc.duration = Seconds{30.0};
   sc.accelerometers = 2;
   if (effect) sc.effects.set(*effect, magnitude);
   Simulation sim(sc, 9, db);

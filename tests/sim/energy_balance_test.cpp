@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "vehicles.hpp"
 #include "roadload/sim/units.hpp"
 #include "sim_fixture.hpp"
 
@@ -14,7 +15,7 @@ class EnergyBalance : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     Scenario s = test::builtin("mnroad-mainline-30mph");
-    s.duration_s = 120.0;
+    s.duration = Seconds{120.0};
     // Effects that move energy between terms: fan, driveline losses, friction in the leaf spring.
     s.effects.set(Effect::fan_engagement, 0.3);
     s.effects.set(Effect::driveline_losses, 1.0);
@@ -83,7 +84,7 @@ TEST(EnergyBalanceWithShifts, AcceleratingThroughAGearChangeStillCloses) {
   ASSERT_TRUE(route.ok());
   const auto segs = route.value().profile_segments(0, 8000, 0, 0);
   const RoadProfile profile = RoadProfile::generate(segs, 0, 8000, 1);
-  TruckPlant plant(mnroad_truck(), route.value(), profile, EffectSet{}, 1);
+  TruckPlant plant(truck_from_vehicle(roadload::shipped::mnroad_vehicle()), route.value(), profile, EffectSet{}, 1);
   Environment air;
   plant.start(50, 40 * 0.44704, air);
   const int first_gear = plant.state().gear;

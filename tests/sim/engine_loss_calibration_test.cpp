@@ -108,7 +108,7 @@ TEST(EngineLossCalibration, TheFrictionCurveSplitsFrictionFromAccessoriesWhereEe
 
 TEST(EngineLossCalibration, ADriveGivesNoHold) {
   Scenario sc = test::builtin("mnroad-mainline-30mph");
-  sc.duration_s = 30;
+  sc.duration = Seconds{30};
   calibrate(sc, [](LossSink& sink) {
     EXPECT_TRUE(sink.frames.finish().empty());
     EXPECT_GT(sink.frames.readings, 1000u);

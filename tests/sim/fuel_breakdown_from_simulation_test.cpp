@@ -20,7 +20,7 @@ class RoundingSink final : public SampleSink {
   explicit RoundingSink(const Simulation& sim) : sim_(sim) {}
   void frame(const CanFrame& f) override {
     const TruckState& s = sim_.plant().state();
-    const double ref = sim_.plant().truck().engine.ref_torque_nm;
+    const double ref = sim_.plant().truck().engine.reference_torque_nm;
     const double omega_dt = s.engine_rpm * 2.0 * std::numbers::pi / 60.0 * (s.t_s - last_t_s_);
     const auto rounding_nm = [ref](double nm) { return std::nearbyint(nm / ref * 100.0) / 100.0 * ref - nm; };
     accessories_j += rounding_nm(s.accessory_torque_nm) * omega_dt;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "vehicles.hpp"
 #include "roadload/sim/powertrain.hpp"
 #include "roadload/sim/units.hpp"
 
@@ -18,14 +19,14 @@ double rpm_at(const TruckParams& t, double mph, int gear) {
 }
 
 TEST(Powertrain, EngineSpeedsInTheCruiseGears) {
-  const TruckParams t = mnroad_truck();
+  const TruckParams t = truck_from_vehicle(roadload::shipped::mnroad_vehicle());
   EXPECT_NEAR(rpm_at(t, 64, 10), 1340, 2);
   EXPECT_NEAR(rpm_at(t, 55, 10), 1152, 2);
   EXPECT_NEAR(rpm_at(t, 30, 8), 1188, 2);
 }
 
 TEST(Powertrain, PeakBrakeEfficiencyAndBsfcOfAHeavyDutyDiesel) {
-  const TruckParams t = mnroad_truck();
+  const TruckParams t = truck_from_vehicle(roadload::shipped::mnroad_vehicle());
   double best = 0, best_rpm = 0;
   for (double rpm = 700; rpm <= 2000; rpm += 10) {
     const double indicated = full_load_indicated_torque_nm(t.engine, rpm);
@@ -47,7 +48,7 @@ TEST(Powertrain, PeakBrakeEfficiencyAndBsfcOfAHeavyDutyDiesel) {
 }
 
 TEST(Powertrain, IdleFuelOfTheFrictionAloneIs2LitresPerHour) {
-  const TruckParams t = mnroad_truck();
+  const TruckParams t = truck_from_vehicle(roadload::shipped::mnroad_vehicle());
   const double omega = 650 * kRadps_per_rpm;
   EXPECT_NEAR(friction_torque_nm(t.engine, 650), 136, 1);
   const double lph = fuel_rate_lph(t.fuel, fuel_rate_kgps(t.fuel, friction_torque_nm(t.engine, 650) * omega, 650));
@@ -55,7 +56,7 @@ TEST(Powertrain, IdleFuelOfTheFrictionAloneIs2LitresPerHour) {
 }
 
 TEST(Powertrain, DrivelineLossesOpposeThePowerFlow) {
-  const TruckParams t = mnroad_truck();
+  const TruckParams t = truck_from_vehicle(roadload::shipped::mnroad_vehicle());
   for (bool detailed : {false, true}) {
     const DrivelineLoss loss = driveline_loss(t.driveline, 10, detailed, 1.0);
     const double drive = wheel_torque_nm(t.driveline, loss, 10, 1000);

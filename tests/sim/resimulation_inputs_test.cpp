@@ -35,7 +35,7 @@ TEST(LoadScale, ScalesEveryAxlesLoadThroughItsSprungMass) {
   s.load_scale = 1.1;
   const j1939::Database db = test::core_database();
   Simulation heavier(s, 1, db);
-  const TruckParams nominal = mnroad_truck(s.unsprung);
+  const TruckParams nominal = truck_from_vehicle(s.vehicle, s.unsprung);
   const TruckParams& t = heavier.plant().truck();
   EXPECT_NEAR(t.total_mass_kg(), 1.1 * nominal.total_mass_kg(), 1e-6);
   for (std::size_t a = 0; a < t.axles.size(); ++a) {

@@ -10,7 +10,7 @@ namespace {
 test::MemorySink run(const ClockSpec& clocks) {
   static const j1939::Database db = test::core_database();
   Scenario sc = test::builtin("th66-55mph");
-  sc.duration_s = 3.0;
+  sc.duration = Seconds{3.0};
   sc.accelerometers = 2;
   sc.clocks = clocks;
   Simulation sim(sc, 4, db);
@@ -22,11 +22,11 @@ test::MemorySink run(const ClockSpec& clocks) {
 TEST(SensorClocks, OffsetsAndLatenciesShiftOnlyTheStamps) {
   const test::MemorySink base = run(ClockSpec{});
   ClockSpec shifted;
-  shifted.accel_offset_s = 0.25;
+  shifted.accel_offset = Seconds{0.25};
   shifted.accel_drift_ppm = 100;
-  shifted.gnss_latency_s = 0.08;
-  shifted.can_rx_latency_s = 0.001;
-  shifted.weather_offset_s = -0.5;
+  shifted.gnss_latency = Seconds{0.08};
+  shifted.can_rx_latency = Seconds{0.001};
+  shifted.weather_offset = Seconds{-0.5};
   const test::MemorySink moved = run(shifted);
 
   ASSERT_EQ(base.accels.size(), moved.accels.size());

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "roadload/drive_signals.hpp"
+#include "vehicles.hpp"
 #include "roadload/engine_loss_calibration.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "sim_fixture.hpp"
@@ -57,10 +58,11 @@ struct Outcome {
   Unusable last_reason = Unusable::none;
 };
 
-Outcome drive(const char* scenario, double seconds, bool drop_ec1, const model::TruckModel& truck = {}) {
+Outcome drive(const char* scenario, double seconds, bool drop_ec1,
+              const model::TruckModel& truck = model::truck_model(roadload::shipped::mnroad_vehicle())) {
   const j1939::Database db = test::core_database();
   Scenario sc = test::builtin(scenario);
-  sc.duration_s = seconds;
+  sc.duration = Seconds{seconds};
   sc.accelerometers = 0;
   Simulation sim(sc, 2, db);
   TractionSink sink(db, sim, drop_ec1, truck);
@@ -89,7 +91,7 @@ TEST(TractionFromJ1939, CalibratedEngineLossesRemoveEec3sRounding) {
   const test::MemorySink held = test::drive_without_accelerometers(standing, 5, db);
   EngineLossFrames frames(db);
   for (const CanFrame& f : held.frames) frames.push(f);
-  model::TruckModel truck;
+  model::TruckModel truck = model::truck_model(roadload::shipped::mnroad_vehicle());
   truck.engine_losses = engine_loss_map(frames.finish());
   ASSERT_EQ(truck.engine_losses.size(), standing.hold_rpm.size());
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "roadload/firmware/daemon.hpp"
+#include "roadload/recording/metadata_vehicle.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 #include "simulated_drive.hpp"
 
@@ -22,8 +23,9 @@ inline DaemonSetup simulated_daemon_setup(const sim::Scenario& sc, const recordi
   setup.db = &db;
   setup.route = *RouteGeometry::build(sc.route.points);
   setup.cells = sim::test::cell_spans(sc);
-  setup.analyzer = recording::config_from_vehicle(meta.vehicle, std::nullopt);
-  setup.layout = recording::axle_layout(meta, "simulation").layout;
+  const Vehicle vehicle = recording::vehicle_from_metadata(sc.vehicle, meta);
+  setup.analyzer = recording::analyzer_config_for(vehicle, meta, std::nullopt);
+  setup.layout = recording::axle_layout(meta, vehicle, "simulation").layout;
   setup.accelerometers = recording::accelerometers(meta);
   const PavementGroups groups = sim::test::pavement_groups(sc);
   setup.cell_group = groups.cell_group;

@@ -6,7 +6,9 @@
 
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/pavement_groups.hpp"
+#include "roadload/recording/metadata_vehicle.hpp"
 #include "roadload/sim/simulation.hpp"
+#include "vehicles.hpp"
 
 namespace roadload::sim::test {
 
@@ -33,7 +35,7 @@ inline std::vector<CellSpan> cell_spans(const Scenario& sc) {
 // The analyzer's defaults with the route's roughness where its cells state none, as `roadload
 // analyze` takes it from the route file.
 inline AnalyzerConfig analyzer_config(const Scenario& sc) {
-  AnalyzerConfig c;
+  AnalyzerConfig c = roadload::analyzer_config(sc.vehicle);
   c.roughness_iri_m_per_km = iri_from_gd_m_per_km(sc.route.default_gd_n0_m3);
   return c;
 }
@@ -56,7 +58,7 @@ inline void analyze(DriveAnalyzer& analyzer, const MemorySink& sink, bool accels
 inline AxleLayout axle_layout(const recording::Metadata& m) {
   std::vector<SensorPlacement> p;
   for (const auto& s : m.sensors) p.push_back({s.id, s.kind, s.position});
-  auto l = build_axle_layout(p, m.vehicle);
+  auto l = build_axle_layout(p, recording::vehicle_from_metadata(roadload::shipped::mnroad_vehicle(), m));
   if (!l) throw std::runtime_error(l.error().to_string());
   return l.value();
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "allocation_counter.hpp"
+#include "vehicles.hpp"
 
 namespace roadload {
 namespace {
@@ -33,12 +34,7 @@ std::vector<SensorPlacement> placements(const std::vector<std::pair<std::int64_t
   return out;
 }
 
-std::map<std::string, double> mnroad_vehicle() {
-  return {{"mass_kg", 36152.0},        {"front_load_kg", 5307.0},   {"front_position_m", 0.0},
-          {"drive1_load_kg", 7734.0},  {"drive1_position_m", 5.14}, {"drive2_load_kg", 7734.0},
-          {"drive2_position_m", 6.46}, {"trailer1_load_kg", 7688.5}, {"trailer1_position_m", 16.45},
-          {"trailer2_load_kg", 7688.5}, {"trailer2_position_m", 17.69}};
-}
+using shipped::mnroad_vehicle;
 
 AxleLayout mnroad_layout() {
   const auto p = placements(kMounts);
@@ -92,17 +88,17 @@ TEST(ContactLayout, MapsTheMnroadSensorsAndBorrowsTheTandemFrames) {
     EXPECT_EQ(l.axles[i].frame_of, frame_of[i]) << names[i];
     EXPECT_DOUBLE_EQ(l.axles[i].sprung_kg + l.axles[i].unsprung_kg, l.axles[i].load_kg);
   }
-  // Without <axle>_unsprung_kg: the documented defaults (docs/simulator-parameters.md 1.1).
+  // The vehicle file's physical unsprung masses (docs/simulator-parameters.md 1.1).
   EXPECT_DOUBLE_EQ(l.axles[0].unsprung_kg, 421.0);
   EXPECT_DOUBLE_EQ(l.axles[1].unsprung_kg, 701.5);
   EXPECT_DOUBLE_EQ(l.axles[3].unsprung_kg, 595.0);
   EXPECT_DOUBLE_EQ(l.axles[1].sprung_kg, 7734.0 - 701.5);
 }
 
-TEST(ContactLayout, TakesUnsprungMassesFromTheMetadata) {
-  auto v = mnroad_vehicle();
-  v["front_unsprung_kg"] = 178.6;
-  v["trailer2_unsprung_kg"] = 321.1;
+TEST(ContactLayout, TakesUnsprungMassesFromTheVehicle) {
+  Vehicle v = mnroad_vehicle();
+  v.axles[0].unsprung_kg = 178.6;
+  v.axles[4].unsprung_kg = 321.1;
   const auto p = placements(kMounts);
   const auto l = build_axle_layout(p, v);
   ASSERT_TRUE(l.ok());
@@ -156,16 +152,16 @@ TEST(ContactLayout, LenientBuildSkipsAxlesWithoutSensorsAndSaysWhy) {
   EXPECT_NE(l.value().skipped[0].find("trailer-axle1-left"), std::string::npos) << l.value().skipped[0];
 }
 
-TEST(ContactLayout, NamesTheMissingAxleLoads) {
+TEST(ContactLayout, NamesAVehicleWithoutAxles) {
   const auto p = placements(kMounts);
-  const auto l = build_axle_layout(p, {{"mass_kg", 36152.0}});
+  const auto l = build_axle_layout(p, Vehicle{});
   ASSERT_FALSE(l.ok());
-  EXPECT_EQ(l.error().field, "vehicle.front_load_kg");
+  EXPECT_EQ(l.error().field, "vehicle");
 }
 
 TEST(ContactLayout, RejectsAnUnsprungMassNotBelowTheAxleLoad) {
-  auto v = mnroad_vehicle();
-  v["drive1_unsprung_kg"] = 8000.0;
+  Vehicle v = mnroad_vehicle();
+  v.axles[1].unsprung_kg = 8000.0;
   const auto p = placements(kMounts);
   const auto l = build_axle_layout(p, v);
   ASSERT_FALSE(l.ok());
@@ -176,7 +172,9 @@ TEST(ContactLayout, TakesTheRightSideWhenThereIsNoLeftAndIgnoresOtherKinds) {
   const std::vector<SensorPlacement> p = {{0, "gnss", "tractor-front-axle-left"},
                                           {1, "accelerometer", "tractor-front-axle-right"},
                                           {2, "accelerometer", "tractor-front-frame-right"}};
-  const auto l = build_axle_layout(p, {{"front_load_kg", 5307.0}});
+  Vehicle front_only = mnroad_vehicle();
+  front_only.axles.resize(1);
+  const auto l = build_axle_layout(p, front_only);
   ASSERT_TRUE(l.ok()) << l.error().to_string();
   EXPECT_EQ(l.value().axles[0].axle_sensor, 1);
   EXPECT_EQ(l.value().axles[0].frame_sensor, 2);

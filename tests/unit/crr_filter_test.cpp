@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "allocation_counter.hpp"
+#include "roadload/drive_analyzer.hpp"
+#include "vehicles.hpp"
 
 namespace roadload {
 namespace {
@@ -70,7 +72,7 @@ Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, con
     const double phi = std::exp(-v * kDt / kRippleCorrelation_m);
     ripple = phi * ripple + ripple_sigma_mps * std::sqrt(1.0 - phi * phi) * n01(rng);
     // The force errors that integrate to nothing: a speed offset correlated in time.
-    const double tau = cfg.bounded_force_correlation_s, phi_b = std::exp(-kDt / tau);
+    const double tau = cfg.bounded_force_correlation.count(), phi_b = std::exp(-kDt / tau);
     const double bounded_mps = cfg.bounded_aero_force_noise_per_sqrt_hz * aero / m_eff * std::sqrt(tau / 2.0);
     offset = phi_b * offset + bounded_mps * std::sqrt(1.0 - phi_b * phi_b) * n01(rng);
     d.speed_meas.push_back(v + ripple + offset + kSpeedSigma * n01(rng));
@@ -90,8 +92,9 @@ CrrFilter run(const CrrFilterConfig& cfg, const Drive& d) {
   return f;
 }
 
+// The MnROAD truck as the analyzer takes it.
 CrrFilterConfig config() {
-  CrrFilterConfig cfg;
+  CrrFilterConfig cfg = analyzer_config(shipped::mnroad_vehicle()).filter;
   cfg.crr_walk_per_sqrt_s = 1e-9;  // the truth here is constant
   cfg.cda_walk_per_sqrt_s = 1e-9;
   return cfg;

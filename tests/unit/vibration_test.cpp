@@ -9,6 +9,7 @@
 
 #include "allocation_counter.hpp"
 #include "roadload/vibration.hpp"
+#include "vehicles.hpp"
 
 namespace roadload {
 namespace {
@@ -18,8 +19,9 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 AxleLayout front_axle_only() {
   const SensorPlacement placements[] = {{0, "accelerometer", "tractor-front-axle-left"},
                                         {1, "accelerometer", "tractor-front-frame-left"}};
-  const std::map<std::string, double> vehicle = {{"front_load_kg", 5307}};
-  auto l = build_axle_layout(placements, vehicle);
+  Vehicle front = shipped::mnroad_vehicle();
+  front.axles.resize(1);
+  auto l = build_axle_layout(placements, front);
   EXPECT_TRUE(l.ok());
   return l.value();
 }

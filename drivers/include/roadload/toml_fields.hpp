@@ -1,11 +1,14 @@
 #pragma once
-// Reading TOML configuration (routes, scenarios) with errors that name file, line and field.
+// Reading TOML configuration (routes, scenarios, vehicles) with errors that name file, line and field.
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <toml++/toml.h>
+#include <vector>
 
 #include "roadload/parse_error.hpp"
 
@@ -38,6 +41,30 @@ class TomlFields {
   double required_number(const toml::table& t, std::string_view key, const std::string& where) const {
     if (auto v = number(t, key, where)) return *v;
     fail(&t, where + std::string(key), "required key missing");
+  }
+  // A number that must be finite and within [lo, hi]: a physical quantity.
+  double required_in(const toml::table& t, std::string_view key, const std::string& where, double lo, double hi) const {
+    const double v = required_number(t, key, where);
+    if (!std::isfinite(v) || v < lo || v > hi) {
+      fail(t.get(key), where + std::string(key), "outside " + format_range(lo, hi));
+    }
+    return v;
+  }
+  // An array of numbers, each finite and within [lo, hi].
+  std::vector<double> required_numbers(const toml::table& t, std::string_view key, const std::string& where, double lo,
+                                       double hi) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) fail(&t, where + std::string(key), "required key missing");
+    const toml::array* a = n->as_array();
+    if (a == nullptr) fail(n, where + std::string(key), "expected an array of numbers");
+    std::vector<double> out;
+    for (const toml::node& item : *a) {
+      const auto v = item.value<double>();
+      if (!v) fail(&item, where + std::string(key), "expected a number");
+      if (!std::isfinite(*v) || *v < lo || *v > hi) fail(&item, where + std::string(key), "outside " + format_range(lo, hi));
+      out.push_back(*v);
+    }
+    return out;
   }
   std::optional<std::string> text(const toml::table& t, std::string_view key, const std::string& where) const {
     const toml::node* n = t.get(key);
@@ -73,6 +100,11 @@ class TomlFields {
   const std::string& source() const { return source_; }
 
  private:
+  static std::string format_range(double lo, double hi) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%g..%g", lo, hi);
+    return text;
+  }
   std::string source_;
 };
 

@@ -1,16 +1,14 @@
 #include "roadload/accel/data_ready.hpp"
 
 #include <gpiod.h>
-#include <time.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
-namespace roadload::accel {
+#include "roadload/io/posix_time.hpp"
 
-namespace {
-constexpr std::int64_t kNsPerS = 1'000'000'000;
-}
+namespace roadload::accel {
 
 Parsed<std::unique_ptr<GpiodLine>> GpiodLine::open(const std::string& chip, unsigned line_offset, const std::string& consumer) {
   gpiod_chip* c = gpiod_chip_open_lookup(chip.c_str());
@@ -35,21 +33,18 @@ GpiodLine::~GpiodLine() {
 }
 
 int GpiodLine::wait(Nanoseconds timeout, std::int64_t& edge_mono_ns) {
-  const std::int64_t ns = timeout.count() > 0 ? timeout.count() : 0;
-  const timespec ts{static_cast<time_t>(ns / kNsPerS), static_cast<long>(ns % kNsPerS)};
+  const timespec ts = io::to_timespec(std::max(timeout, Nanoseconds{0}));
   const int ready = gpiod_line_event_wait(line_, &ts);
   if (ready < 0 && errno == EINTR) return 0;  // a signal for the daemon: the caller loops
   if (ready <= 0) return ready;
   gpiod_line_event event{};
   if (gpiod_line_event_read(line_, &event) != 0) return -1;
-  edge_mono_ns = static_cast<std::int64_t>(event.ts.tv_sec) * kNsPerS + event.ts.tv_nsec;
+  edge_mono_ns = io::from_timespec(event.ts).count();
   return 1;
 }
 
 std::int64_t GpiodLine::now_ns() const {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
+  return io::read_clock(CLOCK_MONOTONIC).count();
 }
 
 }  // namespace roadload::accel

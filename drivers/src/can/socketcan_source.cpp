@@ -17,20 +17,17 @@
 #include <cstdio>
 #include <cstring>
 
+#include "roadload/io/posix_time.hpp"
+
 namespace roadload::can {
 
 namespace {
 
-constexpr std::int64_t kNsPerS = 1'000'000'000;
 constexpr std::int64_t kReopenPeriodNs = kNsPerS;
 
-std::int64_t clock_ns(clockid_t id) {
-  timespec ts{};
-  clock_gettime(id, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
-}
+std::int64_t clock_ns(clockid_t id) { return io::read_clock(id).count(); }
 
-std::int64_t to_ns(const timespec& ts) { return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec; }
+std::int64_t to_ns(const timespec& ts) { return io::from_timespec(ts).count(); }
 
 }  // namespace
 
@@ -159,7 +156,7 @@ std::size_t SocketCanSource::read(std::span<CanFrame> out, Nanoseconds timeout) 
     const std::int64_t now = clock_ns(CLOCK_MONOTONIC);
     const std::int64_t wait = std::min(timeout.count(), std::max<std::int64_t>(0, next_open_mono_ns_ - now));
     if (wait > 0) {
-      const timespec ts{static_cast<time_t>(wait / kNsPerS), static_cast<long>(wait % kNsPerS)};
+      const timespec ts = io::to_timespec(Nanoseconds{wait});
       nanosleep(&ts, nullptr);
     }
     if (clock_ns(CLOCK_MONOTONIC) < next_open_mono_ns_ || !try_open()) return 0;

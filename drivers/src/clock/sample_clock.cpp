@@ -29,7 +29,7 @@ CaptureTime SampleClock::edge(CaptureTime t, std::uint32_t samples) {
   head_ = (head_ + 1) % config_.window_edges;
   n_ = std::min(n_ + 1, config_.window_edges);
   if (n_ >= 2) fit();
-  const double newest_s = intercept_s_ + count_ * period_s_ - config_.output_delay_s;
+  const double newest_s = intercept_s_ + count_ * period_s_ - config_.output_delay.count();
   return origin_ + Nanoseconds{std::llround(newest_s * 1e9)};
 }
 

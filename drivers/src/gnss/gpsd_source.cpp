@@ -10,25 +10,25 @@
 #include <cstdio>
 #include <cstring>
 
+#include "roadload/io/posix_time.hpp"
+
 namespace roadload::gnss {
 
 namespace {
 
-constexpr std::int64_t kNsPerS = 1'000'000'000;
 constexpr Nanoseconds kFirstBackoff{250'000'000};
 constexpr Nanoseconds kMaxBackoff{8 * kNsPerS};
 // A PPS report arrives within milliseconds of its edge; a TOFF's stamp is the start of its fix's
 // cycle on the serial line, up to a second (4800 baud, many sentences) before gpsd reports it.
 constexpr clock::RealtimeMapConfig kRealtimeConfig{200'000, 2 * kNsPerS, 1'000'000};
 
-std::int64_t ns(const timespec& ts) { return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec; }
+std::int64_t ns(const timespec& ts) { return io::from_timespec(ts).count(); }
 
 clock::ClockReading read_clocks() {
-  timespec before{}, realtime{}, after{};
-  clock_gettime(CLOCK_MONOTONIC, &before);
-  clock_gettime(CLOCK_REALTIME, &realtime);
-  clock_gettime(CLOCK_MONOTONIC, &after);
-  return {ns(before), ns(realtime), ns(after)};
+  const Nanoseconds before = io::read_clock(CLOCK_MONOTONIC);
+  const Nanoseconds realtime = io::read_clock(CLOCK_REALTIME);
+  const Nanoseconds after = io::read_clock(CLOCK_MONOTONIC);
+  return {before.count(), realtime.count(), after.count()};
 }
 
 // gpsd reports 2D/3D in `mode` and how the fix was made (DGPS, RTK) in `status`.

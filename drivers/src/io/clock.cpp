@@ -3,14 +3,11 @@
 #include <algorithm>
 #include <cerrno>
 
+#include "roadload/io/posix_time.hpp"
 #include "roadload/io/replay_clock.hpp"
 #include "roadload/io/source.hpp"
 
 namespace roadload::io {
-
-namespace {
-constexpr std::int64_t kNsPerS = 1'000'000'000;
-}
 
 const char* to_string(SourceState s) {
   switch (s) {
@@ -23,14 +20,11 @@ const char* to_string(SourceState s) {
 }
 
 CaptureTime MonotonicClock::now() const {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return capture_time_from_ns(static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec);
+  return CaptureTime{read_clock(CLOCK_MONOTONIC)};
 }
 
 void MonotonicClock::sleep_until(CaptureTime t, Nanoseconds limit) {
-  const std::int64_t target = std::min(to_ns(t), to_ns(now()) + limit.count());
-  const timespec ts{static_cast<time_t>(target / kNsPerS), static_cast<long>(target % kNsPerS)};
+  const timespec ts = to_timespec(std::min(t, now() + limit).time_since_epoch());
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
   }
 }

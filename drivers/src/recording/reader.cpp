@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "roadload/merge.hpp"
 #include "roadload/recording/csv.hpp"
 
 namespace roadload::recording {
@@ -243,13 +244,13 @@ const Record* RecordingReader::next() {
     for (std::size_t i = 0; i < streams_.size(); ++i) live_[i] = streams_[i]->next(heads_[i], errors_);
     primed_ = true;
   }
-  std::size_t best = streams_.size();
-  for (std::size_t i = 0; i < streams_.size(); ++i) {
-    if (live_[i] && (best == streams_.size() || stamp_of(heads_[i]) < stamp_of(heads_[best]))) best = i;
-  }
-  if (best == streams_.size()) return nullptr;
-  current_ = heads_[best];
-  live_[best] = streams_[best]->next(heads_[best], errors_);
+  const auto best = oldest_head(streams_.size(), [this](std::size_t i) -> std::optional<CaptureTime> {
+    if (!live_[i]) return std::nullopt;
+    return stamp_of(heads_[i]);
+  });
+  if (!best) return nullptr;
+  current_ = heads_[*best];
+  live_[*best] = streams_[*best]->next(heads_[*best], errors_);
   return &current_;
 }
 

@@ -15,7 +15,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <map>
 #include <span>
 #include <string>
 #include <string_view>
@@ -25,24 +24,26 @@
 #include "roadload/running_stats.hpp"
 #include "roadload/samples.hpp"
 #include "roadload/time.hpp"
+#include "roadload/vehicle.hpp"
 
 namespace roadload {
 
-// One axle as Eq. 2.1 needs it.
+// One axle as Eq. 2.1 needs it, with the vehicle's suspension for the dissipation (Eq. 2.7-2.8).
 struct AxleContact {
-  std::string name;          // "front", "drive1", "drive2", "trailer1", "trailer2"
-  double load_kg = 0;        // static axle load (meta.toml vehicle.<axle>_load_kg)
-  double unsprung_kg = 0;    // M_w (vehicle.<axle>_unsprung_kg, else kMnroadAxles' default)
+  std::string name;          // the vehicle's axle name: "front", "drive1", ...
+  double load_kg = 0;        // static axle load
+  double unsprung_kg = 0;    // M_w
   double sprung_kg = 0;      // M_c = load_kg - unsprung_kg
-  double position_m = 0;     // behind the front axle (vehicle.<axle>_position_m, else the default)
+  double position_m = 0;     // behind the front axle
   std::uint8_t axle_sensor = 0;   // accelerometer on the axle (sensor id of accel.csv)
   std::uint8_t frame_sensor = 0;  // accelerometer on the frame above it, or the nearest one
   std::string frame_of;      // axle whose frame sensor is used: == name when the axle has its own
-  double frame_ahead_m = 0;  // how far that axle is ahead of this one (drive2 on drive1's frame: 1.32 m)
+  double frame_ahead_m = 0;  // how far that axle is ahead of this one (a tandem's trailing axle on its leader's frame)
+  AxleSuspension suspension;
 };
 
 struct AxleLayout {
-  std::vector<AxleContact> axles;   // in kMnroadAxles order, at most kMaxContactAxles
+  std::vector<AxleContact> axles;   // front to rear, at most kMaxContactAxles
   std::vector<std::string> skipped; // "trailer2: no accelerometer at 'trailer-axle2-left'" (lenient build only)
 };
 
@@ -53,54 +54,24 @@ struct SensorPlacement {
   std::string_view position;  // "tractor-front-axle-left", ...
 };
 
-// The MnROAD truck's axles: their names in meta.toml, the unit they belong to, the accelerometer
-// positions of the recording format, and default unsprung masses.
-//
-// Default M_w: the simulator's physical unsprung mass per axle (docs/simulator-parameters.md,
-// Sect. 1.1): tires and wheels (seed report Tables 6.1/6.2: wheel 20 kg, front tire 69 kg, rear
-// tire 60 kg) plus the axle (Table 6.2: Meritor MFS-16-143A 193 kg, RT-40-145 255 kg; trailer axle
-// 200 kg, estimate) plus half of the suspension. The report applied Eq. 2.1 with tires and wheels
-// only (Table 6.1: 1,463 kg in all, 178.6 kg front and 321.1 kg per tandem axle); an accelerometer
-// bolted to the axle moves with the axle, so the axle's own mass belongs in M_w. A recording's
-// vehicle.<axle>_unsprung_kg always takes precedence.
-struct AxleDefaults {
-  const char* name;
-  const char* unit;             // "tractor" or "trailer": frame sensors are borrowed within a unit only
-  const char* axle_position;    // accelerometer position on the axle, without the "-left"/"-right" side
-  const char* frame_position;   // frame accelerometer above that axle, without the side
-  double unsprung_kg;
-  double position_m;            // only to rank frame sensors when the metadata lacks <axle>_position_m
-  int tires;                    // 2 single front tires, 4 on a dual-tire axle: the report's 4,000 N s/m each
-  double tire_stiffness_npm;    // all tires of the axle: 0.95 MN/m per steer tire, 0.85 per drive or trailer tire (E)
-};
-
 inline constexpr std::size_t kMaxContactAxles = 8;
-inline constexpr std::array<AxleDefaults, 5> kMnroadAxles{{
-    {"front", "tractor", "tractor-front-axle", "tractor-front-frame", 421.0, 0.0, 2, 1.9e6},
-    {"drive1", "tractor", "tractor-drive1-axle", "tractor-drive1-frame", 701.5, 5.14, 4, 3.4e6},
-    {"drive2", "tractor", "tractor-drive2-axle", "tractor-drive2-frame", 701.5, 6.46, 4, 3.4e6},
-    {"trailer1", "trailer", "trailer-axle1", "trailer-axle1-frame", 595.0, 16.45, 4, 3.4e6},
-    {"trailer2", "trailer", "trailer-axle2", "trailer-axle2-frame", 595.0, 17.69, 4, 3.4e6},
-}};
 
 struct LayoutOptions {
-  // false: every axle with a vehicle.<axle>_load_kg must have an axle accelerometer and a frame
-  // accelerometer on its unit, or the build fails naming the first one missing.
+  // false: every axle of the vehicle must have an axle accelerometer and a frame accelerometer on
+  // its unit, or the build fails naming the first one missing.
   // true: such axles are left out and listed in AxleLayout::skipped; it still fails if none is left.
   bool skip_axles_without_sensors = false;
 };
 
-// Builds the layout from the [[sensor]] table and the [vehicle] numbers of meta.toml.
-// Axles: those of kMnroadAxles with a vehicle.<axle>_load_kg. Sensors: kind accelerometer,
-// position "<axle_position>-left" (else "-right"); the lowest id wins when two share a position.
-// An axle without its own frame sensor uses the frame sensor of the same unit nearest to it along
-// the truck (by <axle>_position_m), same side first: on the MnROAD layout drive2 uses drive1's
-// frame (1.32 m ahead) and trailer2 uses trailer1's (1.24 m ahead). ContactForces then reads that
-// frame's motion delayed by the spread over the speed (ContactConfig::delay_borrowed_frames).
-// Errors (ParseError with file = source): the missing field ("vehicle.front_load_kg"), or the
-// missing sensor ("[[sensor]] position" 'tractor-drive2-axle-left' for axle drive2), or an
-// unsprung mass not below the axle load.
-Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, const std::map<std::string, double>& vehicle,
+// Builds the layout from the [[sensor]] table and the vehicle's axles. Sensors: kind
+// accelerometer, position "<axle_mount>-left" (else "-right"); the lowest id wins when two share a
+// position. An axle without its own frame sensor uses the frame sensor of the same unit nearest to
+// it along the truck, same side first: a tandem's trailing axle uses its leader's frame.
+// ContactForces then reads that frame's motion delayed by the spread over the speed
+// (ContactConfig::delay_borrowed_frames).
+// Errors (ParseError with file = source): the missing sensor ("[[sensor]] position"
+// 'tractor-drive2-axle-left' for axle drive2), or an unsprung mass not below the axle load.
+Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, const Vehicle& vehicle,
                                      std::string_view source = "meta.toml", LayoutOptions options = {});
 
 struct ContactConfig {
@@ -110,10 +81,10 @@ struct ContactConfig {
   // 3.2 s. Until 1/n drops below the filter's weight the mean is the plain average of the samples
   // so far, so a sensor's offset is gone within a second or two instead of 5 time constants.
   double highpass_hz = 0.05;
-  double warmup_s = 5.0;         // samples this soon after a sensor's (re)start are not accumulated
-  double max_pair_age_s = 0.005; // axle and frame samples farther apart in time are not paired (6 periods at 1200 Hz)
-  double gap_reset_s = 0.5;      // a sensor silent this long restarts its running mean and warm-up
-  double max_position_age_s = 2.0;  // a set_cell older than this no longer places the truck
+  Seconds warmup{5.0};         // samples this soon after a sensor's (re)start are not accumulated
+  Seconds max_pair_age{0.005}; // axle and frame samples farther apart in time are not paired (6 periods at 1200 Hz)
+  Seconds gap_reset{0.5};      // a sensor silent this long restarts its running mean and warm-up
+  Seconds max_position_age{2.0};  // a set_cell older than this no longer places the truck
   // A borrowed frame sensor is read frame_ahead_m / speed earlier. Eq. 2.1 is the report's quarter
   // car (Fig. 2.1): one sprung share per axle, moved by that axle's road. A tandem's trailing axle
   // rolls over the leading axle's road frame_ahead_m / speed later, and the two suspensions of a
@@ -142,7 +113,7 @@ struct AxleForceStats {
 struct ContactCounters {
   std::uint64_t paired = 0;        // axle samples that became a force (whether or not in a cell)
   std::uint64_t no_frame = 0;      // no frame sample yet (or the frame sensor is warming up)
-  std::uint64_t stale_frame = 0;   // no frame sample within max_pair_age_s of the time read
+  std::uint64_t stale_frame = 0;   // no frame sample within max_pair_age of the time read
   std::uint64_t warming_up = 0;    // the axle sensor itself warming up
   std::uint64_t no_cell = 0;       // paired, but the truck was in no cell (or its position was stale)
   // Paired with a borrowed frame undelayed: speed unknown, stale or below min_delay_speed_mps, the
@@ -188,7 +159,7 @@ class ContactForces {
   AxleForceStats trip(std::size_t axle) const;  // every paired sample of the drive, in a cell or not
   const ContactCounters& counters(std::size_t axle) const { return counters_[axle]; }
   std::uint64_t unknown_sensor_samples() const { return unknown_; }
-  std::uint64_t sensor_restarts() const { return restarts_; }  // gaps longer than gap_reset_s
+  std::uint64_t sensor_restarts() const { return restarts_; }  // gaps longer than gap_reset
   AxleForce latest(std::size_t axle) const { return latest_[axle]; }
 
  private:
@@ -217,9 +188,9 @@ class ContactForces {
     enum class Found { ok, stale, not_kept };
     void add(CaptureTime t, double d);
     // The deviation at time t, interpolated between the samples around it (across a gap in the
-    // samples: the nearer one, if within max_gap_s); stale when no sample is that close; not_kept
+    // samples: the nearer one, if within max_gap); stale when no sample is that close; not_kept
     // when t is before the oldest sample kept.
-    Found at(CaptureTime t, double max_gap_s, double& out) const;
+    Found at(CaptureTime t, Seconds max_gap, double& out) const;
   };
   struct SensorRole {
     std::int16_t axle = kNone;  // axle whose axle sensor this is

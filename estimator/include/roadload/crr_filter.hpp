@@ -30,23 +30,25 @@ double eec3_quantization_sigma_nm(double reference_torque_nm);
 struct CrrFilterConfig {
   model::TruckModel truck;
   // Error of the force balance, white, N per sqrt(Hz): a floor (torque resolution, driveline) and a
-  // share of the aero drag (gusts scale with it). With the roughness ripple (its own state) both set
-  // so that the mean NIS is near 1 on the simulated Mainline (30 mph) and highways (55 mph); without
-  // it they had to be 20 N and 0.03, and read the ripple as force a trip would average.
+  // share of the aero drag (gusts scale with it). Both set so that the mean NIS is near 1 on the
+  // simulated Mainline (30 mph) and highways (55 mph) with the roughness ripple as its own state;
+  // docs/estimator.md, "Noise".
   double force_noise_n = 8;
   double aero_force_noise_per_sqrt_hz = 0.010;
   // Force errors whose time integral stays bounded: a torque sampled before or after the speed it
   // meets, the torque changing between EEC1 frames. At a tick they look like white force noise of
   // this density (a share of the aero drag, as the speed sets how fast the road changes the
   // torque); over a trip they move the speed, not the energy. They ride on the ripple state as a
-  // speed offset correlated over `bounded_force_correlation_s`. The split from the white share is
+  // speed offset correlated over `bounded_force_correlation`. The split from the white share is
   // sized with CdA and the engine's losses known (docs/estimator.md, "Noise").
   double bounded_aero_force_noise_per_sqrt_hz = 0.0173;
-  double bounded_force_correlation_s = 5.0;
+  Seconds bounded_force_correlation{5.0};
   double unusable_force_noise_n = 20000.0; // while braking or shifting: speed follows the measurements
   double crr_walk_per_sqrt_s = 3e-4;       // CRR changes from pavement to pavement (no cells known)
   double cda_walk_per_sqrt_s = 1e-4;
-  double torque_bias_sigma_nm = 9.74;      // prior: EEC3 rounding at the MnROAD engine's 2,386 N m
+  // Prior until EC1 tells the engine's reference torque: EEC3's rounding at the vehicle's
+  // (analyzer_config() sets it).
+  double torque_bias_sigma_nm = 0;
   double torque_bias_walk_nm_per_sqrt_s = 0.01;
   // Estimate CdA from the data (drives across speeds) or only consider its prior's uncertainty
   // (one steady speed, where speed ripples would pull it onto any speed-correlated model error).

@@ -6,6 +6,7 @@
 #include <array>
 #include <optional>
 
+#include "roadload/can_frame.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "roadload/j1939/database.hpp"
 #include "roadload/model/longitudinal.hpp"
@@ -29,6 +30,7 @@ enum class Quantity : std::size_t {
   ambient_temp_c,          // AMB SPN 171
   pressure_pa,             // AMB SPN 108
   fuel_rate_lph,           // LFE1 SPN 183
+  fan_speed_rpm,           // FD1 SPN 1639
   count
 };
 inline constexpr std::size_t kQuantityCount = static_cast<std::size_t>(Quantity::count);
@@ -60,6 +62,31 @@ class DriveSignals {
   std::array<Reading, kQuantityCount> readings_{};
   double torque_whole_ = 0, torque_fraction_ = 0;
   bool torque_fraction_seen_ = false;
+};
+
+// CAN frames in, drive signals out: J1939 transport sessions reassembled, every complete message
+// decoded into the quantities it carries. The analyzer and the gap diagnosis read the bus this way.
+class SignalFeed {
+ public:
+  explicit SignalFeed(const j1939::Database& db) : signals_(db) {}
+  // The message this frame completed, its quantities already updated; none if it completed none.
+  std::optional<j1939::Message> push(const CanFrame& frame) {
+    auto m = assembler_.push(frame);
+    if (m) signals_.push(*m);
+    return m;
+  }
+  const Reading& get(Quantity q) const { return signals_.get(q); }
+  // The quantity came with the message stamped t, not held over from an earlier one.
+  bool fresh(Quantity q, CaptureTime t) const {
+    const Reading& r = get(q);
+    return r.seen && r.t == t;
+  }
+  const DriveSignals& signals() const { return signals_; }
+  const j1939::TpCounters& transport() const { return assembler_.transport().counters(); }
+
+ private:
+  j1939::MessageAssembler assembler_;
+  DriveSignals signals_;
 };
 
 // Why a sample cannot feed the force balance; `none` when it can.

@@ -18,10 +18,10 @@ namespace roadload {
 
 struct EngineLossCalibrationConfig {
   double steady_band_rpm = 10;     // a hold ends when the speed leaves its first reading by more
-  double settle_s = 3;             // the governor's approach, left out of each hold
-  double tail_s = 0.5;             // and the start of the next approach, before it leaves the band
-  double min_hold_s = 5;           // shorter holds (after settling) give no point
-  double max_gap_s = 1;            // a longer silence ends a hold
+  Seconds settle{3};               // the governor's approach, left out of each hold
+  Seconds tail{0.5};               // and the start of the next approach, before it leaves the band
+  Seconds min_hold{5};             // shorter holds (after settling) give no point
+  Seconds max_gap{1};              // a longer silence ends a hold
   double max_speed_mps = 0.1;      // standing still
 };
 

@@ -30,8 +30,6 @@ struct VibrationConfig {
   spectra::SuspensionConfig suspension;
   spectra::ModeConfig modes;
   std::size_t placement_history = 1024;  // 20 s of placements at 50 Hz: longer than a mode segment
-  double damper_nspm = 20000;            // seed report Ch. 6, per axle
-  double tire_damping_per_tire_nspm = 4000;  // seed report Ch. 6, per tire
 };
 
 // Summed over the axles (the simulator's truth sums them the same way).

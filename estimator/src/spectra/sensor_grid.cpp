@@ -93,7 +93,7 @@ void SensorGrid::put(Sensor& s, std::int64_t n, double v) {
   if (!s.integrating) {
     s.integrator.reset(v);
     s.warm_from = n;
-    s.ready_from = n + static_cast<std::int64_t>(std::ceil(config_.warmup_s * rate_hz()));
+    s.ready_from = n + static_cast<std::int64_t>(std::ceil(config_.warmup.count() * rate_hz()));
   }
   s.integrating = true;
   s.values[k] = v;

@@ -4,22 +4,25 @@
 // Written from the report and first principles, independently of the simulator's plant.
 #include "roadload/model/engine_losses.hpp"
 #include "roadload/time.hpp"
+#include "roadload/vehicle.hpp"
 
 namespace roadload::model {
 
 inline constexpr double kGravity_mps2 = 9.80665;
 
-// What the estimator assumes about the truck; defaults are the MnROAD truck (report Tables 6.1-6.2).
+// What the estimator assumes about the truck: truck_model() takes it from a vehicle description.
 struct TruckModel {
-  double mass_kg = 36152.0;
-  double wheel_inertia_mass_kg = 936.0;   // 18 wheel ends x 13 kg m^2 / r^2
-  double tire_radius_m = 0.500;           // drive axles, dynamic
-  double final_drive = 3.36;
-  double driveline_efficiency = 0.94;
-  double engine_inertia_kgm2 = 3.824;     // EC1 SPN 1794 when the truck sends it
-  double driveline_inertia_kgm2 = 0.5;
-  double cda_prior_m2 = 6.2;
-  double cda_sigma_m2 = 0.6;
+  double mass_kg = 0;
+  // Every wheel end's J / r^2 referred to the drive tires, whose speed CCVS1 reports; the steer
+  // tires' larger radius is within a percent of the wheels' share, itself 3 % of the mass.
+  double wheel_inertia_mass_kg = 0;
+  double tire_radius_m = 0;               // the drive axle's, dynamic
+  double final_drive = 0;
+  double driveline_efficiency = 0;
+  double engine_inertia_kgm2 = 0;         // EC1 SPN 1794 when the truck sends it
+  double driveline_inertia_kgm2 = 0;
+  double cda_prior_m2 = 0;
+  double cda_sigma_m2 = 0;
   // Between CdA's error and the flywheel torque bias's: a CdA calibrated from two speeds took up
   // the engine-loss calibration's error, which the same truck carries into every later drive.
   double cda_torque_bias_correlation = 0.0;
@@ -28,6 +31,17 @@ struct TruckModel {
   // Friction + accessories by engine speed from a standstill calibration; empty: EEC3's.
   EngineLossMap engine_losses;
 };
+
+TruckModel truck_model(const Vehicle& vehicle);
+
+// What resists the motion, each positive against it (Eq. 2.2-2.4): the air on the truck's CdA at
+// its airspeed, rolling on the tires' normal load, and the grade (its profile's value plus an error
+// the filter carries). The one place the filter and the fuel breakdown take these forces from.
+struct Resistances {
+  double aero_n = 0, rolling_n = 0, grade_n = 0;
+};
+Resistances resistances(double mass_kg, double crr, double cda_m2, double air_density_kgpm3, double airspeed_mps,
+                        double grade_rad, double grade_error_rad = 0.0);
 
 // Torque at the flywheel from EEC1/EEC3 percentages (J1939: actual torque is indicated; friction
 // and the parasitic loads the ECU knows are subtracted).

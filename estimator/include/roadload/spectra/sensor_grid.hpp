@@ -68,7 +68,7 @@ struct GridConfig {
   double velocity_leak_hz = 0.05;
   // Grid values this soon after a sensor's (re)start are held back: the integrator's leak takes
   // its unknown initial velocity out with a 3.2 s time constant.
-  double warmup_s = 10.0;
+  Seconds warmup{10.0};
 };
 
 struct GridSensor {

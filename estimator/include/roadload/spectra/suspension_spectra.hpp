@@ -33,9 +33,9 @@ struct SuspensionAxle {
   int axle_slot = -1, frame_slot = -1;  // SensorGrid slots of the axle and frame accelerometers
   double frame_ahead_m = 0;             // a borrowed frame sensor's lead along the truck; 0 if its own
   double unsprung_kg = 0, sprung_kg = 0;
-  double damper_nspm = 20000;         // seed report Ch. 6: 20,000 N s/m per axle
-  double tire_damping_nspm = 16000;   // seed report Ch. 6: 4,000 N s/m per tire
-  double tire_stiffness_npm = 3.4e6;  // all tires of the axle
+  double damper_nspm = 0;          // the vehicle's (AxleSuspension), per axle
+  double tire_damping_nspm = 0;    // all tires of the axle
+  double tire_stiffness_npm = 0;   // all tires of the axle
 };
 
 struct SuspensionConfig {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "roadload/parse_error.hpp"
+#include "roadload/time.hpp"
 
 namespace roadload::firmware {
 
@@ -37,8 +38,8 @@ struct GnssConfig {
 struct RecordingConfig {
   bool enabled = true;
   std::string data_dir = "/var/lib/roadload";
-  double fsync_interval_s = 1.0;
-  double segment_max_s = 3600;
+  Seconds fsync_interval{1.0};
+  Seconds segment_max{3600};
   double segment_max_mib = 512;
   double quota_mib = 8192;   // the oldest segments go first once the data dir holds more
 };
@@ -46,7 +47,7 @@ struct RecordingConfig {
 struct StatusConfig {
   std::string text_file = "/var/log/roadload/status.log";
   std::string json_file = "/var/log/roadload/status.jsonl";  // empty: no JSON lines
-  double interval_s = 1.0;
+  Seconds interval{1.0};
 };
 
 // Sensor streams from a recording instead of devices (`roadload replay` plays its CAN onto vcan).
@@ -58,10 +59,11 @@ struct ReplayConfig {
 };
 
 struct EstimatorConfig {
+  std::string vehicle;     // vehicle file or built-in name (config/vehicles); empty: the default vehicle
   std::string route;       // route file or built-in name; empty: no cells
   std::string results_dir; // cells.csv and trip.json written here at exit; empty: none
   // The truck's calibration (`roadload calibrate`): its engine-loss table, and its CdA with the
-  // standard error; empty or 0: EEC3's whole percent and the built-in prior.
+  // standard error; empty or 0: EEC3's whole percent and the vehicle file's prior.
   std::string engine_losses;
   double cda_m2 = 0, cda_sigma_m2 = 0;
   double cda_torque_correlation = 0;  // between CdA's error and the flywheel torque's (calibrate --aero)

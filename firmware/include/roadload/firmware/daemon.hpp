@@ -33,6 +33,23 @@ struct DaemonSources {
   std::vector<std::unique_ptr<AccelChannel>> accel;
   std::unique_ptr<GnssChannel> gnss;
   std::unique_ptr<WeatherChannel> weather;
+
+  // Every channel in the recording's order: CAN buses, accelerometers, GNSS, weather.
+  std::size_t count() const { return can.size() + accel.size() + (gnss ? 1 : 0) + (weather ? 1 : 0); }
+  template <typename Fn>
+  void for_each(Fn&& fn) {
+    for (std::size_t i = 0; i < count(); ++i) visit(i, fn);
+  }
+  // Calls fn on channel i of that order and returns what it returns.
+  template <typename Fn>
+  decltype(auto) visit(std::size_t i, Fn&& fn) {
+    if (i < can.size()) return fn(*can[i]);
+    i -= can.size();
+    if (i < accel.size()) return fn(*accel[i]);
+    i -= accel.size();
+    if (i == 0 && gnss) return fn(*gnss);
+    return fn(*weather);
+  }
 };
 
 struct CanBusInfo {
@@ -93,7 +110,7 @@ class Daemon {
   void estimate_loop();
   bool write_pending(std::size_t max_items, CaptureTime horizon);
   bool estimate_next(CaptureTime horizon);
-  CaptureTime merge_horizon(CaptureTime now) const;
+  CaptureTime merge_horizon(CaptureTime now);
 
   DaemonSetup setup_;
   DaemonSources sources_;

@@ -62,9 +62,9 @@ struct BusOptions {
   std::string iface = "can0";
   double bitrate_bps = 250000;
   double ecu_drift_ppm = 100;       // each ECU's oscillator, uniform +- this
-  double task_jitter_s = 0.0002;    // ECU send task jitter, uniform 0..this late
-  double rx_latency_s = 0.00008;    // controller to kernel stamp
-  double rx_jitter_s = 0.00002;
+  Seconds task_jitter{0.0002};      // ECU send task jitter, uniform 0..this late
+  Seconds rx_latency{0.00008};      // controller to kernel stamp
+  Seconds rx_jitter{0.00002};
 };
 
 class J1939Bus {

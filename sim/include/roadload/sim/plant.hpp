@@ -41,8 +41,8 @@ struct TruckState {
   double tractive_n = 0, roll_n = 0, aero_n = 0, grade_n = 0, profile_n = 0, brake_n = 0;
   double driveline_loss_n = 0;     // gearbox and axle losses, as a force at the wheels
   double crr_mean = 0;             // roll_n / sum of vertical tire forces
-  std::array<double, kTruckAxles> crr{};
-  std::array<AxleOutputs, kTruckAxles> axles{};
+  std::array<double, kMaxAxles> crr{};
+  std::array<AxleOutputs, kMaxAxles> axles{};
 };
 
 // Energy in joules since start. fuel = thermal + friction + accessories + fan + driveline
@@ -56,7 +56,7 @@ struct EnergyLedger {
 };
 
 struct PlantOptions {
-  double warm_s = 1800.0;  // driving before the run starts (the report warmed up >= 30 min)
+  Seconds warm{1800.0};  // driving before the run starts (the report warmed up >= 30 min)
   double cruise_kp_per_s = 0.3;
   double cruise_ki_per_s2 = 0.02;
 };

@@ -12,19 +12,20 @@
 #include "roadload/sim/route.hpp"
 #include "roadload/sim/truck.hpp"
 #include "roadload/sim/wind.hpp"
+#include "roadload/vehicle.hpp"
 
 namespace roadload::sim {
 
 // How each sensor's stamps relate to the true time of what they measured (the capture clock is
 // the gateway's monotonic clock, the simulator's virtual time).
 struct ClockSpec {
-  double can_rx_latency_s = 80e-6;  // end of frame to kernel stamp
-  double can_rx_jitter_s = 20e-6;   // uniform 0..this on top
+  Seconds can_rx_latency{80e-6};    // end of frame to kernel stamp
+  Seconds can_rx_jitter{20e-6};     // uniform 0..this on top
   double ecu_drift_ppm = 100;       // each ECU's oscillator, uniform +-this
-  double accel_offset_s = 0;        // accelerometer stamps late against the capture clock
+  Seconds accel_offset{0};          // accelerometer stamps late against the capture clock
   double accel_drift_ppm = 0;       // and drifting against it
-  double gnss_latency_s = 0.05;     // fix epoch to arrival at the logger
-  double weather_offset_s = 0;      // weather mast clock against the capture clock
+  Seconds gnss_latency{0.05};       // fix epoch to arrival at the logger
+  Seconds weather_offset{0};        // weather mast clock against the capture clock
 };
 
 struct Scenario {
@@ -32,10 +33,11 @@ struct Scenario {
   std::string description;
   std::string source;           // the file it came from
   RouteDef route;
+  Vehicle vehicle;              // the truck driven (`vehicle = NAME`, else the default vehicle)
   double speed_mps = 0;         // cruise set speed
   double start_m = 0;           // front axle at the start
   double end_m = 0;             // the run ends when the front axle passes here
-  std::optional<double> duration_s;  // or after this long, whichever first
+  std::optional<Seconds> duration;  // or after this long, whichever first
   std::int64_t start_utc_ns = 0;
   std::uint64_t road_seed = 1;  // the road is the same whatever the run's seed
   WeatherSpec weather;
@@ -54,9 +56,9 @@ struct Scenario {
   double cda_scale = 1.0;       // and its drag area against the type's (body, mirrors, trailer gap)
   bool coast = false;           // neutral coast-down instead of cruise
   // Rev-hold (an engine-loss calibration): standing in neutral, the governor holds the engine at
-  // each of these speeds in turn for hold_s; coast is set, the speed is 0.
+  // each of these speeds in turn for `hold`; coast is set, the speed is 0.
   std::vector<double> hold_rpm;
-  double hold_s = 0;
+  Seconds hold{0};
 };
 
 // NAME (a built-in, data_dir/scenarios/NAME.toml) or a path to a scenario file.

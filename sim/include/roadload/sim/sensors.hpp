@@ -20,8 +20,8 @@ struct Kinematics {
   double accel_long_mps2 = 0;
   double gravity_along_mps2 = 0;  // g sin(grade): what a level-mounted x axis feels of gravity
   double gravity_normal_mps2 = 0; // g cos(grade)
-  std::array<double, kTruckAxles> sprung_mps2{};
-  std::array<double, kTruckAxles> unsprung_mps2{};
+  std::array<double, kMaxAxles> sprung_mps2{};
+  std::array<double, kMaxAxles> unsprung_mps2{};
 };
 Kinematics lerp(const Kinematics& a, const Kinematics& b, double t_s);
 
@@ -33,8 +33,8 @@ struct AccelMount {
   double range_g = 2.048;
 };
 
-// The report's layout (front and rear of the tractor, axle and frame), then trailer and cab.
-std::vector<AccelMount> default_accel_mounts(std::size_t count);
+// The first `count` of the truck's accelerometers; more than it has repeat its layout, named -1, -2...
+std::vector<AccelMount> accel_mounts(const TruckParams& truck, std::size_t count);
 
 class Accelerometer {
  public:

@@ -52,7 +52,7 @@ class TruthRecorder {
  private:
   struct CellAcc {
     double fz_dt = 0, crr_fz_dt = 0;
-    std::array<double, kTruckAxles> axle_time{}, damper_j{}, tire_j{}, friction_j{};
+    std::array<double, kMaxAxles> axle_time{}, damper_j{}, tire_j{}, friction_j{};
     double time_s = 0, distance_m = 0, roll_j = 0, fuel_kg = 0;
     double first_x = 1e300, last_x = -1e300;
   };

@@ -1,0 +1,54 @@
+#pragma once
+// The withheld-effect check: drives simulated with effects the diagnosis is not told, diagnosed
+// blind from what their recordings would hold, scored against what was really on.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "roadload/gap/engine.hpp"
+
+namespace roadload::gap {
+
+// One test day of the MnROAD truck: the Mainline at 30 and at 64 mph, morning and afternoon.
+struct BenchDay {
+  std::vector<sim::Scenario> drives;  // what happened, before the hidden effects
+  std::vector<sim::Scenario> models;  // what the diagnosis is told (the built-in scenarios)
+};
+Parsed<BenchDay> bench_day(const std::string& data_dir);
+
+struct BenchCase {
+  std::vector<std::pair<sim::Effect, double>> effects;  // empty: a null run
+  std::uint64_t seed = 0;
+};
+
+// The effects the bench draws from by default, and why the others are left out (nullptr: in).
+std::vector<sim::Effect> observable_effects();
+const char* unobservable(sim::Effect e);
+
+struct BenchPlan {
+  std::size_t cases = 50;
+  std::uint64_t seed = 1;
+  double null_share = 0.2, pair_share = 0.15;
+  std::vector<sim::Effect> effects;  // drawn from; observable_effects() when empty
+};
+// Magnitudes are uniform within each effect's realistic range, at least a quarter of the range
+// away from the model's own value so that every effect case has a gap to find.
+std::vector<BenchCase> draw_cases(const BenchPlan& plan, const BenchDay& day);
+
+struct CaseOutcome {
+  BenchCase truth;
+  GapResult result;
+  bool named_right = false;   // null: nothing named; otherwise the first named effect was on
+  bool false_alarm = false;   // null run with an effect named
+  bool visible = false;       // the effect raised the held-out chi-square 4 sd above the noise drives'
+  double shrink = 0;          // share of that excess chi-square the named effect removed
+};
+
+CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelLibrary>& libraries,
+                     const j1939::Database& db, const GapOptions& options);
+
+std::string describe_effects(const std::vector<std::pair<sim::Effect, double>>& effects);
+
+}  // namespace roadload::gap

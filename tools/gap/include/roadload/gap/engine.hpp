@@ -1,0 +1,101 @@
+#pragma once
+// The diagnosis end to end for one set of recorded runs: their re-simulations, the noise floor
+// and candidate responses of the model (the library, reusable across drives in like
+// conditions), the diagnosis, and the held-out check with the chosen effect added to the model.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadload/gap/diagnosis.hpp"
+#include "roadload/gap/resimulate.hpp"
+#include "roadload/j1939/database.hpp"
+#include "roadload/sim/effects.hpp"
+#include "roadload/sim/scenario.hpp"
+
+namespace roadload::gap {
+
+// What the fit never sees: every other cell of every run, or every other run (the first, third,
+// ... runs against the second, fourth, ...: a fit at one speed judged at another).
+enum class Holdout { cells, runs };
+
+struct GapOptions {
+  std::size_t noise_runs = 8;   // seeds of the unchanged model that calibrate the noise floor
+  Holdout holdout = Holdout::cells;
+  unsigned jobs = 2;            // simulations at once
+  DecisionRule rule;
+  std::function<void(const std::string&)> progress;  // one line per step, for long runs
+};
+
+// A run as the diagnosis sees it: a label, the recording's metadata and features, and the model
+// scenario the user named for it.
+struct RealRun {
+  std::string label;
+  sim::Scenario model;
+  RecordedRun recorded;
+};
+
+struct ModelLibrary {
+  std::vector<std::string> labels;
+  std::vector<sim::Scenario> scenarios;  // the re-simulations the library was built on
+  std::vector<RunLayout> layouts;
+  std::vector<FeatureKey> keys;          // all runs' features, concatenated
+  std::vector<std::uint8_t> feature_half;  // each feature's own half (keys' may be its run's: --holdout runs)
+  Eigen::VectorXd baseline;              // the re-simulation's features
+  Eigen::VectorXd sigma;                 // noise floor per feature
+  struct Response {
+    sim::Effect effect;
+    double base, m1, m2;
+    Eigen::VectorXd f1, f2;  // features with the effect at m1 and m2
+  };
+  std::vector<Response> responses;
+  // The held-out half's chi-square of the noise drives: what a drive with nothing missing from
+  // the model scores (mean and spread), against which a gap's excess is measured.
+  double null_chi2_mean = 0, null_chi2_sd = 0;
+};
+
+// Adds a candidate effect at a magnitude to a re-simulation. Most are the simulator's own effect;
+// two are errors of what the recording says, so the model corrects its input instead: a recorded
+// mass (1 + e) too high means the truck was lighter, a station reading d too warm means colder,
+// denser air.
+void add_candidate(sim::Scenario& s, sim::Effect e, double magnitude);
+
+// The re-simulation of each run.
+std::vector<sim::Scenario> resimulations(const std::vector<RealRun>& runs);
+
+ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options);
+// Whether a library built for other drives may serve these: same routes and speeds, weather
+// and mass near enough that the responses and the noise floor carry over.
+bool library_serves(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims);
+
+struct ChannelResidual {
+  std::string channel;
+  std::size_t features = 0;
+  double before = 0, after = 0;  // RMS of z on held-out features
+};
+
+struct GapResult {
+  Problem problem;
+  Eigen::VectorXd real, model, sigma, after;  // per feature of problem.keys; after: with the chosen effect
+  Diagnosis diagnosis;
+  // The chosen effects added to the model at the magnitudes fitted on half 0, judged on half 1.
+  std::vector<ChannelResidual> channels;
+  double residual_before = 0, residual_after = 0;  // RMS z, held-out half
+  double chi2_before = 0, chi2_after = 0;          // held-out half
+  double null_chi2_mean = 0, null_chi2_sd = 0;     // the library's, for the same half
+  std::size_t held_out = 0;                        // valid held-out features
+};
+
+GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db,
+                  const GapOptions& options);
+
+// Simulates each (scenario, seed) into features on `jobs` threads; results in task order.
+struct SimTask {
+  sim::Scenario scenario;
+  std::uint64_t seed = 1;
+  const RunLayout* layout = nullptr;
+};
+std::vector<RecordedRun> simulate_all(const std::vector<SimTask>& tasks, const j1939::Database& db, unsigned jobs);
+
+}  // namespace roadload::gap

@@ -1,0 +1,247 @@
+#include "roadload/gap/diagnosis.hpp"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+namespace roadload::gap {
+namespace {
+
+constexpr std::uint8_t kBothHalves = 255;
+
+bool in_half(const FeatureKey& k, std::uint8_t half) { return half == kBothHalves || k.half == half; }
+
+// The chi-square of z minus a candidate set's response as a function of the magnitudes'
+// offsets u from base: zz - 2 c'h + c'Gc with c = (u1, u1^2, u2, u2^2, ...), over one half.
+struct Quadratic {
+  Eigen::MatrixXd g;
+  Eigen::VectorXd h;
+  double zz = 0;
+  std::size_t n = 0;
+
+  Quadratic(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t half) {
+    const auto cols = static_cast<Eigen::Index>(2 * set.size());
+    Eigen::MatrixXd basis(p.z.size(), cols);
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      basis.col(static_cast<Eigen::Index>(2 * i)) = p.candidates[set[i]].a;
+      basis.col(static_cast<Eigen::Index>(2 * i + 1)) = p.candidates[set[i]].b;
+    }
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index r = 0; r < p.z.size(); ++r) {
+      if (std::isfinite(p.z(r)) && in_half(p.keys[static_cast<std::size_t>(r)], half)) rows.push_back(r);
+    }
+    Eigen::MatrixXd b(static_cast<Eigen::Index>(rows.size()), cols);
+    Eigen::VectorXd z(static_cast<Eigen::Index>(rows.size()));
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      b.row(static_cast<Eigen::Index>(i)) = basis.row(rows[i]);
+      z(static_cast<Eigen::Index>(i)) = p.z(rows[i]);
+    }
+    g = b.transpose() * b;
+    h = b.transpose() * z;
+    zz = z.squaredNorm();
+    n = rows.size();
+  }
+  double sse(const std::vector<double>& u) const {
+    Eigen::VectorXd c(h.size());
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      c(static_cast<Eigen::Index>(2 * i)) = u[i];
+      c(static_cast<Eigen::Index>(2 * i + 1)) = u[i] * u[i];
+    }
+    return zz - 2.0 * c.dot(h) + c.dot(g * c);
+  }
+};
+
+// Minimises along one coordinate within [lo, hi]: a grid, then golden section around its best.
+double line_minimum(const Quadratic& q, std::vector<double>& u, std::size_t i, double lo, double hi) {
+  constexpr int kGrid = 200;
+  auto at = [&](double x) {
+    u[i] = x;
+    return q.sse(u);
+  };
+  double best_x = lo, best = at(lo);
+  for (int k = 1; k <= kGrid; ++k) {
+    const double x = lo + (hi - lo) * k / kGrid;
+    if (const double v = at(x); v < best) best = v, best_x = x;
+  }
+  double a = std::max(lo, best_x - (hi - lo) / kGrid), b = std::min(hi, best_x + (hi - lo) / kGrid);
+  const double r = (std::sqrt(5.0) - 1.0) / 2.0;
+  for (int k = 0; k < 40; ++k) {
+    const double x1 = b - r * (b - a), x2 = a + r * (b - a);
+    if (at(x1) < at(x2)) {
+      b = x2;
+    } else {
+      a = x1;
+    }
+  }
+  const double x = 0.5 * (a + b);
+  if (at(x) < best) best_x = x;
+  u[i] = best_x;
+  return at(best_x);
+}
+
+// Offsets from base minimising the chi-square; coordinate descent for two effects.
+std::vector<double> minimise(const Problem& p, const std::vector<std::size_t>& set, const Quadratic& q) {
+  std::vector<double> u(set.size(), 0.0);
+  const int rounds = set.size() == 1 ? 1 : 6;
+  for (int r = 0; r < rounds; ++r) {
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      const Candidate& c = p.candidates[set[i]];
+      line_minimum(q, u, i, c.lo - c.base, c.hi - c.base);
+    }
+  }
+  return u;
+}
+
+double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t fit_half) {
+  const Quadratic fit(p, set, fit_half);
+  const Quadratic judge(p, set, static_cast<std::uint8_t>(1 - fit_half));
+  const std::vector<double> u = minimise(p, set, fit);
+  return judge.sse(std::vector<double>(set.size(), 0.0)) - judge.sse(u);
+}
+
+Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const DecisionRule& rule) {
+  Fit f;
+  f.effects = set;
+  f.gain = held_out_gain(p, set, 0) + held_out_gain(p, set, 1) - rule.penalty * static_cast<double>(set.size());
+  const Quadratic all(p, set, kBothHalves);
+  const std::vector<double> u = minimise(p, set, all);
+  const std::vector<double> u0 = minimise(p, set, Quadratic(p, set, 0));
+  // Interval from the curvature (Fisher information of unit-variance residuals), widened by the
+  // fit's own scatter when it exceeds the noise model's.
+  const auto k = static_cast<Eigen::Index>(set.size());
+  Eigen::MatrixXd jac(p.z.size(), k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const Candidate& c = p.candidates[set[static_cast<std::size_t>(i)]];
+    jac.col(i) = c.a + 2.0 * u[static_cast<std::size_t>(i)] * c.b;
+  }
+  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(k, k);
+  for (Eigen::Index r = 0; r < p.z.size(); ++r) {
+    if (std::isfinite(p.z(r))) info += jac.row(r).transpose() * jac.row(r);
+  }
+  const double dof = std::max(1.0, static_cast<double>(all.n) - static_cast<double>(k));
+  const double scale = std::max(1.0, all.sse(u) / dof);
+  const Eigen::MatrixXd cov = info.ldlt().solve(Eigen::MatrixXd::Identity(k, k)) * scale;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    const Candidate& c = p.candidates[set[i]];
+    const double m = c.base + u[i];
+    const double half_width = 1.645 * std::sqrt(std::max(0.0, cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))));
+    f.magnitude.push_back(m);
+    f.lo.push_back(m - half_width);
+    f.hi.push_back(m + half_width);
+    f.magnitude_half0.push_back(c.base + u0[i]);
+    const double width = c.realistic_hi - c.realistic_lo;
+    if (std::isfinite(width) && width > 0) {
+      const double outside = std::max({0.0, c.realistic_lo - m, m - c.realistic_hi}) / width / rule.range_tolerance;
+      f.plausibility *= std::exp(-outside * outside);
+    }
+  }
+  if (f.gain > 0) f.gain *= f.plausibility;
+  return f;
+}
+
+}  // namespace
+
+Candidate Candidate::from_two(std::string name, std::string unit, double base, double lo, double hi, double m1,
+                              const Eigen::VectorXd& d1, double m2, const Eigen::VectorXd& d2) {
+  Candidate c;
+  c.name = std::move(name);
+  c.unit = std::move(unit);
+  c.base = base;
+  c.lo = lo;
+  c.hi = hi;
+  const double u1 = m1 - base, u2 = m2 - base;
+  const double det = u1 * u2 * (u2 - u1);
+  // Solve a u + b u^2 = d at u1 and u2; a feature either run missed moves by nothing.
+  const Eigen::VectorXd e1 = d1.unaryExpr([](double v) { return std::isfinite(v) ? v : 0.0; });
+  const Eigen::VectorXd e2 = d2.unaryExpr([](double v) { return std::isfinite(v) ? v : 0.0; });
+  c.a = (e1 * u2 * u2 - e2 * u1 * u1) / det;
+  c.b = (e2 * u1 - e1 * u2) / det;
+  return c;
+}
+
+Eigen::VectorXd Candidate::response(double magnitude) const {
+  const double u = magnitude - base;
+  return a * u + b * (u * u);
+}
+
+std::vector<WhereItem> locate(const std::vector<FeatureKey>& keys, const Eigen::VectorXd& z, std::size_t limit) {
+  std::map<std::pair<std::string, std::string>, WhereItem> groups;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const double v = z(static_cast<Eigen::Index>(i));
+    if (!std::isfinite(v)) continue;
+    WhereItem& w = groups[{keys[i].run, keys[i].channel}];
+    w.run = keys[i].run;
+    w.channel = keys[i].channel;
+    w.features += 1;
+    w.excess += v * v - 1.0;
+    if (std::abs(v) > std::abs(w.worst_z)) {
+      w.worst_z = v;
+      w.worst_where = keys[i].where;
+    }
+  }
+  std::vector<WhereItem> out;
+  for (auto& [key, w] : groups) {
+    w.significance = w.excess / std::sqrt(2.0 * static_cast<double>(w.features));
+    out.push_back(w);
+  }
+  std::sort(out.begin(), out.end(), [](const WhereItem& x, const WhereItem& y) { return x.significance > y.significance; });
+  if (out.size() > limit) out.resize(limit);
+  return out;
+}
+
+double rms(const Eigen::VectorXd& z, const std::vector<FeatureKey>& keys, std::uint8_t half) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const double v = z(static_cast<Eigen::Index>(i));
+    if (!std::isfinite(v) || !in_half(keys[i], half)) continue;
+    sum += v * v;
+    ++n;
+  }
+  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+}
+
+Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
+  Diagnosis d;
+  for (Eigen::Index r = 0; r < p.z.size(); ++r) {
+    if (!std::isfinite(p.z(r))) continue;
+    d.chi2 += p.z(r) * p.z(r);
+    ++d.features;
+  }
+  d.where = locate(p.keys, p.z, 8);
+  // Only places beyond the noise: two standard deviations of the group's chi-square.
+  std::erase_if(d.where, [](const WhereItem& w) { return w.significance < 2.0; });
+  for (std::size_t i = 0; i < p.candidates.size(); ++i) d.singles.push_back(fit_set(p, {i}, rule));
+  std::sort(d.singles.begin(), d.singles.end(), [](const Fit& x, const Fit& y) { return x.gain > y.gain; });
+  const std::size_t pool = std::min(rule.pair_pool, d.singles.size());
+  for (std::size_t i = 0; i < pool; ++i) {
+    for (std::size_t j = i + 1; j < pool; ++j) {
+      Fit f = fit_set(p, {d.singles[i].effects[0], d.singles[j].effects[0]}, rule);
+      if (!d.best_pair || f.gain > d.best_pair->gain) d.best_pair = std::move(f);
+    }
+  }
+  if (d.singles.empty() || d.singles.front().gain < rule.null_gain) return d;
+  d.chosen = d.singles.front();
+  // A second effect must beat the first by more than the residual the first leaves unexplained
+  // would grant by chance: the threshold grows with that residual's excess over the noise.
+  const double dispersion = std::max(1.0, (d.chi2 - d.chosen->gain) / static_cast<double>(std::max<std::size_t>(1, d.features)));
+  const double needed = std::max(rule.pair_gain * dispersion, rule.pair_share * d.chosen->gain);
+  if (d.best_pair && d.best_pair->gain - d.chosen->gain > needed) {
+    // The pair's stronger member first: it is the one the single fit found.
+    Fit pair = *d.best_pair;
+    if (pair.effects[1] == d.chosen->effects[0]) {
+      std::swap(pair.effects[0], pair.effects[1]);
+      std::swap(pair.magnitude[0], pair.magnitude[1]);
+      std::swap(pair.lo[0], pair.lo[1]);
+      std::swap(pair.hi[0], pair.hi[1]);
+      std::swap(pair.magnitude_half0[0], pair.magnitude_half0[1]);
+    }
+    d.chosen = pair;
+  }
+  return d;
+}
+
+}  // namespace roadload::gap

@@ -1,0 +1,153 @@
+#include "roadload/gap/output.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "roadload/recording/writer.hpp"
+#include "roadload/results/json.hpp"
+
+namespace roadload::gap {
+namespace {
+
+std::string effect_list(const GapResult& g) {
+  if (!g.diagnosis.chosen) return "none";
+  std::string s;
+  const Fit& f = *g.diagnosis.chosen;
+  for (std::size_t i = 0; i < f.effects.size(); ++i) s += (i ? " + " : "") + g.problem.candidates[f.effects[i]].name;
+  return s;
+}
+
+}  // namespace
+
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream o;
+  o.precision(8);
+  o << v;
+  return o.str();
+}
+
+void print_result(std::FILE* out, const GapResult& g, const std::vector<std::string>& run_lines) {
+  const Diagnosis& d = g.diagnosis;
+  for (const auto& line : run_lines) std::fprintf(out, "%s\n", line.c_str());
+  std::fprintf(out, "\nresidual: %zu features, chi-square %.0f against %zu expected from the noise floor\n", d.features, d.chi2,
+               d.features);
+  std::fprintf(out, "\nwhere the gap lies (sigma = excess chi-square / sqrt(2 n)):\n");
+  std::fprintf(out, "  %-22s %-24s %5s %8s %7s  %s\n", "run", "channel", "n", "excess", "sigma", "worst place (z)");
+  if (d.where.empty()) std::fprintf(out, "  nowhere beyond the noise floor\n");
+  for (const WhereItem& w : d.where) {
+    std::fprintf(out, "  %-22s %-24s %5zu %8.1f %7.1f  %s (%+.1f)\n", w.run.c_str(), w.channel.c_str(), w.features, w.excess,
+                 w.significance, w.worst_where.c_str(), w.worst_z);
+  }
+  std::fprintf(out, "\ncandidates (held-out chi-square removed, both folds, minus %g per magnitude):\n", 2.0);
+  const std::size_t shown = std::min<std::size_t>(6, d.singles.size());
+  for (std::size_t i = 0; i < shown; ++i) {
+    const Fit& f = d.singles[i];
+    const Candidate& c = g.problem.candidates[f.effects[0]];
+    std::fprintf(out, "  %-22s gain %8.1f   %s = %.4g %s [%.4g, %.4g]%s\n", c.name.c_str(), f.gain, c.name.c_str(), f.magnitude[0],
+                 c.unit.c_str(), f.lo[0], f.hi[0], f.plausibility < 0.99 ? "  (outside its realistic range)" : "");
+  }
+  if (d.best_pair) {
+    const Fit& f = *d.best_pair;
+    std::fprintf(out, "  best pair: %s + %s, gain %.1f\n", g.problem.candidates[f.effects[0]].name.c_str(),
+                 g.problem.candidates[f.effects[1]].name.c_str(), f.gain);
+  }
+  if (!d.chosen) {
+    std::fprintf(out, "\neffect: none: no candidate explains the gap significantly\n");
+  } else {
+    const Fit& f = *d.chosen;
+    std::fprintf(out, "\neffect: %s\n", effect_list(g).c_str());
+    for (std::size_t i = 0; i < f.effects.size(); ++i) {
+      const Candidate& c = g.problem.candidates[f.effects[i]];
+      std::fprintf(out, "  %s = %.4g %s, 90 %% interval [%.4g, %.4g] (model had %.4g)\n", c.name.c_str(), f.magnitude[i],
+                   c.unit.c_str(), f.lo[i], f.hi[i], c.base);
+    }
+  }
+  std::fprintf(out, "\nheld-out residual (RMS z on half 1; after: effect fitted on half 0 and simulated):\n");
+  std::fprintf(out, "  %-24s %5s %8s %8s\n", "channel", "n", "before", "after");
+  for (const ChannelResidual& c : g.channels) {
+    std::fprintf(out, "  %-24s %5zu %8.2f %8.2f\n", c.channel.c_str(), c.features, c.before, c.after);
+  }
+  std::fprintf(out, "  %-24s %5zu %8.2f %8.2f\n", "overall", g.held_out, g.residual_before, g.residual_after);
+}
+
+std::string result_json(const GapResult& g, const std::vector<std::string>& run_lines) {
+  const Diagnosis& d = g.diagnosis;
+  std::ostringstream j;
+  j << "{\n";
+  if (d.chosen) {
+    const Fit& f = *d.chosen;
+    const Candidate& c = g.problem.candidates[f.effects[0]];
+    j << "  \"effect\": " << results::json_quote(c.name) << ",\n  \"magnitude\": " << json_number(f.magnitude[0])
+      << ",\n  \"unit\": " << results::json_quote(c.unit) << ",\n  \"interval\": [" << json_number(f.lo[0]) << ", "
+      << json_number(f.hi[0]) << "],\n";
+  } else {
+    j << "  \"effect\": null,\n  \"magnitude\": null,\n  \"unit\": null,\n  \"interval\": null,\n";
+  }
+  j << "  \"effects\": [";
+  if (d.chosen) {
+    const Fit& f = *d.chosen;
+    for (std::size_t i = 0; i < f.effects.size(); ++i) {
+      const Candidate& c = g.problem.candidates[f.effects[i]];
+      j << (i ? ", " : "") << "{\"name\": " << results::json_quote(c.name) << ", \"magnitude\": " << json_number(f.magnitude[i])
+        << ", \"lo\": " << json_number(f.lo[i]) << ", \"hi\": " << json_number(f.hi[i])
+        << ", \"fitted_on_half0\": " << json_number(f.magnitude_half0[i]) << ", \"unit\": " << results::json_quote(c.unit) << "}";
+    }
+  }
+  j << "],\n  \"where\": [";
+  for (std::size_t i = 0; i < d.where.size(); ++i) {
+    const WhereItem& w = d.where[i];
+    j << (i ? "," : "") << "\n    {\"run\": " << results::json_quote(w.run) << ", \"channel\": " << results::json_quote(w.channel)
+      << ", \"features\": " << w.features << ", \"excess_chi2\": " << json_number(w.excess)
+      << ", \"sigma\": " << json_number(w.significance) << ", \"worst\": " << results::json_quote(w.worst_where)
+      << ", \"worst_z\": " << json_number(w.worst_z) << "}";
+  }
+  j << "\n  ],\n  \"residual_before\": " << json_number(g.residual_before) << ",\n  \"residual_after\": "
+    << json_number(g.residual_after) << ",\n  \"held_out_features\": " << g.held_out << ",\n  \"channels\": [";
+  for (std::size_t i = 0; i < g.channels.size(); ++i) {
+    const ChannelResidual& c = g.channels[i];
+    j << (i ? "," : "") << "\n    {\"channel\": " << results::json_quote(c.channel) << ", \"features\": " << c.features
+      << ", \"before\": " << json_number(c.before) << ", \"after\": " << json_number(c.after) << "}";
+  }
+  j << "\n  ],\n  \"candidates\": [";
+  for (std::size_t i = 0; i < d.singles.size(); ++i) {
+    const Fit& f = d.singles[i];
+    j << (i ? "," : "") << "\n    {\"name\": " << results::json_quote(g.problem.candidates[f.effects[0]].name)
+      << ", \"gain\": " << json_number(f.gain) << ", \"magnitude\": " << json_number(f.magnitude[0])
+      << ", \"plausibility\": " << json_number(f.plausibility) << "}";
+  }
+  j << "\n  ],\n  \"runs\": [";
+  for (std::size_t i = 0; i < run_lines.size(); ++i) j << (i ? ", " : "") << results::json_quote(run_lines[i]);
+  j << "]\n}\n";
+  return j.str();
+}
+
+std::string features_csv(const GapResult& g) {
+  std::ostringstream o;
+  o.precision(9);
+  o << "run,channel,where,half,real,model,sigma,z,after\n";
+  auto cell = [&](double v) -> std::ostringstream& {
+    if (std::isfinite(v)) o << v;
+    return o;
+  };
+  for (std::size_t i = 0; i < g.problem.keys.size(); ++i) {
+    const FeatureKey& k = g.problem.keys[i];
+    const auto r = static_cast<Eigen::Index>(i);
+    o << k.run << ',' << k.channel << ',' << k.where << ',' << static_cast<int>(k.half) << ',';
+    cell(g.real(r)) << ',';
+    cell(g.model(r)) << ',';
+    cell(g.sigma(r)) << ',';
+    cell(g.problem.z(r)) << ',';
+    cell(g.after(r)) << '\n';
+  }
+  return o.str();
+}
+
+std::optional<ParseError> write_text_file(const std::string& path, const std::string& text) {
+  auto file = recording::OutputFile::create(path);
+  if (!file) return file.error();
+  file.value().write(text);
+  return file.value().close();
+}
+
+}  // namespace roadload::gap

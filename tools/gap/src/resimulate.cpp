@@ -1,0 +1,123 @@
+#include "roadload/gap/resimulate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <array>
+#include <deque>
+#include <variant>
+
+#include "roadload/merge.hpp"
+#include "roadload/recording/reader.hpp"
+#include "roadload/sim/simulation.hpp"
+#include "roadload/sim/truck.hpp"
+
+namespace roadload::gap {
+namespace {
+
+// Samples reach a sink in physics order, each stamped later by its sensor's latency; a recording
+// holds each stream as it came and its reader merges them by oldest stamp. Held a second per stream
+// and merged the same way, the extractor sees a simulation exactly as it reads its recording back.
+class ExtractorSink final : public sim::SampleSink {
+ public:
+  explicit ExtractorSink(FeatureExtractor& x) : x_(x) {}
+  void frame(const CanFrame& f) override { hold(f, 0); }
+  void accel(const AccelSample& s) override { hold(s, 1); }
+  void gnss(const GnssFix& s) override { hold(s, 2); }
+  void weather(const WeatherSample& s) override { hold(s, 3); }
+  void flush() { release(CaptureTime::max()); }
+
+ private:
+  static constexpr Nanoseconds kHold{1'000'000'000};
+
+  template <typename T>
+  void hold(const T& sample, std::size_t stream) {
+    held_[stream].push_back(sample);
+    latest_ = std::max(latest_, sample.t);
+    release(latest_ - kHold);
+  }
+  void release(CaptureTime before) {
+    auto stamp = [](const recording::Record& r) { return std::visit([](const auto& s) { return s.t; }, r); };
+    while (const auto i = oldest_head(held_.size(), [&](std::size_t k) -> std::optional<CaptureTime> {
+             if (held_[k].empty()) return std::nullopt;
+             return stamp(held_[k].front());
+           })) {
+      if (stamp(held_[*i].front()) >= before) return;
+      std::visit([&](const auto& r) { x_.push(r); }, held_[*i].front());
+      held_[*i].pop_front();
+    }
+  }
+
+  FeatureExtractor& x_;
+  std::array<std::deque<recording::Record>, 4> held_;
+  CaptureTime latest_ = CaptureTime::min();
+};
+
+}  // namespace
+
+RunLayout layout_for(const sim::RouteDef& route) {
+  auto geometry = RouteGeometry::build(route.points);
+  RunLayout layout{*geometry, {}};
+  for (const auto& c : route.cells) layout.bins.push_back({c.id, c.start_m, c.end_m, c.surface == "concrete"});
+  if (layout.bins.empty()) {
+    const double length = layout.geometry.length_m();
+    for (double s = 0; s < length; s += 250.0) {
+      layout.bins.push_back({std::to_string(static_cast<long>(s)) + " m", s, std::min(s + 250.0, length), false});
+    }
+  }
+  return layout;
+}
+
+Parsed<RecordedRun> read_run(const std::string& path, const j1939::Database& db, const RunLayout& layout, const Vehicle& base) {
+  auto reader = recording::RecordingReader::open(path);
+  if (!reader) return reader.error();
+  if (!reader.value().has_metadata()) return ParseError{path, 0, recording::kMetaFile, "missing: the re-simulation needs the vehicle"};
+  RecordedRun run{reader.value().metadata(), {}};
+  FeatureExtractor x(db, layout, run.meta, base);
+  while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { x.push(s); }, *r);
+  const auto& errors = reader.value().errors();
+  if (errors.count() > 0) {
+    ParseError first = errors.kept().front();
+    first.message += " (" + std::to_string(errors.count()) + " malformed lines in all)";
+    return first;
+  }
+  run.features = x.finish();
+  if (run.features.conditions.speed_samples == 0) return ParseError{path, 0, "CCVS1", "no wheel speed: nothing to re-simulate"};
+  return run;
+}
+
+sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, const recording::Metadata& meta) {
+  sim::Scenario s = model;
+  // A drive near the model's set speed was driven at it: the measured mean carries the cruise
+  // loop's own error, which the re-simulation reproduces.
+  if (c.mean_speed_mps > 0.5 && c.mean_speed_mps <= 40.0 && std::abs(c.mean_speed_mps - model.speed_mps) > 0.3) {
+    s.speed_mps = c.mean_speed_mps;
+  }
+  if (c.duration_s > 0) s.duration = std::min(model.duration.value_or(Seconds{1e9}), Seconds{c.duration_s + 1.0});
+  if (c.weather_samples > 0) {
+    s.weather.air_temp_c = c.air_temp_c;
+    s.weather.temp_drift_c_per_h = c.temp_drift_c_per_h;
+    s.weather.pressure_pa = c.pressure_pa;
+    s.weather.wind_speed_mps = c.wind_speed_mps;
+    s.weather.wind_from_deg = c.wind_from_deg;
+    s.weather.wind_trace = c.wind_trace;
+  }
+  if (auto it = meta.vehicle.find("mass_kg"); it != meta.vehicle.end() && it->second > 0) {
+    s.load_scale = std::clamp(it->second / model.vehicle.mass_kg(), 0.5, 1.5);
+  }
+  return s;
+}
+
+RecordedRun simulate_run(const sim::Scenario& scenario, std::uint64_t seed, const j1939::Database& db,
+                              const RunLayout& layout) {
+  sim::Simulation simulation(scenario, seed, db);
+  RecordedRun run{simulation.metadata(), {}};
+  FeatureExtractor x(db, layout, run.meta, scenario.vehicle);
+  ExtractorSink sink(x);
+  simulation.run(sink, nullptr);
+  sink.flush();
+  run.features = x.finish();
+  return run;
+}
+
+}  // namespace roadload::gap

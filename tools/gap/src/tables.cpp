@@ -1,0 +1,171 @@
+#include "roadload/gap/tables.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "roadload/gap/parallel.hpp"
+#include "roadload/sim/simulation.hpp"
+
+namespace roadload::gap {
+namespace {
+
+class NullSink final : public sim::SampleSink {
+ public:
+  void frame(const CanFrame&) override {}
+  void accel(const AccelSample&) override {}
+  void gnss(const GnssFix&) override {}
+  void weather(const WeatherSample&) override {}
+};
+
+// Mean damper power over the cells the whole truck crossed, by surface: {bituminous, concrete}.
+std::pair<double, double> damper_power(const sim::Scenario& s, const j1939::Database& db) {
+  sim::Simulation simulation(s, 1, db);
+  sim::TruthRecorder truth(simulation.route(), simulation.plant().truck());
+  NullSink sink;
+  simulation.run(sink, &truth);
+  double sum[2] = {0, 0}, n[2] = {0, 0};
+  for (const auto& c : truth.cells()) {
+    if (!c.complete) continue;
+    const int k = c.surface == "concrete" ? 1 : 0;
+    sum[k] += c.damper_power_w;
+    n[k] += 1;
+  }
+  return {n[0] > 0 ? sum[0] / n[0] : NAN, n[1] > 0 ? sum[1] / n[1] : NAN};
+}
+
+struct Job {
+  sim::Scenario scenario;
+  std::pair<double, double> power{};
+};
+
+void run_all(std::vector<Job>& jobs, const j1939::Database& db, unsigned threads) {
+  parallel_for(jobs.size(), threads, [&](std::size_t i) { jobs[i].power = damper_power(jobs[i].scenario, db); });
+}
+
+// The candidates that change how a truck bounces, and the magnitudes tried on the Mainline.
+constexpr sim::Effect kVertical[] = {sim::Effect::joint_faulting, sim::Effect::slab_curl, sim::Effect::suspension_friction,
+                                     sim::Effect::tire_pressure};
+constexpr int kSteps = 4;
+
+}  // namespace
+
+Parsed<TablesResult> compare_tables(const std::string& data_dir, const j1939::Database& db, unsigned jobs,
+                                    const std::function<void(const std::string&)>& progress) {
+  sim::Scenario roads[3];
+  const char* names[3] = {"mnroad-mainline-30mph", "th10-55mph", "th66-55mph"};
+  for (int i = 0; i < 3; ++i) {
+    auto s = sim::load_scenario(names[i], data_dir);
+    if (!s) return s.error();
+    roads[i] = std::move(s.value());
+    // The baseline knows each pavement by its IRI and nothing else.
+    roads[i].effects = sim::EffectSet();
+  }
+  auto say = [&](const std::string& line) {
+    if (progress) progress(line);
+  };
+  std::vector<Job> first;
+  for (const auto& r : roads) first.push_back({r, {}});
+  for (sim::Effect e : kVertical) {
+    const sim::EffectInfo& info = sim::effect_info(e);
+    for (int k = 0; k < kSteps; ++k) {
+      Job j{roads[0], {}};
+      j.scenario.effects.set(e, info.min + (info.max - info.min) * k / (kSteps - 1));
+      first.push_back(std::move(j));
+    }
+  }
+  say("tables: " + std::to_string(first.size()) + " simulations (IRI only, then each candidate on the Mainline)");
+  run_all(first, db, jobs);
+
+  TablesResult t;
+  const auto [ml_bit, ml_con] = first[0].power;
+  const double th10 = first[1].power.second, th66 = first[2].power.first;
+  t.rows = {{"Mainline bituminous (Table 6.5)", 442, ml_bit, ml_bit},
+            {"Mainline concrete (Table 6.5)", 652, ml_con, ml_con},
+            {"TH 66 bituminous (Table 6.6)", 6486, th66, th66},
+            {"TH 10 concrete (Table 6.6)", 9353, th10, th10}};
+  for (std::size_t c = 0; c < std::size(kVertical); ++c) {
+    TableCandidate cand{kVertical[c], {}, false, 0, 0, 0};
+    const sim::EffectInfo& info = sim::effect_info(kVertical[c]);
+    for (int k = 0; k < kSteps; ++k) {
+      const auto& p = first[3 + c * kSteps + static_cast<std::size_t>(k)].power;
+      cand.mainline_ratio.emplace_back(info.min + (info.max - info.min) * k / (kSteps - 1), p.second / p.first);
+    }
+    // The magnitude giving the report's ratio, by linear interpolation between simulated ones;
+    // else the closest simulated.
+    double best = INFINITY;
+    for (std::size_t k = 0; k < cand.mainline_ratio.size(); ++k) {
+      const auto [m, r] = cand.mainline_ratio[k];
+      if (std::abs(r - kReportMainlineRatio) < best && !cand.reached) {
+        best = std::abs(r - kReportMainlineRatio);
+        cand.magnitude = m;
+      }
+      if (k == 0) continue;
+      const auto [m0, r0] = cand.mainline_ratio[k - 1];
+      if (!cand.reached && (r0 - kReportMainlineRatio) * (r - kReportMainlineRatio) <= 0 && r != r0) {
+        cand.reached = true;
+        cand.magnitude = m0 + (kReportMainlineRatio - r0) / (r - r0) * (m - m0);
+      }
+    }
+    t.candidates.push_back(std::move(cand));
+  }
+  // The ratio grows about with the square of a joint's height: refine the interpolated magnitude
+  // by two rounds of regula falsi on the Mainline alone.
+  for (int round = 0; round < 2; ++round) {
+    std::vector<Job> refine;
+    std::vector<std::size_t> which;
+    for (std::size_t c = 0; c < t.candidates.size(); ++c) {
+      if (!t.candidates[c].reached) continue;
+      Job j{roads[0], {}};
+      j.scenario.effects.set(t.candidates[c].effect, t.candidates[c].magnitude);
+      refine.push_back(std::move(j));
+      which.push_back(c);
+    }
+    say("tables: refining " + std::to_string(refine.size()) + " magnitude(s) on the Mainline");
+    run_all(refine, db, jobs);
+    for (std::size_t i = 0; i < which.size(); ++i) {
+      TableCandidate& cand = t.candidates[which[i]];
+      auto& pts = cand.mainline_ratio;
+      pts.emplace_back(cand.magnitude, refine[i].power.second / refine[i].power.first);
+      std::sort(pts.begin(), pts.end());
+      for (std::size_t k = 1; k < pts.size(); ++k) {
+        const auto [m0, r0] = pts[k - 1];
+        const auto [m1, r1] = pts[k];
+        if ((r0 - kReportMainlineRatio) * (r1 - kReportMainlineRatio) <= 0 && r1 != r0) {
+          cand.magnitude = m0 + (kReportMainlineRatio - r0) / (r1 - r0) * (m1 - m0);
+          break;
+        }
+      }
+    }
+  }
+  std::vector<Job> second;
+  for (const auto& cand : t.candidates) {
+    for (int road = 0; road < 3; ++road) {
+      Job j{roads[road], {}};
+      j.scenario.effects.set(cand.effect, cand.magnitude);
+      second.push_back(std::move(j));
+    }
+  }
+  say("tables: " + std::to_string(second.size()) + " simulations (each candidate at its fitted magnitude on every road)");
+  run_all(second, db, jobs);
+  double best_error = INFINITY;
+  for (std::size_t c = 0; c < t.candidates.size(); ++c) {
+    TableCandidate& cand = t.candidates[c];
+    const double h10 = second[c * 3 + 1].power.second, h66 = second[c * 3 + 2].power.first;
+    cand.highway_ratio = h10 / h66;
+    cand.holdout_error = std::abs(cand.highway_ratio - kReportHighwayRatio) / kReportHighwayRatio;
+    if (cand.reached && cand.holdout_error < best_error) {
+      best_error = cand.holdout_error;
+      t.chosen = static_cast<int>(c);
+    }
+  }
+  if (t.chosen >= 0) {
+    const auto c = static_cast<std::size_t>(t.chosen);
+    t.rows[0].after_w = second[c * 3].power.first;
+    t.rows[1].after_w = second[c * 3].power.second;
+    t.rows[2].after_w = second[c * 3 + 2].power.first;
+    t.rows[3].after_w = second[c * 3 + 1].power.second;
+  }
+  return t;
+}
+
+}  // namespace roadload::gap
