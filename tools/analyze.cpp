@@ -55,147 +55,180 @@ constexpr const char* kHelp =
     "  -q, --quiet     no table on standard output\n"
     "  -h, --help      this text\n";
 
-}  // namespace
-
-int run_analyze(Args args) {
-  OptionParser opt("analyze", args);
-  std::string recording, route_name, out, truth_dir, grade_file, losses_file;
+struct AnalyzeOptions {
+  std::string recording, route, out, truth_dir, grade_file, losses_file;
   double survey_sigma = 0;
-  std::optional<double> mass;
+  std::optional<double> mass, cda_m2, cda_sigma_m2, cda_torque_correlation;
   std::vector<std::string> dbcs;
   bool quiet = false, estimate_cda = false;
-  std::optional<double> cda_m2, cda_sigma_m2, cda_torque_correlation;
+};
+
+// The options, or the exit status when there is nothing to analyse (help, a bad option).
+std::variant<AnalyzeOptions, int> parse(Args args) {
+  OptionParser opt("analyze", args);
+  AnalyzeOptions o;
   while (opt.more()) {
     if (opt.flag("-h", "--help")) {
       std::fputs(kHelp, stdout);
       return kExitOk;
     }
     if (opt.flag("-q", "--quiet")) {
-      quiet = true;
+      o.quiet = true;
     } else if (opt.flag("--estimate-cda")) {
-      estimate_cda = true;
+      o.estimate_cda = true;
     } else if (auto c = opt.real("--cda", 0.5, 30)) {
-      cda_m2 = *c;
+      o.cda_m2 = *c;
     } else if (auto cs = opt.real("--cda-sigma", 0.0001, 10)) {
-      cda_sigma_m2 = *cs;
+      o.cda_sigma_m2 = *cs;
     } else if (auto cr = opt.real("--cda-torque-correlation", -1, 1)) {
-      cda_torque_correlation = *cr;
+      o.cda_torque_correlation = *cr;
     } else if (auto g = opt.value("--grade")) {
-      grade_file = *g;
+      o.grade_file = *g;
     } else if (auto l = opt.value("--engine-losses")) {
-      losses_file = *l;
+      o.losses_file = *l;
     } else if (auto sg = opt.real("--survey-sigma", 0, 10)) {
-      survey_sigma = *sg;
+      o.survey_sigma = *sg;
     } else if (auto r = opt.value("--route")) {
-      route_name = *r;
-    } else if (auto o = opt.value("--out")) {
-      out = *o;
+      o.route = *r;
+    } else if (auto out = opt.value("--out")) {
+      o.out = *out;
     } else if (auto t = opt.value("--truth")) {
-      truth_dir = *t;
+      o.truth_dir = *t;
     } else if (auto m = opt.real("--mass", 1000, 200000)) {
-      mass = *m;
+      o.mass = *m;
     } else if (auto d = opt.value("--dbc")) {
-      dbcs.emplace_back(*d);
+      o.dbcs.emplace_back(*d);
     } else if (auto p = opt.positional()) {
-      recording = *p;
+      o.recording = *p;
     } else if (!opt.failed()) {
       return opt.fail_unknown();
     }
   }
   if (opt.failed()) return kExitUsage;
-  if (recording.empty()) return opt.fail("a recording is required");
-  if (route_name.empty()) return opt.fail("--route is required");
-  if (out.empty()) return opt.fail("--out is required");
+  if (o.recording.empty()) return opt.fail("a recording is required");
+  if (o.route.empty()) return opt.fail("--route is required");
+  if (o.out.empty()) return opt.fail("--out is required");
+  return o;
+}
 
-  j1939::Database db;
-  if (auto rc = load_definitions("analyze", dbcs, db)) return *rc;
-  auto loaded = load_route("analyze", route_name);
-  if (const int* rc = std::get_if<int>(&loaded)) return *rc;
-  LoadedRoute& route = std::get<LoadedRoute>(loaded);
-  auto reader = recording::RecordingReader::open(recording);
-  if (!reader) {
-    std::fprintf(stderr, "roadload analyze: %s\n", reader.error().to_string().c_str());
-    return kExitNoInput;
-  }
-  auto vehicle = recording_vehicle("analyze", reader.value().metadata());
-  if (const int* rc = std::get_if<int>(&vehicle)) return *rc;
-  AnalyzerConfig cfg = recording::analyzer_config_for(std::get<Vehicle>(vehicle), reader.value().metadata(), mass);
-  cfg.estimate_cda = estimate_cda;
-  if (cda_m2) cfg.filter.truck.cda_prior_m2 = *cda_m2;
-  if (cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *cda_sigma_m2;
-  if (cda_torque_correlation) cfg.filter.truck.cda_torque_bias_correlation = *cda_torque_correlation;
-  cfg.survey_elevation_sigma_m = survey_sigma;
-  cfg.roughness_iri_m_per_km = route.file.default_iri_m_per_km;
-  if (!losses_file.empty()) {
-    auto losses = load_engine_loss_file(losses_file);
-    if (!losses) {
-      std::fprintf(stderr, "roadload analyze: %s\n", losses.error().to_string().c_str());
-      return losses.error().line > 0 ? kExitDataErr : kExitNoInput;
-    }
+// A file the analysis reads beside the recording; prints its error and gives the exit status.
+template <typename T>
+std::optional<int> failed_input(const Parsed<T>& p) {
+  if (p) return std::nullopt;
+  std::fprintf(stderr, "roadload analyze: %s\n", p.error().to_string().c_str());
+  return p.error().line > 0 ? kExitDataErr : kExitNoInput;
+}
+
+// The analyzer's settings: the recording's vehicle, then what the options say of the truck.
+std::variant<AnalyzerConfig, int> configure(const AnalyzeOptions& o, const Vehicle& vehicle, const recording::Metadata& meta,
+                                            const RouteFile& route) {
+  AnalyzerConfig cfg = recording::analyzer_config_for(vehicle, meta, o.mass);
+  cfg.estimate_cda = o.estimate_cda;
+  if (o.cda_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_m2;
+  if (o.cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *o.cda_sigma_m2;
+  if (o.cda_torque_correlation) cfg.filter.truck.cda_torque_bias_correlation = *o.cda_torque_correlation;
+  cfg.survey_elevation_sigma_m = o.survey_sigma;
+  cfg.roughness_iri_m_per_km = route.default_iri_m_per_km;
+  if (!o.losses_file.empty()) {
+    auto losses = load_engine_loss_file(o.losses_file);
+    if (auto rc = failed_input(losses)) return *rc;
     cfg.filter.truck.engine_losses = losses.value();
   }
+  return cfg;
+}
 
-  const std::vector<CellSpan> cells = cell_spans(route.file.cells);
-  const double route_length_m = route.geometry.length_m();
-  DriveAnalyzer analyzer(db, std::move(route.geometry), cells, cfg);
-  if (!grade_file.empty()) {
-    auto grade = load_grade_file(grade_file, route_length_m);
-    if (!grade) {
-      std::fprintf(stderr, "roadload analyze: %s\n", grade.error().to_string().c_str());
-      return grade.error().line > 0 ? kExitDataErr : kExitNoInput;
-    }
-    analyzer.set_grade(std::move(grade.value()));
-  }
+// The accelerometers' part of the analysis, attached where the recording's layout allows.
+struct Accelerometers {
   std::vector<std::string> axle_names;
   std::optional<ContactForces> contact;
   std::optional<VibrationAnalysis> vibration;
-  const PavementGroups groups = pavement_groups(route.file.cells);
-  auto layout = recording::axle_layout(reader.value().metadata(), std::get<Vehicle>(vehicle), recording + "/meta.toml");
-  if (!layout.layout) {
-    std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.why_not.c_str());
-  }
-  for (const std::string& why : layout.skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
-  if (layout.layout) {
-    for (const AxleContact& a : layout.layout->axles) axle_names.push_back(a.name);
-    vibration.emplace(*layout.layout, recording::accelerometers(reader.value().metadata()), cells.size(), groups.cell_group,
-                      groups.names.size());
-    contact.emplace(std::move(*layout.layout), cells.size());
-    analyzer.attach(&*contact);
-    analyzer.attach(&*vibration);
-  }
-  while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { analyzer.push(s); }, *r);
-  for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
-  analyzer.finish();
-  const std::vector<CellResult> results = analyzer.cells();
-  const TripResult trip = analyzer.trip();
+};
 
-  std::optional<VibrationSummary> spectra;
-  if (vibration) spectra = summarize(*vibration, groups, trip.fuel.time_s, trip.fuel.distance_m);
+void attach(Accelerometers& acc, DriveAnalyzer& analyzer, const AnalyzeOptions& o, const Vehicle& vehicle,
+            const recording::Metadata& meta, const PavementGroups& groups) {
+  auto layout = recording::axle_layout(meta, vehicle, o.recording + "/meta.toml");
+  if (!layout.layout) std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.why_not.c_str());
+  for (const std::string& why : layout.skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
+  if (!layout.layout) return;
+  const std::size_t cells = analyzer.cell_spans().size();
+  for (const AxleContact& a : layout.layout->axles) acc.axle_names.push_back(a.name);
+  acc.vibration.emplace(*layout.layout, recording::accelerometers(meta), cells, groups.cell_group, groups.names.size());
+  acc.contact.emplace(std::move(*layout.layout), cells);
+  analyzer.attach(&*acc.contact);
+  analyzer.attach(&*acc.vibration);
+}
+
+// RESULTS/cells.csv, trip.json and the PSD files.
+int write_results(const AnalyzeOptions& o, const std::vector<CellResult>& cells, const TripResult& trip,
+                  const Accelerometers& acc, const PavementGroups& groups, const std::optional<VibrationSummary>& spectra) {
   std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  const VibrationAnalysis* va = vibration ? &*vibration : nullptr;
-  for (auto err : {results::write_cells_csv(out + "/cells.csv", results, axle_names, va),
-                   results::write_trip_json(out + "/trip.json", trip, spectra ? vibration_json(*spectra) : std::string()),
-                   va ? write_psd_files(out, *va, groups) : std::nullopt}) {
+  std::filesystem::create_directories(o.out, ec);
+  const VibrationAnalysis* va = acc.vibration ? &*acc.vibration : nullptr;
+  for (auto err : {results::write_cells_csv(o.out + "/cells.csv", cells, acc.axle_names, va),
+                   results::write_trip_json(o.out + "/trip.json", trip, spectra ? vibration_json(*spectra) : std::string()),
+                   va ? write_psd_files(o.out, *va, groups) : std::nullopt}) {
     if (err) {
       std::fprintf(stderr, "roadload analyze: %s\n", err->to_string().c_str());
       return kExitCantCreate;
     }
   }
+  return kExitOk;
+}
+
+int analyze(const AnalyzeOptions& o) {
+  j1939::Database db;
+  if (auto rc = load_definitions("analyze", o.dbcs, db)) return *rc;
+  auto loaded = load_route("analyze", o.route);
+  if (const int* rc = std::get_if<int>(&loaded)) return *rc;
+  LoadedRoute& route = std::get<LoadedRoute>(loaded);
+  auto reader = recording::RecordingReader::open(o.recording);
+  if (!reader) {
+    std::fprintf(stderr, "roadload analyze: %s\n", reader.error().to_string().c_str());
+    return kExitNoInput;
+  }
+  const recording::Metadata& meta = reader.value().metadata();
+  auto vehicle = recording_vehicle("analyze", meta);
+  if (const int* rc = std::get_if<int>(&vehicle)) return *rc;
+  auto cfg = configure(o, std::get<Vehicle>(vehicle), meta, route.file);
+  if (const int* rc = std::get_if<int>(&cfg)) return *rc;
+  const double route_length_m = route.geometry.length_m();
+  DriveAnalyzer analyzer(db, std::move(route.geometry), cell_spans(route.file.cells), std::get<AnalyzerConfig>(cfg));
+  if (!o.grade_file.empty()) {
+    auto grade = load_grade_file(o.grade_file, route_length_m);
+    if (auto rc = failed_input(grade)) return *rc;
+    analyzer.set_grade(std::move(grade.value()));
+  }
+  const PavementGroups groups = pavement_groups(route.file.cells);
+  Accelerometers acc;
+  attach(acc, analyzer, o, std::get<Vehicle>(vehicle), meta, groups);
+  while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { analyzer.push(s); }, *r);
+  for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
+  analyzer.finish();
+  const std::vector<CellResult> results = analyzer.cells();
+  const TripResult trip = analyzer.trip();
+  std::optional<VibrationSummary> spectra;
+  if (acc.vibration) spectra = summarize(*acc.vibration, groups, trip.fuel.time_s, trip.fuel.distance_m);
+  if (const int rc = write_results(o, results, trip, acc, groups, spectra); rc != kExitOk) return rc;
   std::optional<Truth> truth;
-  if (!truth_dir.empty()) {
-    auto t = read_truth(truth_dir);
-    if (!t) {
-      std::fprintf(stderr, "roadload analyze: %s\n", t.error().to_string().c_str());
-      return t.error().line > 0 ? kExitDataErr : kExitNoInput;
-    }
+  if (!o.truth_dir.empty()) {
+    auto t = read_truth(o.truth_dir);
+    if (auto rc = failed_input(t)) return *rc;
     truth = std::move(t.value());
   }
-  if (!quiet) print_cells(results, truth ? &*truth : nullptr);
+  const VibrationAnalysis* va = acc.vibration ? &*acc.vibration : nullptr;
+  if (!o.quiet) print_cells(results, truth ? &*truth : nullptr);
   print_trip(trip, results, truth ? &*truth : nullptr, va);
   if (spectra) print_vibration(*spectra);
-  if (spectra && truth) print_vibration_truth(*vibration, route.file.cells, *truth);
+  if (spectra && truth) print_vibration_truth(*acc.vibration, route.file.cells, *truth);
   return kExitOk;
+}
+
+}  // namespace
+
+int run_analyze(Args args) {
+  auto o = parse(args);
+  if (const int* rc = std::get_if<int>(&o)) return *rc;
+  return analyze(std::get<AnalyzeOptions>(o));
 }
 
 }  // namespace roadload::cli

@@ -60,6 +60,14 @@ std::optional<int> read_recording(const std::string& path, EngineLossFrames& cal
   return std::nullopt;
 }
 
+void print_holds(const std::vector<EngineLossHold>& holds) {
+  std::printf("%8s %10s %9s %12s %12s %12s %7s\n", "rpm", "loss N m", "sigma", "friction", "EEC3 N m", "EEC3 error", "hold s");
+  for (const EngineLossHold& h : holds) {
+    std::printf("%8.1f %10.2f %9.2f %12.2f %12.2f %+12.2f %7.1f\n", h.point.rpm, h.point.loss_nm, h.point.sigma_nm,
+                h.point.friction_nm, h.eec3_loss_nm, h.eec3_loss_nm - h.point.loss_nm, h.duration_s);
+  }
+}
+
 }  // namespace
 
 int run_calibrate(Args args) {
@@ -127,14 +135,7 @@ int run_calibrate(Args args) {
     std::fprintf(stderr, "roadload calibrate: %s\n", err->to_string().c_str());
     return kExitCantCreate;
   }
-  if (!quiet) {
-    std::printf("%8s %10s %9s %12s %12s %12s %7s\n", "rpm", "loss N m", "sigma", "friction", "EEC3 N m", "EEC3 error",
-                "hold s");
-    for (const EngineLossHold& h : holds) {
-      std::printf("%8.1f %10.2f %9.2f %12.2f %12.2f %+12.2f %7.1f\n", h.point.rpm, h.point.loss_nm, h.point.sigma_nm,
-                  h.point.friction_nm, h.eec3_loss_nm, h.eec3_loss_nm - h.point.loss_nm, h.duration_s);
-    }
-  }
+  if (!quiet) print_holds(holds);
   if (std::isnan(holds.front().point.friction_nm)) {
     std::fprintf(stderr,
                  "roadload calibrate: EEC3's friction steps fewer than three times over these speeds: the accessories "

@@ -1,7 +1,7 @@
 // roadload gap bench: the diagnosis tried blind on drives with hidden effects.
 #include <chrono>
 #include <cstdio>
-#include <map>
+#include <optional>
 #include <string>
 
 #include "command.hpp"
@@ -31,25 +31,25 @@ constexpr const char* kHelp =
 
 std::string name_of(sim::Effect e) { return std::string(sim::effect_info(e).name); }
 
-std::string named(const gap::CaseOutcome& o) {
-  const auto& chosen = o.result.diagnosis.chosen;
-  if (!chosen) return "none";
-  std::string s;
-  for (std::size_t i = 0; i < chosen->effects.size(); ++i) {
-    char text[96];
-    std::snprintf(text, sizeof text, "%s%s=%.4g", i ? " + " : "", o.result.problem.candidates[chosen->effects[i]].name.c_str(),
-                  chosen->magnitude[i]);
-    s += text;
+// --effects: a comma-separated list or "all"; the first unknown name, when there is one.
+std::optional<std::string> parse_effects(std::string_view list, std::vector<sim::Effect>& out) {
+  if (list == "all") {
+    for (const auto& e : sim::effect_catalog()) out.push_back(e.id);
+    return std::nullopt;
   }
-  return s;
+  while (!list.empty()) {
+    const auto comma = list.find(',');
+    const std::string_view name = list.substr(0, comma);
+    const auto e = sim::find_effect(name);
+    if (!e) return std::string(name);
+    out.push_back(*e);
+    list = comma == std::string_view::npos ? std::string_view() : list.substr(comma + 1);
+  }
+  return std::nullopt;
 }
 
-}  // namespace
-
-int run_gap_bench(OptionParser& opt) {
-  gap::BenchPlan plan;
-  gap::GapOptions options;
-  options.jobs = default_jobs();
+// The plan and options, or the exit status when there is nothing to run (help, a bad option).
+std::optional<int> parse(OptionParser& opt, gap::BenchPlan& plan, gap::GapOptions& options) {
   while (opt.more()) {
     if (opt.flag("-h", "--help")) {
       std::fputs(kHelp, stdout);
@@ -62,23 +62,47 @@ int run_gap_bench(OptionParser& opt) {
     } else if (auto j = opt.number("--jobs", 1, 256)) {
       options.jobs = static_cast<unsigned>(*j);
     } else if (auto list = opt.value("--effects")) {
-      std::string_view rest = *list == "all" ? std::string_view() : *list;
-      if (*list == "all") {
-        for (const auto& e : sim::effect_catalog()) plan.effects.push_back(e.id);
-      }
-      while (!rest.empty()) {
-        const auto comma = rest.find(',');
-        const std::string_view name = rest.substr(0, comma);
-        const auto e = sim::find_effect(name);
-        if (!e) return opt.fail("--effects: unknown effect '" + std::string(name) + "' (roadload simulate --list-effects)");
-        plan.effects.push_back(*e);
-        rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
+      if (auto bad = parse_effects(*list, plan.effects)) {
+        return opt.fail("--effects: unknown effect '" + *bad + "' (roadload simulate --list-effects)");
       }
     } else if (!opt.failed()) {
       return opt.fail_unknown();
     }
   }
   if (opt.failed()) return kExitUsage;
+  return std::nullopt;
+}
+
+void print_case(std::size_t i, const gap::CaseOutcome& o) {
+  const auto& d = o.result.diagnosis;
+  char shrink[16] = "-";
+  if (o.visible) std::snprintf(shrink, sizeof shrink, "%.2f", o.shrink);
+  std::printf("%4zu  %-48s %-44s %8.1f %7s %s\n", i + 1, gap::describe_effects(o.truth.effects).c_str(), gap::named_effects(o).c_str(),
+              d.singles.empty() ? 0.0 : d.singles.front().gain, shrink, o.named_right ? "" : "  <- wrong");
+  std::fflush(stdout);
+}
+
+void print_score(const gap::BenchScore& score, std::size_t libraries) {
+  std::printf("\nconfusion (rows: hidden effect, the first of a pair marked (+1); columns: first named):\n");
+  for (const auto& [row, cols] : score.confusion) {
+    std::printf("  %-30s", row.c_str());
+    for (const auto& [col, n] : cols) std::printf(" %s:%d", col.c_str(), n);
+    std::printf("\n");
+  }
+  std::printf("\ntop-1 %zu/%zu; shrink over %zu visible effect cases; false alarms %zu/%zu null runs; %zu model libraries\n",
+              score.right, score.cases, score.visible, score.alarms, score.nulls, libraries);
+  std::printf("goals: top1 >= 0.90, shrink >= 0.70, false_alarm <= 0.05\n");
+  std::printf("cases=%zu top1=%.3f shrink=%.3f false_alarm=%.3f\n", score.cases, score.top1(), score.shrink(),
+              score.false_alarm());
+}
+
+}  // namespace
+
+int run_gap_bench(OptionParser& opt) {
+  gap::BenchPlan plan;
+  gap::GapOptions options;
+  options.jobs = default_jobs();
+  if (auto rc = parse(opt, plan, options)) return *rc;
   j1939::Database db;
   if (auto err = load_dbc_file(db, core_dbc_path())) {
     std::fprintf(stderr, "roadload gap bench: %s\n", err->to_string().c_str());
@@ -98,48 +122,18 @@ int run_gap_bench(OptionParser& opt) {
     std::printf("\n");
   }
   std::vector<gap::ModelLibrary> libraries;
-  std::map<std::string, std::map<std::string, int>> confusion;
-  std::size_t right = 0, nulls = 0, alarms = 0, visible = 0;
-  double shrink_sum = 0;
+  gap::BenchScore score;
   const auto wall0 = std::chrono::steady_clock::now();
   std::printf("%4s  %-48s %-44s %8s %7s\n", "case", "hidden effects", "named (fitted magnitude)", "gain", "shrink");
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const gap::CaseOutcome o = gap::run_case(cases[i], day.value(), libraries, db, options);
-    right += o.named_right ? 1 : 0;
-    if (o.truth.effects.empty()) {
-      ++nulls;
-      alarms += o.false_alarm ? 1 : 0;
-    }
-    if (o.visible) {
-      ++visible;
-      shrink_sum += o.shrink;
-    }
-    const auto& d = o.result.diagnosis;
-    const std::string truth_row = o.truth.effects.empty() ? "none" : name_of(o.truth.effects.front().first) +
-                                                                         (o.truth.effects.size() > 1 ? " (+1)" : "");
-    confusion[truth_row][d.chosen ? o.result.problem.candidates[d.chosen->effects[0]].name : "none"] += 1;
-    char shrink[16] = "-";
-    if (o.visible) std::snprintf(shrink, sizeof shrink, "%.2f", o.shrink);
-    std::printf("%4zu  %-48s %-44s %8.1f %7s %s\n", i + 1, gap::describe_effects(o.truth.effects).c_str(), named(o).c_str(),
-                d.singles.empty() ? 0.0 : d.singles.front().gain, shrink, o.named_right ? "" : "  <- wrong");
-    std::fflush(stdout);
+    score.add(o);
+    print_case(i, o);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    std::fprintf(stderr, "gap bench: %zu/%zu cases, %.0f s\n", i + 1, cases.size(), wall);
+    const double left = wall / static_cast<double>(i + 1) * static_cast<double>(cases.size() - i - 1);
+    std::fprintf(stderr, "gap bench: %zu/%zu cases, %.0f s, about %.0f s left\n", i + 1, cases.size(), wall, left);
   }
-  std::printf("\nconfusion (rows: hidden effect, the first of a pair marked (+1); columns: first named):\n");
-  for (const auto& [row, cols] : confusion) {
-    std::printf("  %-30s", row.c_str());
-    for (const auto& [col, n] : cols) std::printf(" %s:%d", col.c_str(), n);
-    std::printf("\n");
-  }
-  const double n = static_cast<double>(cases.size());
-  const double top1 = static_cast<double>(right) / n;
-  const double shrink_mean = visible ? shrink_sum / static_cast<double>(visible) : 0.0;
-  const double false_alarm = nulls ? static_cast<double>(alarms) / static_cast<double>(nulls) : 0.0;
-  std::printf("\ntop-1 %zu/%zu; shrink over %zu visible effect cases; false alarms %zu/%zu null runs; %zu model libraries\n", right,
-              cases.size(), visible, alarms, nulls, libraries.size());
-  std::printf("goals: top1 >= 0.90, shrink >= 0.70, false_alarm <= 0.05\n");
-  std::printf("cases=%zu top1=%.3f shrink=%.3f false_alarm=%.3f\n", cases.size(), top1, shrink_mean, false_alarm);
+  print_score(score, libraries.size());
   return kExitOk;
 }
 

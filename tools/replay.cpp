@@ -64,161 +64,204 @@ void sleep_until_ns(std::int64_t t) {
   clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
 }
 
-}  // namespace
-
-int run_replay(Args args) {
-  OptionParser p("replay", args);
+struct ReplayOptions {
   std::string input, iface = "vcan0", origin, sent_log;
   io::ReplayFaults faults;
-  double rate = 1.0;  // 0: max
+  double rate = 1.0;  // 0: as fast as the interface takes them
   bool quiet = false;
+};
+
+// --rate: 1, a positive factor or max (0).
+std::optional<double> parse_rate(std::string_view text) {
+  if (text == "max") return 0.0;
+  const std::string t(text);
+  char* end = nullptr;
+  const double rate = std::strtod(t.c_str(), &end);
+  if (end == t.c_str() || *end != '\0' || !(rate > 0 && rate <= 1e6)) return std::nullopt;
+  return rate;
+}
+
+// The options, or the exit status when there is nothing to replay (help, a bad option).
+std::variant<ReplayOptions, int> parse(Args args) {
+  OptionParser p("replay", args);
+  ReplayOptions o;
   while (p.more()) {
     if (p.flag("-h", "--help")) {
       std::fputs(kHelp, stdout);
       return kExitOk;
     }
     if (p.flag("-q", "--quiet")) {
-      quiet = true;
+      o.quiet = true;
     } else if (auto v = p.value("--iface")) {
-      iface = *v;
-    } else if (auto o = p.value("--origin")) {
-      origin = *o;
+      o.iface = *v;
+    } else if (auto origin = p.value("--origin")) {
+      o.origin = *origin;
     } else if (auto f = p.value("--faults")) {
       auto parsed = io::parse_replay_faults(*f);
       if (!parsed) return p.fail(parsed.error().to_string());
-      faults = std::move(parsed.value());
+      o.faults = std::move(parsed.value());
     } else if (auto sl = p.value("--sent")) {
-      sent_log = *sl;
+      o.sent_log = *sl;
     } else if (auto r = p.value("--rate")) {
-      if (*r == "max") {
-        rate = 0;
-      } else {
-        char* end = nullptr;
-        const std::string text(*r);
-        rate = std::strtod(text.c_str(), &end);
-        if (end == text.c_str() || *end != '\0' || !(rate > 0 && rate <= 1e6)) {
-          return p.fail("--rate: '" + text + "' is not 1, a positive factor or max");
-        }
-      }
+      const auto rate = parse_rate(*r);
+      if (!rate) return p.fail("--rate: '" + std::string(*r) + "' is not 1, a positive factor or max");
+      o.rate = *rate;
     } else if (auto pos = p.positional()) {
-      if (!input.empty()) return p.fail("one recording at a time");
-      input = *pos;
+      if (!o.input.empty()) return p.fail("one recording at a time");
+      o.input = *pos;
     } else {
       return p.fail_unknown();
     }
   }
   if (p.failed()) return kExitUsage;
-  if (input.empty()) return p.fail("a recording is required (see --help)");
+  if (o.input.empty()) return p.fail("a recording is required (see --help)");
+  return o;
+}
 
-  auto reader = recording::RecordingReader::open(input, recording::kCanStream);
-  if (!reader) {
-    std::fprintf(stderr, "roadload replay: %s\n", reader.error().to_string().c_str());
-    return kExitNoInput;
+int fail(const ParseError& e, int status) {
+  std::fprintf(stderr, "roadload replay: %s\n", e.to_string().c_str());
+  return status;
+}
+
+// The frames onto the bus in batches, at the recorded pace times the rate, faults injected, each
+// batch also written to the --sent log.
+class Replay {
+ public:
+  Replay(const ReplayOptions& o, can::SocketCanSender& sender, recording::OutputFile* sent)
+      : o_(o), sender_(sender), sent_(sent), start_ns_(mono_ns()), next_progress_ns_(start_ns_ + kNsPerS) {
+    batch_.reserve(can::SocketCanSender::kBatch);
   }
-  auto sender = can::SocketCanSender::open(iface);
-  if (!sender) {
-    std::fprintf(stderr, "roadload replay: %s\n", sender.error().to_string().c_str());
-    return kExitCantCreate;
-  }
-  std::optional<recording::OutputFile> sent_file;
-  if (!sent_log.empty()) {
-    auto f = recording::OutputFile::create(sent_log);
-    if (!f) {
-      std::fprintf(stderr, "roadload replay: %s\n", f.error().to_string().c_str());
-      return kExitCantCreate;
+
+  // Nothing to stop for, or the exit status.
+  std::optional<int> frame(const CanFrame& f) {
+    if (first_ns_ < 0) {
+      if (auto rc = start(f)) return rc;
     }
-    sent_file.emplace(std::move(f.value()));
-  }
-  std::vector<CanFrame> batch, out;
-  batch.reserve(can::SocketCanSender::kBatch);
-  const std::int64_t start_ns = mono_ns();
-  std::int64_t first_ns = -1, next_progress_ns = start_ns + 1'000'000'000;
-  std::int64_t batch_first_ns = 0;  // the batch's first frame, recorded time (paced replays)
-  std::optional<FaultInjector> injector;
-  char line[recording::kMaxLineChars + 1];
-  auto flush = [&]() {
-    const bool ok = sender.value()->send(batch);
-    for (std::size_t i = 0; sent_file && i < batch.size(); ++i) {
-      const std::size_t n = recording::format_candump_line(batch[i], iface, line);
-      line[n] = '\n';
-      sent_file->write(std::string_view(line, n + 1));
-    }
-    batch.clear();
-    // Progress once a batch, not once a frame (kBatchWindow_ns).
-    if (!quiet && mono_ns() >= next_progress_ns) {
-      std::fprintf(stderr, "replay: %llu frames sent\n", static_cast<unsigned long long>(sender.value()->sent()));
-      next_progress_ns += 1'000'000'000;
-    }
-    return ok;
-  };
-  while (const recording::Record* r = reader.value().next()) {
-    const auto* f = std::get_if<CanFrame>(r);
-    if (f == nullptr) continue;
-    if (first_ns < 0) {
-      first_ns = to_ns(f->t);
-      injector.emplace(faults, f->t);
-      if (!origin.empty()) {
-        const io::ReplayTiming timing{f->t, capture_time_from_ns(start_ns), rate};
-        if (auto e = io::write_replay_origin(origin, {timing, faults})) {
-          std::fprintf(stderr, "roadload replay: %s\n", e->to_string().c_str());
-          return kExitCantCreate;
-        }
-      }
-    }
-    if (rate > 0) {
-      const std::int64_t due = start_ns + static_cast<std::int64_t>(static_cast<double>(to_ns(f->t) - first_ns) / rate);
-      if (!batch.empty() && to_ns(f->t) - batch_first_ns > kBatchWindow_ns && !flush()) break;
-      if (batch.empty()) {
-        batch_first_ns = to_ns(f->t);
+    if (o_.rate > 0) {
+      const std::int64_t due = start_ns_ + static_cast<std::int64_t>(static_cast<double>(to_ns(f.t) - first_ns_) / o_.rate);
+      if (!batch_.empty() && to_ns(f.t) - batch_first_ns_ > kBatchWindow_ns && !flush()) return kExitCantCreate;
+      if (batch_.empty()) {
+        batch_first_ns_ = to_ns(f.t);
         if (due > mono_ns()) sleep_until_ns(due);
       }
     }
-    if (const auto step = injector->clock_step_due(f->t)) {
-      if (!batch.empty() && !flush()) break;
+    if (const auto step = injector_->clock_step_due(f.t)) {
+      if (!batch_.empty() && !flush()) return kExitCantCreate;
       if (!step_wall_clock(*step)) {
         std::fprintf(stderr, "roadload replay: clock-step: %s (stepping the wall clock needs CAP_SYS_TIME)\n", std::strerror(errno));
         return kExitNoPerm;
       }
     }
-    out.clear();
-    injector->process(*f, out);
-    for (const CanFrame& o : out) {
-      batch.push_back(o);
-      if (batch.size() == can::SocketCanSender::kBatch && !flush()) break;
+    out_.clear();
+    injector_->process(f, out_);
+    for (const CanFrame& o : out_) {
+      batch_.push_back(o);
+      if (batch_.size() == can::SocketCanSender::kBatch && !flush()) return kExitCantCreate;
     }
-    if (!sender.value()->error().empty()) break;
+    if (!sender_.error().empty()) return kExitCantCreate;
+    return std::nullopt;
   }
-  if (sender.value()->error().empty() && !batch.empty()) flush();
-  const double wall_s = static_cast<double>(mono_ns() - start_ns) * 1e-9;
-  const auto sent = sender.value()->sent();
-  if (!quiet || !sender.value()->error().empty()) {
-    std::fprintf(stderr, "replay: %llu frames onto %s in %.3f s (%.0f frames/s, queue full %llu times)%s%s\n",
-                 static_cast<unsigned long long>(sent), iface.c_str(), wall_s,
-                 wall_s > 0 ? static_cast<double>(sent) / wall_s : 0.0,
-                 static_cast<unsigned long long>(sender.value()->waits()),
-                 sender.value()->error().empty() ? "" : "; stopped: ", sender.value()->error().c_str());
+
+  // What is left in the batch.
+  void finish() {
+    if (sender_.error().empty() && !batch_.empty()) flush();
   }
-  if (injector && !faults.empty()) {
-    const InjectedCounts& c = injector->counts();
+
+  void print_summary() const {
+    const double wall_s = static_cast<double>(mono_ns() - start_ns_) * 1e-9;
+    const auto sent = sender_.sent();
+    if (!o_.quiet || !sender_.error().empty()) {
+      std::fprintf(stderr, "replay: %llu frames onto %s in %.3f s (%.0f frames/s, queue full %llu times)%s%s\n",
+                   static_cast<unsigned long long>(sent), o_.iface.c_str(), wall_s,
+                   wall_s > 0 ? static_cast<double>(sent) / wall_s : 0.0, static_cast<unsigned long long>(sender_.waits()),
+                   sender_.error().empty() ? "" : "; stopped: ", sender_.error().c_str());
+    }
+    if (!injector_ || o_.faults.empty()) return;
+    const InjectedCounts& c = injector_->counts();
     std::fprintf(stderr, "replay: faults: %llu dropped, %llu duplicated, %llu error frames, %llu silenced by bus-off, %llu transport packets withheld\n",
                  static_cast<unsigned long long>(c.dropped), static_cast<unsigned long long>(c.duplicated),
                  static_cast<unsigned long long>(c.error_frames), static_cast<unsigned long long>(c.silenced),
                  static_cast<unsigned long long>(c.truncated));
   }
-  if (sent_file) {
-    if (auto e = sent_file->close()) {
-      std::fprintf(stderr, "roadload replay: %s\n", e->to_string().c_str());
-      return kExitCantCreate;
+
+ private:
+  // The first frame starts the fault clock and, with --origin, the shared timeline.
+  std::optional<int> start(const CanFrame& f) {
+    first_ns_ = to_ns(f.t);
+    injector_.emplace(o_.faults, f.t);
+    if (o_.origin.empty()) return std::nullopt;
+    const io::ReplayTiming timing{f.t, capture_time_from_ns(start_ns_), o_.rate};
+    if (auto e = io::write_replay_origin(o_.origin, {timing, o_.faults})) return fail(*e, kExitCantCreate);
+    return std::nullopt;
+  }
+
+  bool flush() {
+    const bool ok = sender_.send(batch_);
+    for (std::size_t i = 0; sent_ != nullptr && i < batch_.size(); ++i) {
+      const std::size_t n = recording::format_candump_line(batch_[i], o_.iface, line_);
+      line_[n] = '\n';
+      sent_->write(std::string_view(line_, n + 1));
     }
+    batch_.clear();
+    // Progress once a batch, not once a frame (kBatchWindow_ns).
+    if (!o_.quiet && mono_ns() >= next_progress_ns_) {
+      std::fprintf(stderr, "replay: %llu frames sent\n", static_cast<unsigned long long>(sender_.sent()));
+      next_progress_ns_ += kNsPerS;
+    }
+    return ok;
+  }
+
+  const ReplayOptions& o_;
+  can::SocketCanSender& sender_;
+  recording::OutputFile* sent_;
+  std::vector<CanFrame> batch_, out_;
+  std::int64_t start_ns_, first_ns_ = -1, next_progress_ns_;
+  std::int64_t batch_first_ns_ = 0;  // the batch's first frame, recorded time (paced replays)
+  std::optional<FaultInjector> injector_;
+  char line_[recording::kMaxLineChars + 1];
+};
+
+int replay(const ReplayOptions& o) {
+  auto reader = recording::RecordingReader::open(o.input, recording::kCanStream);
+  if (!reader) return fail(reader.error(), kExitNoInput);
+  auto sender = can::SocketCanSender::open(o.iface);
+  if (!sender) return fail(sender.error(), kExitCantCreate);
+  std::optional<recording::OutputFile> sent_file;
+  if (!o.sent_log.empty()) {
+    auto f = recording::OutputFile::create(o.sent_log);
+    if (!f) return fail(f.error(), kExitCantCreate);
+    sent_file.emplace(std::move(f.value()));
+  }
+  Replay replay(o, *sender.value(), sent_file ? &*sent_file : nullptr);
+  std::optional<int> stopped;
+  while (const recording::Record* r = reader.value().next()) {
+    const auto* f = std::get_if<CanFrame>(r);
+    if (f == nullptr) continue;
+    if ((stopped = replay.frame(*f))) break;
+  }
+  // A bus that refused frames ends the replay with its summary; anything else ends it at once.
+  if (stopped && sender.value()->error().empty()) return *stopped;
+  replay.finish();
+  replay.print_summary();
+  if (sent_file) {
+    if (auto e = sent_file->close()) return fail(*e, kExitCantCreate);
   }
   if (!sender.value()->error().empty()) return kExitCantCreate;
-  if (reader.value().errors().count() > 0) {
-    const auto& e = reader.value().errors();
+  const auto& errors = reader.value().errors();
+  if (errors.count() > 0) {
     std::fprintf(stderr, "roadload replay: %llu malformed lines skipped, first: %s\n",
-                 static_cast<unsigned long long>(e.count()), e.kept().front().to_string().c_str());
+                 static_cast<unsigned long long>(errors.count()), errors.kept().front().to_string().c_str());
     return kExitDataErr;
   }
   return kExitOk;
+}
+
+}  // namespace
+
+int run_replay(Args args) {
+  auto o = parse(args);
+  if (const int* rc = std::get_if<int>(&o)) return *rc;
+  return replay(std::get<ReplayOptions>(o));
 }
 
 }  // namespace roadload::cli

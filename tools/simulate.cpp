@@ -7,10 +7,9 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "command.hpp"
 #include "options.hpp"
+#include "progress.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/recording/writer.hpp"
 #include "roadload/sim/recording_sink.hpp"
@@ -23,7 +22,8 @@ namespace {
 
 constexpr const char* kHelp =
     "usage: roadload simulate --scenario NAME|FILE --out RECORDING [options]\n\n"
-    "Simulates the MnROAD test truck on a road and writes a recording (docs/recording-format.md)\n"
+    "Simulates the scenario's truck (a vehicle file, config/vehicles) on a road and writes a recording\n"
+    "(docs/recording-format.md)\n"
     "and, with --truth, the ground truth (true forces, CRR, dissipated powers, per-cell table).\n\n"
     "  --scenario S        built-in scenario name or a scenario TOML file\n"
     "  --seed N            seed of every random process except the road (default 1)\n"
@@ -55,15 +55,18 @@ int list_scenarios() {
   return kExitOk;
 }
 
-}  // namespace
-
-int run_simulate(Args args) {
-  OptionParser opt("simulate", args);
-  std::string scenario_name, out, truth_dir;
+struct SimulateOptions {
+  std::string scenario, out, truth_dir;
   std::uint64_t seed = 1;
   std::vector<std::string> effects;
-  std::optional<double> duration;
+  std::optional<double> duration_s;
   bool quiet = false;
+};
+
+// The options, or the exit status when there is nothing to simulate (help, a list, a bad option).
+std::variant<SimulateOptions, int> parse(Args args) {
+  OptionParser opt("simulate", args);
+  SimulateOptions o;
   while (opt.more()) {
     if (opt.flag("-h", "--help")) {
       std::fputs(kHelp, stdout);
@@ -72,91 +75,97 @@ int run_simulate(Args args) {
     if (opt.flag("--list-effects")) return list_effects();
     if (opt.flag("--list-scenarios")) return list_scenarios();
     if (opt.flag("-q", "--quiet")) {
-      quiet = true;
+      o.quiet = true;
     } else if (auto v = opt.value("--scenario")) {
-      scenario_name = *v;
+      o.scenario = *v;
     } else if (auto n = opt.number("--seed", 0, INT64_MAX)) {
-      seed = static_cast<std::uint64_t>(*n);
-    } else if (auto o = opt.value("--out")) {
-      out = *o;
+      o.seed = static_cast<std::uint64_t>(*n);
+    } else if (auto out = opt.value("--out")) {
+      o.out = *out;
     } else if (auto t = opt.value("--truth")) {
-      truth_dir = *t;
+      o.truth_dir = *t;
     } else if (auto e = opt.value("--effect")) {
-      effects.emplace_back(*e);
+      o.effects.emplace_back(*e);
     } else if (auto d = opt.real("--duration", 0.1, 1e6)) {
-      duration = *d;
+      o.duration_s = *d;
     } else if (!opt.failed()) {
       return opt.fail_unknown();
     }
   }
   if (opt.failed()) return kExitUsage;
-  if (scenario_name.empty()) return opt.fail("--scenario is required");
-  if (out.empty()) return opt.fail("--out is required");
+  if (o.scenario.empty()) return opt.fail("--scenario is required");
+  if (o.out.empty()) return opt.fail("--out is required");
+  return o;
+}
 
-  auto scenario = sim::load_scenario(scenario_name, data_dir());
-  if (!scenario) {
-    std::fprintf(stderr, "roadload simulate: %s\n", scenario.error().to_string().c_str());
-    return kExitNoInput;
-  }
-  for (const auto& e : effects) {
-    if (auto err = scenario.value().effects.parse_and_set(e)) return opt.fail("--effect " + *err);
-  }
-  if (duration) scenario.value().duration = Seconds{*duration};
+int fail(const ParseError& e, int status) {
+  std::fprintf(stderr, "roadload simulate: %s\n", e.to_string().c_str());
+  return status;
+}
 
-  j1939::Database db;
-  if (auto err = load_dbc_file(db, core_dbc_path())) {
-    std::fprintf(stderr, "roadload simulate: %s\n", err->to_string().c_str());
-    return kExitNoInput;
-  }
-  sim::Simulation simulation(scenario.value(), seed, db);
-  auto writer = recording::RecordingWriter::create(out, simulation.metadata());
-  if (!writer) {
-    std::fprintf(stderr, "roadload simulate: %s\n", writer.error().to_string().c_str());
-    return kExitNoInput;
-  }
-  std::optional<sim::TruthRecorder> truth;
-  if (!truth_dir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(truth_dir, ec);
-    truth.emplace(simulation.route(), simulation.plant().truck());
-    if (auto err = ec ? std::optional<ParseError>(ParseError{truth_dir, 0, "folder", ec.message()}) : truth->open(truth_dir)) {
-      std::fprintf(stderr, "roadload simulate: %s\n", err->to_string().c_str());
-      return kExitNoInput;
+// The scenario as the options change it.
+std::variant<sim::Scenario, int> scenario_of(const SimulateOptions& o) {
+  auto scenario = sim::load_scenario(o.scenario, data_dir());
+  if (!scenario) return fail(scenario.error(), kExitNoInput);
+  for (const auto& e : o.effects) {
+    if (auto err = scenario.value().effects.parse_and_set(e)) {
+      std::fprintf(stderr, "roadload simulate: --effect %s (see --help)\n", err->c_str());
+      return kExitUsage;
     }
   }
-  sim::RecordingSink sink(writer.value());
-  const auto wall0 = std::chrono::steady_clock::now();
-  // A terminal gets one line redrawn every percent; a log file a line every tenth.
-  const bool tty = isatty(STDERR_FILENO) == 1;
-  int last_tenth = 0;
-  auto progress = [&](double f) {
-    if (quiet) return;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    if (tty) {
-      std::fprintf(stderr, "\rsimulate: %3.0f %%  %.0f s wall", f * 100.0, wall);
-    } else if (static_cast<int>(f * 10.0 + 1e-9) > last_tenth) {
-      last_tenth = static_cast<int>(f * 10.0 + 1e-9);
-      std::fprintf(stderr, "simulate: %3d %%  %.0f s wall\n", last_tenth * 10, wall);
-    }
-  };
-  const sim::RunSummary sum = simulation.run(sink, truth ? &*truth : nullptr, progress);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  if (!quiet && tty) std::fputc('\n', stderr);
-  std::optional<ParseError> err = writer.value().close();
-  if (!err && truth) err = truth->finish(simulation.truth_toml());
-  if (err) {
-    std::fprintf(stderr, "roadload simulate: %s\n", err->to_string().c_str());
-    return kExitDataErr;
-  }
+  if (o.duration_s) scenario.value().duration = Seconds{*o.duration_s};
+  return std::move(scenario.value());
+}
+
+std::optional<ParseError> open_truth(const std::string& dir, sim::TruthRecorder& truth) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return ParseError{dir, 0, "folder", ec.message()};
+  return truth.open(dir);
+}
+
+void print_summary(const sim::Simulation& simulation, const std::string& name, std::uint64_t seed, const sim::RunSummary& sum,
+                   double wall) {
+  const sim::FuelSpec& fuel = simulation.plant().truck().fuel;
   std::fprintf(stderr,
                "simulate: %s seed %" PRIu64 ": %.1f s over %.0f m in %.1f s wall (%.1fx real time); "
                "%" PRIu64 " CAN frames, %" PRIu64 " accelerometer samples, %" PRIu64 " GNSS fixes, %" PRIu64
                " weather samples; fuel %.3f L\n",
-               scenario.value().name.c_str(), seed, sum.simulated_s, sum.distance_m, wall,
-               wall > 0 ? sum.simulated_s / wall : 0.0, sum.frames, sum.accel_samples, sum.gnss_fixes,
-               sum.weather_samples, sum.ledger.fuel_j / simulation.plant().truck().fuel.lhv_jpkg /
-                                        simulation.plant().truck().fuel.density_kgpl);
+               name.c_str(), seed, sum.simulated_s, sum.distance_m, wall, wall > 0 ? sum.simulated_s / wall : 0.0, sum.frames,
+               sum.accel_samples, sum.gnss_fixes, sum.weather_samples, sum.ledger.fuel_j / fuel.lhv_jpkg / fuel.density_kgpl);
+}
+
+int simulate(const SimulateOptions& o) {
+  auto scenario = scenario_of(o);
+  if (const int* rc = std::get_if<int>(&scenario)) return *rc;
+  const sim::Scenario& sc = std::get<sim::Scenario>(scenario);
+  j1939::Database db;
+  if (auto err = load_dbc_file(db, core_dbc_path())) return fail(*err, kExitNoInput);
+  sim::Simulation simulation(sc, o.seed, db);
+  auto writer = recording::RecordingWriter::create(o.out, simulation.metadata());
+  if (!writer) return fail(writer.error(), kExitNoInput);
+  std::optional<sim::TruthRecorder> truth;
+  if (!o.truth_dir.empty()) {
+    truth.emplace(simulation.route(), simulation.plant().truck());
+    if (auto err = open_truth(o.truth_dir, *truth)) return fail(*err, kExitNoInput);
+  }
+  sim::RecordingSink sink(writer.value());
+  Progress progress("simulate", o.quiet);
+  const sim::RunSummary sum = simulation.run(sink, truth ? &*truth : nullptr, [&](double f) { progress.update(f); });
+  progress.finish();
+  std::optional<ParseError> err = writer.value().close();
+  if (!err && truth) err = truth->finish(simulation.truth_toml());
+  if (err) return fail(*err, kExitDataErr);
+  print_summary(simulation, sc.name, o.seed, sum, progress.wall_s());
   return kExitOk;
+}
+
+}  // namespace
+
+int run_simulate(Args args) {
+  auto o = parse(args);
+  if (const int* rc = std::get_if<int>(&o)) return *rc;
+  return simulate(std::get<SimulateOptions>(o));
 }
 
 }  // namespace roadload::cli

@@ -34,6 +34,8 @@ double b(bool v) { return v ? 1.0 : 0.0; }
 double torque_whole(double pct) { return std::floor(std::round(pct * 8.0) / 8.0); }
 double torque_fraction(double pct) { return std::round(pct * 8.0) / 8.0 - torque_whole(pct); }
 
+// Long because it is one table: every signal the simulated ECUs send, each with how it reads the
+// plant's state, in the order of the DBC's messages.
 const std::map<std::string, Getter>& getters() {
   static const std::map<std::string, Getter> g = {
       // Torque mode 2 is cruise control, 0 low idle (SPN 899).

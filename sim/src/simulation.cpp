@@ -151,6 +151,57 @@ struct Simulation::Parts {
     return std::max(stamp, 0.0);
   }
 
+  // Accelerometers in true-time order across parts, up to the plant's time.
+  void sample_accels(const Kinematics& before, const Kinematics& now, SampleSink& sink, RunSummary& sum) {
+    const double until_s = plant.state().t_s;
+    for (;;) {
+      Accelerometer* next = nullptr;
+      for (auto& a : accels) {
+        if (a.next_true_s() <= until_s && (next == nullptr || a.next_true_s() < next->next_true_s())) next = &a;
+      }
+      if (next == nullptr) break;
+      const double t = next->next_true_s();
+      sink.accel(next->sample(lerp(before, now, t), accel_stamp(t)));
+      ++sum.accel_samples;
+    }
+  }
+
+  // The receiver's fixes over the last step, the antenna placed between its two ends.
+  void sample_gnss(double t_before_s, double dt, double x_before, double v_before, SampleSink& sink, RunSummary& sum) {
+    const TruckState& s = plant.state();
+    while (gnss.next_true_s() <= s.t_s) {
+      const double t = gnss.next_true_s();
+      const double w = (t - t_before_s) / dt;
+      const double x = x_before + w * (s.x_m - x_before);
+      const Route::Position pos = route.at(x - truck.gnss_antenna_behind_front_m);
+      const GnssTruth g{t, pos.lat_deg, pos.lon_deg, pos.elev_m + truck.gnss_antenna_height_m,
+                        v_before + w * (s.speed_mps - v_before), pos.heading_deg};
+      GnssFix fix = gnss.fix(g);
+      sink.gnss(fix);
+      ++sum.gnss_fixes;
+    }
+  }
+
+  void sample_weather(double dt, SampleSink& sink, RunSummary& sum) {
+    mast.observe(wind.at_mast(), dt);
+    WeatherSample ws;
+    while (mast.sample(plant.state().t_s, ws)) {
+      ws.station = static_cast<std::uint8_t>(ws.station + kWeatherStationId);
+      sink.weather(ws);
+      ++sum.weather_samples;
+    }
+  }
+
+  // The truck's own 1 Hz GPS feeds VP1: metres of noise, no DGPS.
+  void update_vp1() {
+    const TruckState& s = plant.state();
+    if (s.t_s < vp1_next_s) return;
+    const Route::Position pos = route.at(s.x_m - truck.gnss_antenna_behind_front_m);
+    vp1_lat = pos.lat_deg + 2.5 * vp1_rng.normal() / 111132.0;
+    vp1_lon = pos.lon_deg + 2.5 * vp1_rng.normal() / (111320.0 * std::cos(pos.lat_deg * std::numbers::pi / 180.0));
+    vp1_next_s += 1.0;
+  }
+
   Scenario scenario;
   std::uint64_t seed;
   Route route;
@@ -265,42 +316,10 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
     const TruckState& s = p.plant.state();
     const Kinematics now = p.kinematics(s);
 
-    // Accelerometers in true-time order across parts.
-    for (;;) {
-      Accelerometer* next = nullptr;
-      for (auto& a : p.accels) {
-        if (a.next_true_s() <= s.t_s && (next == nullptr || a.next_true_s() < next->next_true_s())) next = &a;
-      }
-      if (next == nullptr) break;
-      const double t = next->next_true_s();
-      sink.accel(next->sample(lerp(before, now, t), p.accel_stamp(t)));
-      ++sum.accel_samples;
-    }
-    while (p.gnss.next_true_s() <= s.t_s) {
-      const double t = p.gnss.next_true_s();
-      const double w = (t - before.t_s) / dt;
-      const double x = x_before + w * (s.x_m - x_before);
-      const Route::Position pos = p.route.at(x - p.truck.gnss_antenna_behind_front_m);
-      const GnssTruth g{t, pos.lat_deg, pos.lon_deg, pos.elev_m + p.truck.gnss_antenna_height_m,
-                        v_before + w * (s.speed_mps - v_before), pos.heading_deg};
-      GnssFix fix = p.gnss.fix(g);
-      sink.gnss(fix);
-      ++sum.gnss_fixes;
-    }
-    p.mast.observe(p.wind.at_mast(), dt);
-    WeatherSample ws;
-    while (p.mast.sample(s.t_s, ws)) {
-      ws.station = static_cast<std::uint8_t>(ws.station + kWeatherStationId);
-      sink.weather(ws);
-      ++sum.weather_samples;
-    }
-    if (s.t_s >= p.vp1_next_s) {
-      // The truck's own 1 Hz GPS feeds VP1: metres of noise, no DGPS.
-      const Route::Position pos = p.route.at(s.x_m - p.truck.gnss_antenna_behind_front_m);
-      p.vp1_lat = pos.lat_deg + 2.5 * p.vp1_rng.normal() / 111132.0;
-      p.vp1_lon = pos.lon_deg + 2.5 * p.vp1_rng.normal() / (111320.0 * std::cos(pos.lat_deg * std::numbers::pi / 180.0));
-      p.vp1_next_s += 1.0;
-    }
+    p.sample_accels(before, now, sink, sum);
+    p.sample_gnss(before.t_s, dt, x_before, v_before, sink, sum);
+    p.sample_weather(dt, sink, sum);
+    p.update_vp1();
     if (p.bus.next_due_s() <= s.t_s) p.bus.run_until(s.t_s, p.view(s, air), emit_frame);
     if (truth != nullptr) truth->observe(s, air, dt);
 

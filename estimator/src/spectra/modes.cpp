@@ -70,6 +70,28 @@ double median_of(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// A subharmonic (2L, 3L) that won on a body resonance at its fundamental: its other harmonics off
+// the true comb carry no line. Returns the comb's spacing moved up to the true one.
+double past_subharmonics(const std::vector<double>& lr, double k0, double top, double bin_cpm, const JointConfig& config) {
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (int m : {2, 3}) {
+      double on = 0, off = 0;
+      int n_on = 0, n_off = 0;
+      for (int h = 2; h * k0 <= top; ++h) {
+        (h % m == 0 ? on : off) += lr[nearest(lr, h * k0 / bin_cpm)];
+        ++(h % m == 0 ? n_on : n_off);
+      }
+      if (n_on >= 2 && n_off >= 2 && m * k0 <= 1.0 / config.min_panel_m && off / n_off < 0.5 * on / n_on) {
+        k0 *= m;
+        moved = true;
+        break;
+      }
+    }
+  }
+  return k0;
+}
+
 }  // namespace
 
 JointLine find_joint_line(std::span<const std::vector<double>> channels, double bin_cpm, const JointConfig& config) {
@@ -103,24 +125,7 @@ JointLine find_joint_line(std::span<const std::vector<double>> channels, double 
     }
   }
   if (candidates < (guided ? 2u : 8u)) return best;
-  // A subharmonic (2L, 3L) that won on a body resonance at its fundamental: its other harmonics
-  // off the true comb carry no line.
-  for (bool moved = !guided; moved;) {
-    moved = false;
-    for (int m : {2, 3}) {
-      double on = 0, off = 0;
-      int n_on = 0, n_off = 0;
-      for (int h = 2; h * best_k0 <= top; ++h) {
-        (h % m == 0 ? on : off) += lr[nearest(lr, h * best_k0 / bin_cpm)];
-        ++(h % m == 0 ? n_on : n_off);
-      }
-      if (n_on >= 2 && n_off >= 2 && m * best_k0 <= 1.0 / config.min_panel_m && off / n_off < 0.5 * on / n_on) {
-        best_k0 *= m;
-        moved = true;
-        break;
-      }
-    }
-  }
+  if (!guided) best_k0 = past_subharmonics(lr, best_k0, top, bin_cpm, config);
   // Significance against the bins' own scatter: without lines a candidate's score is a sum of H
   // centred values over sqrt(H), with the bins' robust standard deviation.
   std::vector<double> band(lr.begin() + band_lo, lr.begin() + band_hi), dev;

@@ -157,4 +157,35 @@ std::string describe_effects(const std::vector<std::pair<sim::Effect, double>>& 
   return s;
 }
 
+void BenchScore::add(const CaseOutcome& o) {
+  ++cases;
+  right += o.named_right ? 1 : 0;
+  if (o.truth.effects.empty()) {
+    ++nulls;
+    alarms += o.false_alarm ? 1 : 0;
+  }
+  if (o.visible) {
+    ++visible;
+    shrink_sum += o.shrink;
+  }
+  const auto& d = o.result.diagnosis;
+  const std::string row = o.truth.effects.empty() ? "none"
+                                                  : std::string(sim::effect_info(o.truth.effects.front().first).name) +
+                                                        (o.truth.effects.size() > 1 ? " (+1)" : "");
+  confusion[row][d.chosen ? o.result.problem.candidates[d.chosen->effects[0]].name : "none"] += 1;
+}
+
+std::string named_effects(const CaseOutcome& o) {
+  const auto& chosen = o.result.diagnosis.chosen;
+  if (!chosen) return "none";
+  std::string s;
+  for (std::size_t i = 0; i < chosen->effects.size(); ++i) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%s%s=%.4g", i ? " + " : "", o.result.problem.candidates[chosen->effects[i]].name.c_str(),
+                  chosen->magnitude[i]);
+    s += text;
+  }
+  return s;
+}
+
 }  // namespace roadload::gap

@@ -99,6 +99,10 @@ std::vector<sim::Scenario> resimulations(const std::vector<RealRun>& runs) {
   return out;
 }
 
+namespace {
+void set_noise_floor(ModelLibrary& lib, const std::vector<Eigen::VectorXd>& residuals);
+}  // namespace
+
 ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options) {
   ModelLibrary lib;
   lib.scenarios = resimulations(runs);
@@ -157,10 +161,6 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
     }
   }
   lib.baseline = values(base);
-  // Noise floor: each feature's scatter over the noise seeds, pooled with its channel's so
-  // eight seeds do not make a few features look too quiet.
-  const auto n = lib.baseline.size();
-  Eigen::VectorXd own = Eigen::VectorXd::Zero(n), count = Eigen::VectorXd::Zero(n);
   // Each noise drive's residual against its own re-simulation: the floor, then its chi-square.
   std::vector<Eigen::VectorXd> residuals;
   for (std::size_t k = 0; k < options.noise_runs; ++k) {
@@ -168,6 +168,22 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
                                          noise.begin() + static_cast<std::ptrdiff_t>((k + 1) * n_runs));
     residuals.push_back(values(drive) - values(group(1 + k)));
   }
+  set_noise_floor(lib, residuals);
+  for (std::size_t e = 0; e < lib.responses.size(); ++e) {
+    lib.responses[e].f1 = values(group(1 + options.noise_runs + 2 * e));
+    lib.responses[e].f2 = values(group(2 + options.noise_runs + 2 * e));
+  }
+  return lib;
+}
+
+namespace {
+
+// Noise floor: each feature's scatter over the noise drives' residuals, pooled with its channel's
+// so eight seeds do not make a few features look too quiet; then the held-out chi-square those
+// drives reach against it, the bench's measure of an effect's visibility.
+void set_noise_floor(ModelLibrary& lib, const std::vector<Eigen::VectorXd>& residuals) {
+  const auto n = lib.baseline.size();
+  Eigen::VectorXd own = Eigen::VectorXd::Zero(n), count = Eigen::VectorXd::Zero(n);
   for (const Eigen::VectorXd& d : residuals) {
     for (Eigen::Index i = 0; i < n; ++i) {
       if (std::isfinite(d(i))) own(i) += d(i) * d(i), count(i) += 1;
@@ -200,12 +216,9 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
   for (double c : null_chi2) lib.null_chi2_mean += c / static_cast<double>(null_chi2.size());
   for (double c : null_chi2) lib.null_chi2_sd += (c - lib.null_chi2_mean) * (c - lib.null_chi2_mean);
   lib.null_chi2_sd = std::sqrt(lib.null_chi2_sd / std::max<double>(1.0, static_cast<double>(null_chi2.size()) - 1.0));
-  for (std::size_t e = 0; e < lib.responses.size(); ++e) {
-    lib.responses[e].f1 = values(group(1 + options.noise_runs + 2 * e));
-    lib.responses[e].f2 = values(group(2 + options.noise_runs + 2 * e));
-  }
-  return lib;
 }
+
+}  // namespace
 
 bool library_serves(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims) {
   if (resims.size() != lib.scenarios.size()) return false;
@@ -220,6 +233,13 @@ bool library_serves(const ModelLibrary& lib, const std::vector<sim::Scenario>& r
   }
   return true;
 }
+
+namespace {
+std::vector<Candidate> candidates(const ModelLibrary& lib, const Eigen::VectorXd& model, const Eigen::VectorXd& yaw);
+Eigen::VectorXd with_chosen(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Fit& f,
+                            const j1939::Database& db, const GapOptions& options);
+void held_out(GapResult& g, const Eigen::VectorXd& after_z);
+}  // namespace
 
 GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db,
                   const GapOptions& options) {
@@ -246,6 +266,32 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
     own.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
   }
   const Eigen::VectorXd yaw = values(simulate_all(own, db, options.jobs));
+  p.candidates = candidates(lib, model, yaw);
+  say(options, "fitting " + std::to_string(p.candidates.size()) + " candidate effects and their pairs");
+  g.diagnosis = diagnose(p, options.rule);
+
+  g.null_chi2_mean = lib.null_chi2_mean;
+  g.null_chi2_sd = lib.null_chi2_sd;
+  g.real = real;
+  g.model = model;
+  g.sigma = lib.sigma;
+  g.after = model;
+  Eigen::VectorXd after_z = p.z;
+  if (g.diagnosis.chosen) {
+    say(options, "re-simulating with the chosen effect added (fitted on half 0)");
+    g.after = with_chosen(lib, resims, *g.diagnosis.chosen, db, options);
+    after_z = (real - g.after).cwiseQuotient(lib.sigma);
+  }
+  held_out(g, after_z);
+  return g;
+}
+
+namespace {
+
+// Each effect as a candidate: its response from the library's two magnitudes, or, for drag that
+// grows with yaw, from this drive's own wind (`yaw`).
+std::vector<Candidate> candidates(const ModelLibrary& lib, const Eigen::VectorXd& model, const Eigen::VectorXd& yaw) {
+  std::vector<Candidate> out;
   for (const auto& resp : lib.responses) {
     const sim::EffectInfo& info = sim::effect_info(resp.effect);
     const Span sp = span_of(info, resp.base);
@@ -258,33 +304,29 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
     Candidate c = Candidate::from_two(std::string(info.name), std::string(info.unit), resp.base, sp.lo, sp.hi, resp.m1, d1, resp.m2, d2);
     c.realistic_lo = info.min;
     c.realistic_hi = info.max;
-    p.candidates.push_back(std::move(c));
+    out.push_back(std::move(c));
   }
-  say(options, "fitting " + std::to_string(p.candidates.size()) + " candidate effects and their pairs");
-  g.diagnosis = diagnose(p, options.rule);
+  return out;
+}
 
-  g.null_chi2_mean = lib.null_chi2_mean;
-  g.null_chi2_sd = lib.null_chi2_sd;
-  g.real = real;
-  g.model = model;
-  g.sigma = lib.sigma;
-  g.after = model;
-  Eigen::VectorXd after_z = p.z;
-  if (g.diagnosis.chosen) {
-    std::vector<SimTask> after;
-    for (std::size_t r = 0; r < runs.size(); ++r) {
-      sim::Scenario s = resims[r];
-      const Fit& f = *g.diagnosis.chosen;
-      for (std::size_t i = 0; i < f.effects.size(); ++i) {
-        const auto& resp = lib.responses[f.effects[i]];
-        add_candidate(s, resp.effect, f.magnitude_half0[i]);
-      }
-      after.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
+// The drives re-simulated with the chosen effects at their magnitudes fitted on half 0.
+Eigen::VectorXd with_chosen(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Fit& f,
+                            const j1939::Database& db, const GapOptions& options) {
+  std::vector<SimTask> after;
+  for (std::size_t r = 0; r < resims.size(); ++r) {
+    sim::Scenario s = resims[r];
+    for (std::size_t i = 0; i < f.effects.size(); ++i) {
+      const auto& resp = lib.responses[f.effects[i]];
+      add_candidate(s, resp.effect, f.magnitude_half0[i]);
     }
-    say(options, "re-simulating with the chosen effect added (fitted on half 0)");
-    g.after = values(simulate_all(after, db, options.jobs));
-    after_z = (real - g.after).cwiseQuotient(lib.sigma);
+    after.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
   }
+  return values(simulate_all(after, db, options.jobs));
+}
+
+// The held-out half's residual before and after the chosen effects, per channel and overall.
+void held_out(GapResult& g, const Eigen::VectorXd& after_z) {
+  const Problem& p = g.problem;
   std::map<std::string, std::size_t> index;
   for (std::size_t i = 0; i < p.keys.size(); ++i) {
     const auto zi = static_cast<Eigen::Index>(i);
@@ -310,7 +352,7 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
     g.residual_before = std::sqrt(g.chi2_before / static_cast<double>(g.held_out));
     g.residual_after = std::sqrt(g.chi2_after / static_cast<double>(g.held_out));
   }
-  return g;
 }
 
+}  // namespace
 }  // namespace roadload::gap

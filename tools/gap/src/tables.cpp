@@ -47,85 +47,52 @@ constexpr sim::Effect kVertical[] = {sim::Effect::joint_faulting, sim::Effect::s
                                      sim::Effect::tire_pressure};
 constexpr int kSteps = 4;
 
-}  // namespace
+// A candidate's Mainline ratio at each simulated magnitude, and the magnitude giving the report's
+// ratio: linear interpolation between simulated ones, else the closest simulated.
+TableCandidate bracket(sim::Effect e, const std::vector<Job>& first, std::size_t offset) {
+  TableCandidate cand{e, {}, false, 0, 0, 0};
+  const sim::EffectInfo& info = sim::effect_info(e);
+  for (int k = 0; k < kSteps; ++k) {
+    const auto& p = first[offset + static_cast<std::size_t>(k)].power;
+    cand.mainline_ratio.emplace_back(info.min + (info.max - info.min) * k / (kSteps - 1), p.second / p.first);
+  }
+  double best = INFINITY;
+  for (std::size_t k = 0; k < cand.mainline_ratio.size(); ++k) {
+    const auto [m, r] = cand.mainline_ratio[k];
+    if (std::abs(r - kReportMainlineRatio) < best && !cand.reached) {
+      best = std::abs(r - kReportMainlineRatio);
+      cand.magnitude = m;
+    }
+    if (k == 0) continue;
+    const auto [m0, r0] = cand.mainline_ratio[k - 1];
+    if (!cand.reached && (r0 - kReportMainlineRatio) * (r - kReportMainlineRatio) <= 0 && r != r0) {
+      cand.reached = true;
+      cand.magnitude = m0 + (kReportMainlineRatio - r0) / (r - r0) * (m - m0);
+    }
+  }
+  return cand;
+}
 
-Parsed<TablesResult> compare_tables(const std::string& data_dir, const j1939::Database& db, unsigned jobs,
-                                    const std::function<void(const std::string&)>& progress) {
-  sim::Scenario roads[3];
-  const char* names[3] = {"mnroad-mainline-30mph", "th10-55mph", "th66-55mph"};
-  for (int i = 0; i < 3; ++i) {
-    auto s = sim::load_scenario(names[i], data_dir);
-    if (!s) return s.error();
-    roads[i] = std::move(s.value());
-    // The baseline knows each pavement by its IRI and nothing else.
-    roads[i].effects = sim::EffectSet();
-  }
-  auto say = [&](const std::string& line) {
-    if (progress) progress(line);
-  };
-  std::vector<Job> first;
-  for (const auto& r : roads) first.push_back({r, {}});
-  for (sim::Effect e : kVertical) {
-    const sim::EffectInfo& info = sim::effect_info(e);
-    for (int k = 0; k < kSteps; ++k) {
-      Job j{roads[0], {}};
-      j.scenario.effects.set(e, info.min + (info.max - info.min) * k / (kSteps - 1));
-      first.push_back(std::move(j));
-    }
-  }
-  say("tables: " + std::to_string(first.size()) + " simulations (IRI only, then each candidate on the Mainline)");
-  run_all(first, db, jobs);
-
-  TablesResult t;
-  const auto [ml_bit, ml_con] = first[0].power;
-  const double th10 = first[1].power.second, th66 = first[2].power.first;
-  t.rows = {{"Mainline bituminous (Table 6.5)", 442, ml_bit, ml_bit},
-            {"Mainline concrete (Table 6.5)", 652, ml_con, ml_con},
-            {"TH 66 bituminous (Table 6.6)", 6486, th66, th66},
-            {"TH 10 concrete (Table 6.6)", 9353, th10, th10}};
-  for (std::size_t c = 0; c < std::size(kVertical); ++c) {
-    TableCandidate cand{kVertical[c], {}, false, 0, 0, 0};
-    const sim::EffectInfo& info = sim::effect_info(kVertical[c]);
-    for (int k = 0; k < kSteps; ++k) {
-      const auto& p = first[3 + c * kSteps + static_cast<std::size_t>(k)].power;
-      cand.mainline_ratio.emplace_back(info.min + (info.max - info.min) * k / (kSteps - 1), p.second / p.first);
-    }
-    // The magnitude giving the report's ratio, by linear interpolation between simulated ones;
-    // else the closest simulated.
-    double best = INFINITY;
-    for (std::size_t k = 0; k < cand.mainline_ratio.size(); ++k) {
-      const auto [m, r] = cand.mainline_ratio[k];
-      if (std::abs(r - kReportMainlineRatio) < best && !cand.reached) {
-        best = std::abs(r - kReportMainlineRatio);
-        cand.magnitude = m;
-      }
-      if (k == 0) continue;
-      const auto [m0, r0] = cand.mainline_ratio[k - 1];
-      if (!cand.reached && (r0 - kReportMainlineRatio) * (r - kReportMainlineRatio) <= 0 && r != r0) {
-        cand.reached = true;
-        cand.magnitude = m0 + (kReportMainlineRatio - r0) / (r - r0) * (m - m0);
-      }
-    }
-    t.candidates.push_back(std::move(cand));
-  }
-  // The ratio grows about with the square of a joint's height: refine the interpolated magnitude
-  // by two rounds of regula falsi on the Mainline alone.
+// The ratio grows about with the square of a joint's height: the interpolated magnitudes refined by
+// two rounds of regula falsi on the Mainline alone.
+void refine(std::vector<TableCandidate>& candidates, const sim::Scenario& mainline, const j1939::Database& db, unsigned jobs,
+            const std::function<void(const std::string&)>& say) {
   for (int round = 0; round < 2; ++round) {
-    std::vector<Job> refine;
+    std::vector<Job> runs;
     std::vector<std::size_t> which;
-    for (std::size_t c = 0; c < t.candidates.size(); ++c) {
-      if (!t.candidates[c].reached) continue;
-      Job j{roads[0], {}};
-      j.scenario.effects.set(t.candidates[c].effect, t.candidates[c].magnitude);
-      refine.push_back(std::move(j));
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      if (!candidates[c].reached) continue;
+      Job j{mainline, {}};
+      j.scenario.effects.set(candidates[c].effect, candidates[c].magnitude);
+      runs.push_back(std::move(j));
       which.push_back(c);
     }
-    say("tables: refining " + std::to_string(refine.size()) + " magnitude(s) on the Mainline");
-    run_all(refine, db, jobs);
+    say("tables: refining " + std::to_string(runs.size()) + " magnitude(s) on the Mainline");
+    run_all(runs, db, jobs);
     for (std::size_t i = 0; i < which.size(); ++i) {
-      TableCandidate& cand = t.candidates[which[i]];
+      TableCandidate& cand = candidates[which[i]];
       auto& pts = cand.mainline_ratio;
-      pts.emplace_back(cand.magnitude, refine[i].power.second / refine[i].power.first);
+      pts.emplace_back(cand.magnitude, runs[i].power.second / runs[i].power.first);
       std::sort(pts.begin(), pts.end());
       for (std::size_t k = 1; k < pts.size(); ++k) {
         const auto [m0, r0] = pts[k - 1];
@@ -137,6 +104,12 @@ Parsed<TablesResult> compare_tables(const std::string& data_dir, const j1939::Da
       }
     }
   }
+}
+
+// Each candidate at its fitted magnitude on every road: the highways' ratio it predicts, held out
+// from the fit, chooses it.
+void judge(TablesResult& t, const sim::Scenario (&roads)[3], const j1939::Database& db, unsigned jobs,
+           const std::function<void(const std::string&)>& say) {
   std::vector<Job> second;
   for (const auto& cand : t.candidates) {
     for (int road = 0; road < 3; ++road) {
@@ -165,6 +138,47 @@ Parsed<TablesResult> compare_tables(const std::string& data_dir, const j1939::Da
     t.rows[2].after_w = second[c * 3 + 2].power.first;
     t.rows[3].after_w = second[c * 3 + 1].power.second;
   }
+}
+
+}  // namespace
+
+Parsed<TablesResult> compare_tables(const std::string& data_dir, const j1939::Database& db, unsigned jobs,
+                                    const std::function<void(const std::string&)>& progress) {
+  sim::Scenario roads[3];
+  const char* names[3] = {"mnroad-mainline-30mph", "th10-55mph", "th66-55mph"};
+  for (int i = 0; i < 3; ++i) {
+    auto s = sim::load_scenario(names[i], data_dir);
+    if (!s) return s.error();
+    roads[i] = std::move(s.value());
+    // The baseline knows each pavement by its IRI and nothing else.
+    roads[i].effects = sim::EffectSet();
+  }
+  const std::function<void(const std::string&)> say = [&](const std::string& line) {
+    if (progress) progress(line);
+  };
+  std::vector<Job> first;
+  for (const auto& r : roads) first.push_back({r, {}});
+  for (sim::Effect e : kVertical) {
+    const sim::EffectInfo& info = sim::effect_info(e);
+    for (int k = 0; k < kSteps; ++k) {
+      Job j{roads[0], {}};
+      j.scenario.effects.set(e, info.min + (info.max - info.min) * k / (kSteps - 1));
+      first.push_back(std::move(j));
+    }
+  }
+  say("tables: " + std::to_string(first.size()) + " simulations (IRI only, then each candidate on the Mainline)");
+  run_all(first, db, jobs);
+
+  TablesResult t;
+  const auto [ml_bit, ml_con] = first[0].power;
+  const double th10 = first[1].power.second, th66 = first[2].power.first;
+  t.rows = {{"Mainline bituminous (Table 6.5)", 442, ml_bit, ml_bit},
+            {"Mainline concrete (Table 6.5)", 652, ml_con, ml_con},
+            {"TH 66 bituminous (Table 6.6)", 6486, th66, th66},
+            {"TH 10 concrete (Table 6.6)", 9353, th10, th10}};
+  for (std::size_t c = 0; c < std::size(kVertical); ++c) t.candidates.push_back(bracket(kVertical[c], first, 3 + c * kSteps));
+  refine(t.candidates, roads[0], db, jobs, say);
+  judge(t, roads, db, jobs, say);
   return t;
 }
 

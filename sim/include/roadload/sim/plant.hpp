@@ -6,6 +6,7 @@
 
 #include "roadload/sim/air.hpp"
 #include "roadload/sim/effects.hpp"
+#include "roadload/sim/powertrain.hpp"
 #include "roadload/sim/random.hpp"
 #include "roadload/sim/road_profile.hpp"
 #include "roadload/sim/route.hpp"
@@ -86,6 +87,23 @@ class TruckPlant {
   double vertical_stored_energy_j() const;
 
  private:
+  // One step's forces at its start, N, each positive against the motion.
+  struct Resisting {
+    double roll = 0, profile = 0, fz_sum = 0, aero = 0, grade = 0, brake = 0;
+  };
+  // One step's longitudinal motion: speeds, travel and the engine's turning.
+  struct Motion {
+    double v0 = 0, v1 = 0, dx = 0, m_eff = 0, tractive = 0, resist = 0;
+    double omega0 = 0, omega1 = 0, omega_mean_dt = 0;
+  };
+  void lock_clutch();
+  Resisting resisting(const Environment& env, double x0);
+  double parasitic_torque_nm(double omega0);
+  double cruise(double dt_s, double v0, double m_eff, double parasitic, const DrivelineLoss& loss, double& brake);
+  double governor(double v0, double omega0, double parasitic);
+  double book(const Motion& m, const Resisting& r, double dt_s);
+  void step_vertical(double dt_s, double x0, double x1);
+  void finish_step(double dt_s, const Motion& m, const Resisting& r, double x1, double fuel_j);
   double engine_speed_radps(double speed_mps) const;
   double crr_of_axle(std::size_t axle, const Environment& env) const;
   double aero_force_n(const Environment& env);

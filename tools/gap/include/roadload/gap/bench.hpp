@@ -3,6 +3,7 @@
 // blind from what their recordings would hold, scored against what was really on.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,5 +51,23 @@ CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelL
                      const j1939::Database& db, const GapOptions& options);
 
 std::string describe_effects(const std::vector<std::pair<sim::Effect, double>>& effects);
+
+// The bench's score over its cases: top-1 (null runs count as right when nothing is named), the
+// mean held-out shrink over cases whose effect is visible above the noise, the false-alarm rate on
+// null runs, and the confusion of hidden against first named effects.
+struct BenchScore {
+  std::size_t cases = 0, right = 0, nulls = 0, alarms = 0, visible = 0;
+  double shrink_sum = 0;
+  // Rows: the hidden effect, the first of a pair marked (+1); columns: the first named.
+  std::map<std::string, std::map<std::string, int>> confusion;
+
+  void add(const CaseOutcome& o);
+  double top1() const { return cases ? static_cast<double>(right) / static_cast<double>(cases) : 0.0; }
+  double shrink() const { return visible ? shrink_sum / static_cast<double>(visible) : 0.0; }
+  double false_alarm() const { return nulls ? static_cast<double>(alarms) / static_cast<double>(nulls) : 0.0; }
+};
+
+// "name=magnitude + ..." of what the case's diagnosis chose, "none" when nothing.
+std::string named_effects(const CaseOutcome& o);
 
 }  // namespace roadload::gap
