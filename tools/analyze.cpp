@@ -68,10 +68,7 @@ std::variant<AnalyzeOptions, int> parse(Args args) {
   OptionParser opt("analyze", args);
   AnalyzeOptions o;
   while (opt.more()) {
-    if (opt.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (opt.help(kHelp)) return kExitOk;
     if (opt.flag("-q", "--quiet")) {
       o.quiet = true;
     } else if (opt.flag("--estimate-cda")) {

@@ -77,10 +77,7 @@ int run_calibrate(Args args) {
   bool quiet = false, aero = false;
   AeroOptions ao;
   while (opt.more()) {
-    if (opt.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (opt.help(kHelp)) return kExitOk;
     if (opt.flag("-q", "--quiet")) {
       quiet = true;
     } else if (opt.flag("--aero")) {

@@ -126,10 +126,8 @@ int run_decode(Args args) {
   std::string input;
   OptionParser opts("decode", args);
   while (opts.more()) {
-    if (opts.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    } else if (opts.flag("--pgn-stats")) {
+    if (opts.help(kHelp)) return kExitOk;
+    if (opts.flag("--pgn-stats")) {
       pgn_stats = true;
     } else if (opts.flag("--tp")) {
       tp_only = true;

@@ -52,10 +52,7 @@ int run_diagnosis(OptionParser& opt) {
   options.jobs = default_jobs();
   bool quiet = false;
   while (opt.more()) {
-    if (opt.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (opt.help(kHelp)) return kExitOk;
     if (opt.flag("-q", "--quiet")) {
       quiet = true;
     } else if (auto r = opt.value("--real")) {

@@ -51,10 +51,7 @@ std::optional<std::string> parse_effects(std::string_view list, std::vector<sim:
 // The plan and options, or the exit status when there is nothing to run (help, a bad option).
 std::optional<int> parse(OptionParser& opt, gap::BenchPlan& plan, gap::GapOptions& options) {
   while (opt.more()) {
-    if (opt.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (opt.help(kHelp)) return kExitOk;
     if (auto n = opt.number("--cases", 1, 100000)) {
       plan.cases = static_cast<std::size_t>(*n);
     } else if (auto s = opt.number("--seed", 0, INT64_MAX)) {

@@ -92,10 +92,7 @@ int run_gap_tables(OptionParser& opt) {
   std::string json;
   unsigned jobs = default_jobs();
   while (opt.more()) {
-    if (opt.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (opt.help(kHelp)) return kExitOk;
     if (auto j = opt.value("--json")) {
       json = *j;
     } else if (auto n = opt.number("--jobs", 1, 256)) {

@@ -66,10 +66,7 @@ struct Track {
 // Returns an exit code when the options are unusable, else nullopt.
 std::optional<int> parse(OptionParser& opt, Options& o) {
   while (opt.more()) {
-    if (opt.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (opt.help(kHelp)) return kExitOk;
     if (opt.flag("-q", "--quiet")) {
       o.quiet = true;
     } else if (auto r = opt.value("--route")) {

@@ -16,6 +16,12 @@ bool OptionParser::flag(std::string_view a, std::string_view b) {
   return true;
 }
 
+bool OptionParser::help(const char* text) {
+  if (!flag("-h", "--help")) return false;
+  std::fputs(text, stdout);
+  return true;
+}
+
 std::optional<std::string_view> OptionParser::value(std::string_view name) {
   if (!more()) return std::nullopt;
   const std::string_view arg = current();

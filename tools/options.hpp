@@ -25,6 +25,8 @@ class OptionParser {
   bool failed() const { return failed_; }
 
   bool flag(std::string_view a, std::string_view b = {});
+  // -h or --help: prints `text` to standard output.
+  bool help(const char* text);
   std::optional<std::string_view> value(std::string_view name);
   std::optional<std::int64_t> number(std::string_view name, std::int64_t min, std::int64_t max);
   std::optional<double> real(std::string_view name, double min, double max);

@@ -126,10 +126,7 @@ int run_psd(Args args) {
   OptionParser opt("psd", args);
   Options o;
   while (opt.more()) {
-    if (opt.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (opt.help(kHelp)) return kExitOk;
     if (auto n = opt.number("--nperseg", 2, 1 << 22)) {
       o.nperseg = static_cast<std::size_t>(*n);
     } else if (auto m = opt.number("--noverlap", 0, 1 << 22)) {

@@ -86,10 +86,7 @@ std::variant<ReplayOptions, int> parse(Args args) {
   OptionParser p("replay", args);
   ReplayOptions o;
   while (p.more()) {
-    if (p.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (p.help(kHelp)) return kExitOk;
     if (p.flag("-q", "--quiet")) {
       o.quiet = true;
     } else if (auto v = p.value("--iface")) {

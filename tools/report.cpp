@@ -29,10 +29,7 @@ int run_report(Args args) {
   OptionParser opt("report", args);
   std::string results_dir, out, truth_dir, title;
   while (opt.more()) {
-    if (opt.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (opt.help(kHelp)) return kExitOk;
     if (auto o = opt.value("--out")) {
       out = *o;
     } else if (auto o2 = opt.value("-o")) {

@@ -68,10 +68,7 @@ std::variant<SimulateOptions, int> parse(Args args) {
   OptionParser opt("simulate", args);
   SimulateOptions o;
   while (opt.more()) {
-    if (opt.flag("-h", "--help")) {
-      std::fputs(kHelp, stdout);
-      return kExitOk;
-    }
+    if (opt.help(kHelp)) return kExitOk;
     if (opt.flag("--list-effects")) return list_effects();
     if (opt.flag("--list-scenarios")) return list_scenarios();
     if (opt.flag("-q", "--quiet")) {

@@ -1,6 +1,8 @@
 #include "roadload/vehicle_file.hpp"
 
+#include <algorithm>
 #include <filesystem>
+#include <iterator>
 #include <limits>
 
 #include "roadload/definitions.hpp"
@@ -101,35 +103,47 @@ void read_driveline(const TomlFields& f, const toml::table& t, DrivelineDescript
   d.shift_time = Seconds{f.required_in(t, "shift_time_s", w, 0, 10)};
 }
 
-void read_fuel(const TomlFields& f, const toml::table& t, FuelDescription& fuel) {
-  const std::string w = "fuel.";
-  f.only(t, {"eta_indicated_max", "n_opt_rpm", "eta_speed_coeff", "lhv_jpkg", "density_kgpl"}, w);
-  fuel.eta_indicated_max = f.required_in(t, "eta_indicated_max", w, 0.05, 0.7);
-  fuel.n_opt_rpm = f.required_in(t, "n_opt_rpm", w, 100, 8000);
-  fuel.eta_speed_coeff = f.required_in(t, "eta_speed_coeff", w, 0, 1);
-  fuel.lhv_jpkg = f.required_in(t, "lhv_jpkg", w, 1e6, 1.5e8);
-  fuel.density_kgpl = f.required_in(t, "density_kgpl", w, 0.1, 2);
+// A section of plain numbers: each key, the member it fills and the range that is physical.
+template <typename T>
+struct NumberField {
+  const char* key;
+  double T::*member;
+  double lo, hi;
+};
+
+template <typename T, std::size_t N>
+void read_numbers(const TomlFields& f, const toml::table& t, const std::string& where, const NumberField<T> (&fields)[N],
+                  T& out) {
+  for (const auto& [key, node] : t) {
+    const auto known = std::find_if(std::begin(fields), std::end(fields), [&](const auto& n) { return key.str() == n.key; });
+    if (known == std::end(fields)) f.fail(&node, where + std::string(key.str()), "unknown key");
+  }
+  for (const NumberField<T>& n : fields) out.*n.member = f.required_in(t, n.key, where, n.lo, n.hi);
 }
 
-void read_accessories(const TomlFields& f, const toml::table& t, AccessoryDescription& a) {
-  const std::string w = "accessories.";
-  f.only(t, {"alternator_w", "steering_w", "compressor_w", "fan_engaged_w", "fan_ref_rpm", "fan_idle_w"}, w);
-  a.alternator_w = f.required_in(t, "alternator_w", w, 0, 1e5);
-  a.steering_w = f.required_in(t, "steering_w", w, 0, 1e5);
-  a.compressor_w = f.required_in(t, "compressor_w", w, 0, 1e5);
-  a.fan_engaged_w = f.required_in(t, "fan_engaged_w", w, 0, 2e5);
-  a.fan_ref_rpm = f.required_in(t, "fan_ref_rpm", w, 100, 8000);
-  a.fan_idle_w = f.required_in(t, "fan_idle_w", w, 0, 1e5);
-}
+constexpr NumberField<FuelDescription> kFuelFields[] = {
+    {"eta_indicated_max", &FuelDescription::eta_indicated_max, 0.05, 0.7},
+    {"n_opt_rpm", &FuelDescription::n_opt_rpm, 100, 8000},
+    {"eta_speed_coeff", &FuelDescription::eta_speed_coeff, 0, 1},
+    {"lhv_jpkg", &FuelDescription::lhv_jpkg, 1e6, 1.5e8},
+    {"density_kgpl", &FuelDescription::density_kgpl, 0.1, 2},
+};
 
-void read_body(const TomlFields& f, const toml::table& t, Vehicle& v) {
-  const std::string w = "body.";
-  f.only(t, {"cda_m2", "cda_sigma_m2", "gnss_antenna_behind_front_m", "gnss_antenna_height_m"}, w);
-  v.cda_m2 = f.required_in(t, "cda_m2", w, 0.5, 30);
-  v.cda_sigma_m2 = f.required_in(t, "cda_sigma_m2", w, 0, 10);
-  v.gnss_antenna_behind_front_m = f.required_in(t, "gnss_antenna_behind_front_m", w, -5, 50);
-  v.gnss_antenna_height_m = f.required_in(t, "gnss_antenna_height_m", w, 0, 10);
-}
+constexpr NumberField<AccessoryDescription> kAccessoryFields[] = {
+    {"alternator_w", &AccessoryDescription::alternator_w, 0, 1e5},
+    {"steering_w", &AccessoryDescription::steering_w, 0, 1e5},
+    {"compressor_w", &AccessoryDescription::compressor_w, 0, 1e5},
+    {"fan_engaged_w", &AccessoryDescription::fan_engaged_w, 0, 2e5},
+    {"fan_ref_rpm", &AccessoryDescription::fan_ref_rpm, 100, 8000},
+    {"fan_idle_w", &AccessoryDescription::fan_idle_w, 0, 1e5},
+};
+
+constexpr NumberField<Vehicle> kBodyFields[] = {
+    {"cda_m2", &Vehicle::cda_m2, 0.5, 30},
+    {"cda_sigma_m2", &Vehicle::cda_sigma_m2, 0, 10},
+    {"gnss_antenna_behind_front_m", &Vehicle::gnss_antenna_behind_front_m, -5, 50},
+    {"gnss_antenna_height_m", &Vehicle::gnss_antenna_height_m, 0, 10},
+};
 
 // Axles front to rear, distinct names, at least one driven.
 void check_axles(const TomlFields& f, const toml::table& root, const Vehicle& v) {
@@ -162,11 +176,11 @@ Parsed<Vehicle> load_vehicle_file(const std::string& path) {
     v.name = f.required_text(root, "name", "");
     v.description = f.text(root, "description", "").value_or("");
     v.vin = f.text(root, "vin", "").value_or("");
-    read_body(f, section(f, root, "body"), v);
+    read_numbers(f, section(f, root, "body"), "body.", kBodyFields, v);
     read_engine(f, section(f, root, "engine"), v.engine);
     read_driveline(f, section(f, root, "driveline"), v.driveline);
-    read_fuel(f, section(f, root, "fuel"), v.fuel);
-    read_accessories(f, section(f, root, "accessories"), v.accessories);
+    read_numbers(f, section(f, root, "fuel"), "fuel.", kFuelFields, v.fuel);
+    read_numbers(f, section(f, root, "accessories"), "accessories.", kAccessoryFields, v.accessories);
     v.axles = read_array<VehicleAxle>(f, root, "axle", [&](const toml::table& t, const std::string& w) { return read_axle(f, t, w); });
     check_axles(f, root, v);
     v.accelerometers = read_array<AccelerometerMount>(

@@ -2,17 +2,9 @@
 
 namespace roadload::sim {
 
-double TruckParams::total_mass_kg() const {
-  double m = 0;
-  for (const auto& a : axles) m += a.load_kg;
-  return m;
-}
+double TruckParams::total_mass_kg() const { return total_load_kg(axles); }
 
-double TruckParams::cg_position_m() const {
-  double moment = 0;
-  for (const auto& a : axles) moment += a.load_kg * a.position_m;
-  return moment / total_mass_kg();
-}
+double TruckParams::cg_position_m() const { return load_centre_m(axles); }
 
 double TruckParams::drive_radius_m() const {
   for (const auto& a : axles) {

@@ -95,13 +95,8 @@ def main():
         for line, what, value in find_constants(common.read_text(os.path.join(args.root, rel))):
             violations.append(f"{rel}:{line}: the MnROAD truck's {what} ({value}) belongs in "
                               "config/vehicles/mnroad-truck.toml")
-    for v in violations:
-        print(v)
-    if violations:
-        print(f"check_constants: {len(violations)} MnROAD truck number(s) in {len(files)} source and build files")
-        return 1
-    print(f"check_constants: OK, {len(files)} source and build files")
-    return 0
+    return common.report("check_constants", violations, f"{len(files)} source and build files",
+                         "MnROAD truck number(s)")
 
 
 if __name__ == "__main__":

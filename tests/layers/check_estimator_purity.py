@@ -158,16 +158,10 @@ def main():
 
     violations = check_sources(args.root)
     violations += check_archives(args.nm, args.archives)
-    for v in violations:
-        print(v)
     checked = f"{len(estimator_sources(args.root))} files under estimator/"
     if args.archives:
         checked += f" and {len(args.archives)} archive(s)"
-    if violations:
-        print(f"check_estimator_purity: {len(violations)} violation(s) in {checked}")
-        return 1
-    print(f"check_estimator_purity: OK, {checked}")
-    return 0
+    return common.report("check_estimator_purity", violations, checked)
 
 
 if __name__ == "__main__":

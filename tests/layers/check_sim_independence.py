@@ -109,13 +109,7 @@ def main():
     if args.estimator_lib:
         violations += check_symbols(args.nm, args.estimator_lib, args.sim_lib)
         checked += " and the sim archive's undefined symbols"
-    for v in violations:
-        print(v)
-    if violations:
-        print(f"check_sim_independence: {len(violations)} violation(s) in {checked}")
-        return 1
-    print(f"check_sim_independence: OK, {checked}")
-    return 0
+    return common.report("check_sim_independence", violations, checked)
 
 
 if __name__ == "__main__":

@@ -186,3 +186,14 @@ def blank_preprocessor(text):
 
 def line_of(text, offset):
     return text.count("\n", 0, offset) + 1
+
+
+def report(check, violations, checked, what="violation(s)"):
+    """Prints every violation, then one summary line; the exit status: 1 when any, else 0."""
+    for v in violations:
+        print(v)
+    if violations:
+        print(f"{check}: {len(violations)} {what} in {checked}")
+        return 1
+    print(f"{check}: OK, {checked}")
+    return 0

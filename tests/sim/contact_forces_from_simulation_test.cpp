@@ -19,33 +19,22 @@ namespace {
 // Feeds the estimator as samples arrive and reads the plant's truth at each new physics step.
 // The truck's position comes from the plant (true x and grade): this test is about the forces,
 // positioning is the analyzer's.
-class ContactSink final : public SampleSink {
+class ContactSink final : public test::PlantStepSink {
  public:
   ContactSink(const Simulation& sim, ContactForces& cf, double warmup_s)
-      : sim_(sim), cf_(cf), warmup_s_(warmup_s), truth_trip_(cf.axle_count()),
+      : PlantStepSink(sim), cf_(cf), warmup_s_(warmup_s), truth_trip_(cf.axle_count()),
         truth_cells_(sim.route().def().cells.size() * cf.axle_count()) {}
-  void frame(const CanFrame&) override {}
-  void gnss(const GnssFix&) override {}
-  void weather(const WeatherSample&) override {}
-  void accel(const AccelSample& s) override {
-    const TruckState& st = sim_.plant().state();
-    if (st.t_s != last_t_) {
-      last_t_ = st.t_s;
-      place(st);
-      if (st.t_s >= warmup_s_) observe_truth(st);
-    }
-    cf_.push(s);
-  }
 
   const RunningStats& truth_trip(std::size_t axle) const { return truth_trip_[axle]; }
   const RunningStats& truth_cell(std::size_t cell, std::size_t axle) const { return truth_cells_[cell * cf_.axle_count() + axle]; }
 
  private:
-  int cell_of(const TruckState& st, std::size_t axle) const {
-    const Route& r = sim_.route();
-    const Cell* c = r.cell_at(st.x_m - cf_.layout().axles[axle].position_m);
-    return c == nullptr ? -1 : static_cast<int>(c - r.def().cells.data());
+  void step(const TruckState& st) override {
+    place(st);
+    if (st.t_s >= warmup_s_) observe_truth(st);
   }
+  void sample(const AccelSample& s) override { cf_.push(s); }
+  int cell_of(const TruckState& st, std::size_t axle) const { return cell_under(st, cf_.layout().axles[axle].position_m); }
   void place(const TruckState& st) {
     std::array<int, kMaxContactAxles> cells{};
     for (std::size_t i = 0; i < cf_.axle_count(); ++i) cells[i] = cell_of(st, i);
@@ -61,10 +50,8 @@ class ContactSink final : public SampleSink {
     }
   }
 
-  const Simulation& sim_;
   ContactForces& cf_;
   double warmup_s_;
-  double last_t_ = -1;
   std::vector<RunningStats> truth_trip_;
   std::vector<RunningStats> truth_cells_;
 };

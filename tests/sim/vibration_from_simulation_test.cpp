@@ -25,21 +25,10 @@ struct Powers {
   double damper_w = 0, tire_w = 0;
 };
 
-class VibrationSink final : public SampleSink {
+class VibrationSink final : public test::PlantStepSink {
  public:
   VibrationSink(const Simulation& sim, VibrationAnalysis& va)
-      : sim_(sim), va_(va), cells_(sim.route().def().cells.size() * va.layout().axles.size()) {}
-  void frame(const CanFrame&) override {}
-  void gnss(const GnssFix&) override {}
-  void weather(const WeatherSample&) override {}
-  void accel(const AccelSample& s) override {
-    const TruckState& st = sim_.plant().state();
-    if (st.t_s != last_t_) {
-      last_t_ = st.t_s;
-      observe(st);
-    }
-    va_.push(s);
-  }
+      : PlantStepSink(sim), va_(va), cells_(sim.route().def().cells.size() * va.layout().axles.size()) {}
   // Mean over the time axle i was in cell c, summed over axles, as truth/cells.csv has it.
   Powers truth_cell(std::size_t c) const {
     Powers p;
@@ -64,12 +53,9 @@ class VibrationSink final : public SampleSink {
     RunningStats damper, tire;
     double seconds = 0;
   };
-  int cell_of(const TruckState& st, std::size_t axle) const {
-    const Route& r = sim_.route();
-    const Cell* c = r.cell_at(st.x_m - va_.layout().axles[axle].position_m);
-    return c == nullptr ? -1 : static_cast<int>(c - r.def().cells.data());
-  }
-  void observe(const TruckState& st) {
+  void sample(const AccelSample& s) override { va_.push(s); }
+  int cell_of(const TruckState& st, std::size_t axle) const { return cell_under(st, va_.layout().axles[axle].position_m); }
+  void step(const TruckState& st) override {
     const std::size_t n = va_.layout().axles.size();
     std::array<int, kMaxContactAxles> cells{};
     double damper = 0, tire = 0;
@@ -92,9 +78,8 @@ class VibrationSink final : public SampleSink {
     }
   }
 
-  const Simulation& sim_;
   VibrationAnalysis& va_;
-  double last_t_ = -1, last_observed_s_ = 0, last_placed_s_ = -1;
+  double last_observed_s_ = 0, last_placed_s_ = -1;
   std::vector<Acc> cells_;
   RunningStats trip_damper_, trip_tire_;
 };

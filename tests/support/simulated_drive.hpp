@@ -25,6 +25,39 @@ class MemorySink final : public SampleSink {
   std::vector<WeatherSample> weather_samples;
 };
 
+// The accelerometers only, with a look at the plant once a physics step before that step's samples
+// go on: estimators are fed as samples arrive and the truth is read where it stands.
+class PlantStepSink : public SampleSink {
+ public:
+  explicit PlantStepSink(const Simulation& sim) : sim_(sim) {}
+  void frame(const CanFrame&) override {}
+  void gnss(const GnssFix&) override {}
+  void weather(const WeatherSample&) override {}
+  void accel(const AccelSample& s) final {
+    const TruckState& st = sim_.plant().state();
+    if (st.t_s != last_t_) {
+      last_t_ = st.t_s;
+      step(st);
+    }
+    sample(s);
+  }
+
+ protected:
+  virtual void step(const TruckState& st) = 0;
+  virtual void sample(const AccelSample& s) = 0;
+  // The route cell under an axle `behind_m` behind the front axle; -1 off the cells.
+  int cell_under(const TruckState& st, double behind_m) const {
+    const Route& r = sim_.route();
+    const Cell* c = r.cell_at(st.x_m - behind_m);
+    return c == nullptr ? -1 : static_cast<int>(c - r.def().cells.data());
+  }
+
+  const Simulation& sim_;
+
+ private:
+  double last_t_ = -1;
+};
+
 // The cells of a scenario's route, as the estimator takes them.
 inline std::vector<CellSpan> cell_spans(const Scenario& sc) {
   std::vector<CellSpan> cells;

@@ -15,12 +15,6 @@
 namespace {
 
 using namespace roadload::j1939::core_dbc_test;
-using roadload::j1939::ByteOrder;
-using roadload::j1939::Database;
-using roadload::j1939::MessageDef;
-using roadload::j1939::SignalDef;
-using roadload::j1939::SignalReading;
-using roadload::j1939::SignalState;
 
 TEST(CoreDbc, EngineSpeedFromRealIdleFrame) {
   // css-truck-idle.log line 6: 0CF00400#607D844A1400F084

@@ -13,7 +13,6 @@
 namespace roadload::j1939::transport_test {
 
 namespace j = roadload::j1939;
-
 using roadload::CanFrame;
 using roadload::CanFrameKind;
 using roadload::CaptureTime;

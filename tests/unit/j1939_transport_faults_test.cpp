@@ -15,11 +15,6 @@
 namespace {
 
 using namespace roadload::j1939::transport_test;
-using roadload::CanFrame;
-using roadload::CanFrameKind;
-using roadload::CaptureTime;
-using roadload::Nanoseconds;
-using namespace std::chrono_literals;
 
 TEST_F(J1939TransportTest, BamPacketGapOver750msTimesOut) {
   const Bytes payload = pattern(20);

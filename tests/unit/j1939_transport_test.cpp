@@ -14,11 +14,6 @@
 namespace {
 
 using namespace roadload::j1939::transport_test;
-using roadload::CanFrame;
-using roadload::CanFrameKind;
-using roadload::CaptureTime;
-using roadload::Nanoseconds;
-using namespace std::chrono_literals;
 
 TEST_F(J1939TransportTest, BamOf9BytesIsReassembledByteExact) {
   const Bytes payload = pattern(9);

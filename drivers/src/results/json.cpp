@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "roadload/text_scan.hpp"
+
 namespace roadload::results {
 
 const JsonValue* JsonValue::find(std::string_view key) const {
@@ -49,17 +51,7 @@ class JsonParser {
     return false;
   }
 
-  void skip_space() {
-    while (pos_ < text_.size()) {
-      const char c = text_[pos_];
-      if (c == '\n') {
-        ++line_;
-      } else if (c != ' ' && c != '\t' && c != '\r') {
-        return;
-      }
-      ++pos_;
-    }
-  }
+  void skip_space() { pos_ = skip_whitespace(text_, pos_, line_); }
 
   bool literal(std::string_view word) {
     if (text_.substr(pos_, word.size()) != word) return false;

@@ -4,18 +4,9 @@
 
 namespace roadload {
 
-double Vehicle::mass_kg() const {
-  double m = 0;
-  for (const VehicleAxle& a : axles) m += a.load_kg;
-  return m;
-}
+double Vehicle::mass_kg() const { return total_load_kg(axles); }
 
-double Vehicle::cg_behind_front_m() const {
-  double moment = 0;
-  for (const VehicleAxle& a : axles) moment += a.load_kg * a.position_m;
-  const double m = mass_kg();
-  return m > 0 ? moment / m : 0.0;
-}
+double Vehicle::cg_behind_front_m() const { return load_centre_m(axles); }
 
 double Vehicle::length_m() const {
   double len = 0;

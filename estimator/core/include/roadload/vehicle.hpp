@@ -81,6 +81,22 @@ struct AccessoryDescription {
   double fan_idle_w = 0;     // disengaged viscous drag, at fan_ref_rpm
 };
 
+// The axles' static loads summed, and their centre behind the front axle (0 without load): for
+// any list of axles with load_kg and position_m (the vehicle's, the plant's).
+template <typename Axles>
+double total_load_kg(const Axles& axles) {
+  double m = 0;
+  for (const auto& a : axles) m += a.load_kg;
+  return m;
+}
+template <typename Axles>
+double load_centre_m(const Axles& axles) {
+  double moment = 0;
+  for (const auto& a : axles) moment += a.load_kg * a.position_m;
+  const double m = total_load_kg(axles);
+  return m > 0 ? moment / m : 0.0;
+}
+
 struct Vehicle {
   std::string name;
   std::string description;

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "roadload/text_scan.hpp"
+
 namespace roadload::j1939 {
 namespace {
 
@@ -31,19 +33,12 @@ class Cursor {
     throw Failure{ParseError{std::string(source_), line_, std::string(field), std::move(message)}};
   }
 
+  // White space and // comments.
   void skip_space() {
-    while (pos_ < text_.size()) {
-      const char c = text_[pos_];
-      if (c == '\n') {
-        ++line_;
-      } else if (c != ' ' && c != '\t' && c != '\r') {
-        if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '/') {
-          skip_line();
-          continue;
-        }
-        return;
-      }
-      ++pos_;
+    for (;;) {
+      pos_ = skip_whitespace(text_, pos_, line_);
+      if (pos_ + 1 >= text_.size() || text_[pos_] != '/' || text_[pos_ + 1] != '/') return;
+      skip_line();
     }
   }
 

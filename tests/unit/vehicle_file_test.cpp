@@ -1,0 +1,106 @@
+// Vehicle files: the shipped MnROAD truck reads as the seed report's Tables 6.1-6.2 describe it and
+// turns into the estimator's truck model; a bad value is refused with its file, line and field.
+#include "roadload/vehicle_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "roadload/drive_analyzer.hpp"
+#include "roadload/model/longitudinal.hpp"
+#include "vehicles.hpp"
+
+namespace roadload {
+namespace {
+
+TEST(VehicleFile, TheMnroadTruckIsTheReportsTruck) {
+  const Vehicle& v = shipped::mnroad_vehicle();
+  EXPECT_EQ(v.name, "mnroad-truck");
+  EXPECT_EQ(v.vin, "1HSGSSJT8CJ536729");
+  ASSERT_EQ(v.axles.size(), 5u);
+  EXPECT_DOUBLE_EQ(v.mass_kg(), 36152.0);                 // Table 6.1
+  EXPECT_NEAR(v.cg_behind_front_m(), 9.742, 0.001);        // from Table 6.2's loads
+  EXPECT_DOUBLE_EQ(v.engine.reference_torque_nm, 2386.0);  // EC1 SPN 544 of the idle trace
+  EXPECT_EQ(v.driveline.gear_ratios.size(), 10u);
+  EXPECT_EQ(v.accelerometers.size(), 8u);
+  ASSERT_NE(v.drive_axle(), nullptr);
+  EXPECT_EQ(v.drive_axle()->name, "drive1");
+}
+
+TEST(VehicleFile, TheTruckModelTakesTheDriveTiresAndEveryWheelEnd) {
+  const model::TruckModel m = model::truck_model(shipped::mnroad_vehicle());
+  EXPECT_DOUBLE_EQ(m.mass_kg, 36152.0);
+  EXPECT_DOUBLE_EQ(m.tire_radius_m, 0.5);
+  EXPECT_DOUBLE_EQ(m.wheel_inertia_mass_kg, 936.0);  // 18 wheel ends x 13 kg m^2 / 0.5^2
+  EXPECT_DOUBLE_EQ(m.final_drive, 3.36);
+  EXPECT_DOUBLE_EQ(m.cda_prior_m2, 6.2);
+  const AnalyzerConfig c = analyzer_config(shipped::mnroad_vehicle());
+  EXPECT_NEAR(c.filter.torque_bias_sigma_nm, 9.741, 0.001);  // EEC3's whole percent at 2,386 N m
+  EXPECT_EQ(c.axles.size(), 5u);
+  EXPECT_DOUBLE_EQ(c.antenna_behind_front_m, 2.5);
+}
+
+class VehicleFileErrors : public ::testing::Test {
+ protected:
+  // The shipped file with `from` replaced by `to` (the first occurrence), written to a temp file.
+  std::string variant(const std::string& from, const std::string& to) {
+    std::ifstream in(std::filesystem::path(ROADLOAD_CONFIG_DIR) / "vehicles" / "mnroad-truck.toml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    std::string name = "roadload-vehicle-";
+    name.append(::testing::UnitTest::GetInstance()->current_test_info()->name()).append(".toml");
+    path_ = std::filesystem::temp_directory_path() / name;
+    std::ofstream(path_) << text;
+    return path_.string();
+  }
+  void TearDown() override { std::filesystem::remove(path_); }
+  ParseError error_of(const std::string& from, const std::string& to) {
+    auto v = load_vehicle_file(variant(from, to));
+    EXPECT_FALSE(v.ok()) << "accepted " << to;
+    return v.ok() ? ParseError{} : v.error();
+  }
+  std::filesystem::path path_;
+};
+
+TEST_F(VehicleFileErrors, NotANumberIsRefusedWithItsLineAndField) {
+  const ParseError e = error_of("cda_m2 = 6.2", "cda_m2 = nan");
+  EXPECT_EQ(e.field, "body.cda_m2");
+  EXPECT_GT(e.line, 0);
+}
+
+TEST_F(VehicleFileErrors, AnImpossibleValueIsRefused) {
+  EXPECT_EQ(error_of("load_kg = 5307", "load_kg = 0").field, "axle[0].load_kg");
+  EXPECT_EQ(error_of("efficiency = 0.94", "efficiency = 1.5").field, "driveline.efficiency");
+  EXPECT_EQ(error_of("unsprung_kg = 421.0", "unsprung_kg = 6000").field, "axle[0].unsprung_kg");
+}
+
+TEST_F(VehicleFileErrors, AnUnknownKeyIsATypo) {
+  EXPECT_EQ(error_of("lhv_jpkg = 42.8e6", "lhv_jpkg = 42.8e6\nlhv_per_kg = 1").field, "fuel.lhv_per_kg");
+}
+
+TEST_F(VehicleFileErrors, AxlesGoFrontToRear) {
+  EXPECT_EQ(error_of("position_m = 16.45", "position_m = 1.0").field, "axle[3].position_m");
+}
+
+TEST_F(VehicleFileErrors, EngineMapNeedsEc1sSixPoints) {
+  EXPECT_EQ(error_of("full_load_rpm = [650, 900, 1400, 1675, 2086, 2100]", "full_load_rpm = [650, 900]").field,
+            "engine.full_load_rpm");
+}
+
+TEST_F(VehicleFileErrors, AnAccelerometerMustSitOnAnAxleOfTheTruck) {
+  EXPECT_EQ(error_of("axle = \"front\"", "axle = \"fifth\"").field, "accelerometer[0].axle");
+}
+
+TEST(VehicleFile, AMissingFileSaysSo) {
+  auto v = load_vehicle_file("/nonexistent/vehicle.toml");
+  ASSERT_FALSE(v.ok());
+  EXPECT_EQ(v.error().file, "/nonexistent/vehicle.toml");
+}
+
+}  // namespace
+}  // namespace roadload
