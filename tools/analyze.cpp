@@ -12,9 +12,9 @@
 #include "command.hpp"
 #include "options.hpp"
 #include "roadload/contact_forces.hpp"
+#include "roadload/drive_analyzer.hpp"
 #include "roadload/engine_loss_file.hpp"
 #include "roadload/grade_file.hpp"
-#include "roadload/drive_analyzer.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 
@@ -144,7 +144,8 @@ struct Accelerometers {
 void attach(Accelerometers& acc, DriveAnalyzer& analyzer, const AnalyzeOptions& o, const Vehicle& vehicle,
             const recording::Metadata& meta, const PavementGroups& groups) {
   auto layout = recording::axle_layout(meta, vehicle, o.recording + "/meta.toml");
-  if (!layout.layout) std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.why_not.c_str());
+  if (!layout.layout)
+    std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.why_not.c_str());
   for (const std::string& why : layout.skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
   if (!layout.layout) return;
   const std::size_t cells = analyzer.cell_spans().size();
@@ -156,8 +157,8 @@ void attach(Accelerometers& acc, DriveAnalyzer& analyzer, const AnalyzeOptions& 
 }
 
 // RESULTS/cells.csv, trip.json and the PSD files.
-int write_results(const AnalyzeOptions& o, const std::vector<CellResult>& cells, const TripResult& trip,
-                  const Accelerometers& acc, const PavementGroups& groups, const std::optional<VibrationSummary>& spectra) {
+int write_results(const AnalyzeOptions& o, const std::vector<CellResult>& cells, const TripResult& trip, const Accelerometers& acc,
+                  const PavementGroups& groups, const std::optional<VibrationSummary>& spectra) {
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   const VibrationAnalysis* va = acc.vibration ? &*acc.vibration : nullptr;

@@ -7,8 +7,8 @@
 #include <string_view>
 
 #include "roadload/recording/csv.hpp"
-#include "roadload/spectra/dynamic_power.hpp"
 #include "roadload/recording/writer.hpp"
+#include "roadload/spectra/dynamic_power.hpp"
 #include "roadload/tire_crr.hpp"
 
 namespace roadload::cli {
@@ -33,13 +33,15 @@ const double* true_crr(const Truth* t, const std::string& cell) {
 }  // namespace
 
 void print_cells(const std::vector<CellResult>& cells, const Truth* truth) {
-  std::printf("%-6s %9s %9s %9s %7s %9s%s\n", "cell", "crr", "crr_lo", "crr_hi", "samples", "roll_l", truth ? "     truth  inside" : "");
+  std::printf("%-6s %9s %9s %9s %7s %9s%s\n", "cell", "crr", "crr_lo", "crr_hi", "samples", "roll_l",
+              truth ? "     truth  inside" : "");
   for (const CellResult& c : cells) {
     if (c.samples == 0) {
       std::printf("%-6s %9s %9s %9s %7zu %9s  %s\n", c.id.c_str(), "-", "-", "-", c.samples, "-", c.reason.c_str());
       continue;
     }
-    std::printf("%-6s %9.5f %9.5f %9.5f %7zu %9.5f", c.id.c_str(), c.crr, c.crr_lo, c.crr_hi, c.samples, c.fuel.liters(FuelUse::rolling));
+    std::printf("%-6s %9.5f %9.5f %9.5f %7zu %9.5f", c.id.c_str(), c.crr, c.crr_lo, c.crr_hi, c.samples,
+                c.fuel.liters(FuelUse::rolling));
     if (const double* t = true_crr(truth, c.id)) std::printf("   %7.5f  %s", *t, *t >= c.crr_lo && *t <= c.crr_hi ? "yes" : "no");
     std::printf("\n");
   }
@@ -68,11 +70,13 @@ void print_against_truth(const char* what, const std::vector<CellResult>& cells,
 void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth,
                 const VibrationAnalysis* vibration) {
   std::fprintf(stderr, "analyze: trip CRR %.5f +- %.5f (%s), CdA %.2f m^2, %zu of %zu ticks usable, mean NIS %.2f +- %.2f\n",
-               trip.crr, trip.crr_sigma, trip.identified ? "identified" : "NOT identified", trip.cda_m2,
-               trip.usable_ticks, trip.ticks, trip.mean_nis, 1.96 * trip.mean_nis_se);
+               trip.crr, trip.crr_sigma, trip.identified ? "identified" : "NOT identified", trip.cda_m2, trip.usable_ticks,
+               trip.ticks, trip.mean_nis, 1.96 * trip.mean_nis_se);
   const FuelBreakdown& f = trip.fuel;
-  std::fprintf(stderr, "analyze: fuel %.3f L measured (LFE1), %.3f L of it while the engine's torques were unknown; "
-               "rows sum to %.3f L (closure %+.2f %%)\n", f.fuel_l, f.unsplit_l, f.sum_l(), 100.0 * f.closure());
+  std::fprintf(stderr,
+               "analyze: fuel %.3f L measured (LFE1), %.3f L of it while the engine's torques were unknown; "
+               "rows sum to %.3f L (closure %+.2f %%)\n",
+               f.fuel_l, f.unsplit_l, f.sum_l(), 100.0 * f.closure());
   for (std::size_t i = 0; i < kUses; ++i) {
     std::fprintf(stderr, "  %-13s %8.4f L %6.1f %%", to_string(use(i)), f.liters(use(i)),
                  f.fuel_l > 0 ? 100.0 * f.liters(use(i)) / f.fuel_l : 0.0);

@@ -8,18 +8,17 @@
 
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/parse_error.hpp"
-#include "roadload/vibration.hpp"
 #include "roadload/results/results_files.hpp"
 #include "roadload/results/truth_files.hpp"
+#include "roadload/vibration.hpp"
 
 namespace roadload::cli {
 
-using results::Truth;
 using results::read_truth;
+using results::Truth;
 
 void print_cells(const std::vector<CellResult>& cells, const Truth* truth);
 // With the accelerometers' analysis, the tires' own CRR too (tire_crr.hpp).
-void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth,
-                const VibrationAnalysis* vibration);
+void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth, const VibrationAnalysis* vibration);
 
 }  // namespace roadload::cli

@@ -16,8 +16,8 @@ constexpr double kReportMainlineRatio = 652.0 / 442.0;
 constexpr double kReportHighwayRatio = 9353.0 / 6486.0;
 
 // A row of any width: a column per sensor, numbers in scientific notation (densities span decades).
-std::optional<ParseError> write_columns(const std::string& path, const char* axis, double bin,
-                                        const std::vector<std::string>& names, const std::vector<std::vector<double>>& cols) {
+std::optional<ParseError> write_columns(const std::string& path, const char* axis, double bin, const std::vector<std::string>& names,
+                                        const std::vector<std::vector<double>>& cols) {
   auto out = recording::OutputFile::create(path);
   if (!out) return out.error();
   std::string line = axis;
@@ -82,8 +82,8 @@ std::optional<ParseError> write_psd_files(const std::string& dir, const Vibratio
     const std::string suffix = g < 0 ? "" : "-" + groups.names[static_cast<std::size_t>(g)];
     if (auto e = write_columns(dir + "/psd" + suffix + ".csv", "freq_hz", spectra::bin_hz(modes.welch()), names, time)) return e;
     if (g < 0) continue;
-    if (auto e = write_columns(dir + "/psd-spatial" + suffix + ".csv", "cycles_per_m", spectra::bin_hz(modes.spatial_welch()),
-                               names, spatial))
+    if (auto e = write_columns(dir + "/psd-spatial" + suffix + ".csv", "cycles_per_m", spectra::bin_hz(modes.spatial_welch()), names,
+                               spatial))
       return e;
   }
   return std::nullopt;
@@ -92,8 +92,8 @@ std::optional<ParseError> write_psd_files(const std::string& dir, const Vibratio
 std::string vibration_json(const VibrationSummary& s) {
   std::ostringstream j;
   const auto power = [&](const DynamicPower& p) {
-    j << "\"damper_power_w\": " << p.damper_w << ", \"tire_power_w\": " << p.tire_w << ", \"tire_eq27_power_w\": "
-      << p.tire_eq27_w << ", \"damper_accel_periodogram_w\": " << p.damper_accel_w;
+    j << "\"damper_power_w\": " << p.damper_w << ", \"tire_power_w\": " << p.tire_w << ", \"tire_eq27_power_w\": " << p.tire_eq27_w
+      << ", \"damper_accel_periodogram_w\": " << p.damper_accel_w;
   };
   j << "  \"dynamic_rolling\": {\n    ";
   power(s.trip);
@@ -105,16 +105,16 @@ std::string vibration_json(const VibrationSummary& s) {
     const GroupSpectra& gs = s.groups[g];
     j << (g ? ",\n" : "\n") << "      {\"name\": \"" << gs.name << "\", ";
     power(gs.power);
-    j << ", \"speed_mps\": " << (std::isfinite(gs.speed_mps) ? gs.speed_mps : 0.0) << ",\n       \"joint_line\": {\"found\": "
-      << (gs.joint.found ? "true" : "false") << ", \"panel_m\": " << gs.joint.panel_m << ", \"freq_hz\": " << gs.joint_hz
-      << ", \"significance\": " << gs.joint.significance << ", \"inventory_panel_m\": " << gs.expected_panel_m
-      << "},\n       \"modes\": [";
+    j << ", \"speed_mps\": " << (std::isfinite(gs.speed_mps) ? gs.speed_mps : 0.0)
+      << ",\n       \"joint_line\": {\"found\": " << (gs.joint.found ? "true" : "false") << ", \"panel_m\": " << gs.joint.panel_m
+      << ", \"freq_hz\": " << gs.joint_hz << ", \"significance\": " << gs.joint.significance
+      << ", \"inventory_panel_m\": " << gs.expected_panel_m << "},\n       \"modes\": [";
     for (std::size_t i = 0; i < gs.peaks.size(); ++i) {
       j << (i ? ", " : "") << "[";
       for (std::size_t p = 0; p < gs.peaks[i].size(); ++p) {
         const spectra::Peak& pk = gs.peaks[i][p];
-        j << (p ? ", " : "") << "{\"freq_hz\": " << pk.freq << ", \"prominence\": " << pk.prominence << ", \"width_hz\": "
-          << pk.width << ", \"label\": \"" << pk.label << "\", \"joint_harmonic\": " << pk.joint_harmonic << "}";
+        j << (p ? ", " : "") << "{\"freq_hz\": " << pk.freq << ", \"prominence\": " << pk.prominence << ", \"width_hz\": " << pk.width
+          << ", \"label\": \"" << pk.label << "\", \"joint_harmonic\": " << pk.joint_harmonic << "}";
       }
       j << "]";
     }
@@ -125,7 +125,8 @@ std::string vibration_json(const VibrationSummary& s) {
 }
 
 void print_vibration(const VibrationSummary& s) {
-  std::fprintf(stderr, "analyze: dynamic rolling resistance (Eq. 2.7-2.8): dampers %.0f W, tires %.0f W (Eq. 2.7 on the axle's "
+  std::fprintf(stderr,
+               "analyze: dynamic rolling resistance (Eq. 2.7-2.8): dampers %.0f W, tires %.0f W (Eq. 2.7 on the axle's "
                "absolute motion: %.0f W); %.4f L, %.3f L/100 km; a year of 2,207 h: %.0f MJ, %.0f L\n",
                s.trip.damper_w, s.trip.tire_w, s.trip.tire_eq27_w, s.trip_cost.diesel_l, s.trip_cost.l_per_100km,
                s.annual.energy_mj_per_year, s.annual.diesel_l_per_year);
@@ -148,7 +149,8 @@ void print_vibration(const VibrationSummary& s) {
     if (g.name == "bituminous") bituminous = &g;
   }
   if (concrete_segments > 0 && bituminous && bituminous->power.damper_w > 0) {
-    std::fprintf(stderr, "analyze: concrete / bituminous damper power %.2f (report: %.2f Mainline Table 6.5, %.2f TH 10 / TH 66 Table 6.6)\n",
+    std::fprintf(stderr,
+                 "analyze: concrete / bituminous damper power %.2f (report: %.2f Mainline Table 6.5, %.2f TH 10 / TH 66 Table 6.6)\n",
                  concrete_w_segments / concrete_segments / bituminous->power.damper_w, kReportMainlineRatio, kReportHighwayRatio);
   }
 }
@@ -186,9 +188,11 @@ void print_vibration_truth(const VibrationAnalysis& va, const std::vector<CellDe
     ++n;
   }
   if (n == 0) return;
-  std::fprintf(stderr, "analyze: against the truth over %zu cells: dampers %+.1f %% (worst cell %s %+.1f %%), "
-               "tires %+.1f %% (worst cell %s %+.1f %%)\n", n, 100 * (damper.est / damper.truth - 1), damper.worst_cell.c_str(),
-               100 * damper.worst, 100 * (tire.est / tire.truth - 1), tire.worst_cell.c_str(), 100 * tire.worst);
+  std::fprintf(stderr,
+               "analyze: against the truth over %zu cells: dampers %+.1f %% (worst cell %s %+.1f %%), "
+               "tires %+.1f %% (worst cell %s %+.1f %%)\n",
+               n, 100 * (damper.est / damper.truth - 1), damper.worst_cell.c_str(), 100 * damper.worst,
+               100 * (tire.est / tire.truth - 1), tire.worst_cell.c_str(), 100 * tire.worst);
 }
 
 }  // namespace roadload::cli

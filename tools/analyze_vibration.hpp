@@ -20,8 +20,8 @@ struct GroupSpectra {
   DynamicPower power;
   double speed_mps = 0;
   double expected_panel_m = 0;
-  spectra::JointLine joint;     // guided by the inventory where it has a panel length, else blind
-  double joint_hz = 0;          // speed / panel length
+  spectra::JointLine joint;                       // guided by the inventory where it has a panel length, else blind
+  double joint_hz = 0;                            // speed / panel length
   std::vector<std::vector<spectra::Peak>> peaks;  // per sensor, from the group's PSD
 };
 

@@ -99,17 +99,18 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
     line.num(fit.cda_m2, 4).sep().num(fit.sigma_m2, 4).sep().num(fit.statistical_m2, 4).sep().num(fit.torque_m2, 4).sep();
     line.num(static_cast<std::int64_t>(fit.cells)).sep().num(fit.chi2_per_dof, 3).sep().num(fit.residual_correlation, 3).sep();
     line.num(fit.torque_bias_correlation, 3);
-    out.value().write("cda_m2,cda_sigma_m2,statistical_m2,torque_m2,cells,chi2_per_dof,residual_correlation,cda_torque_correlation\n");
+    out.value().write(
+        "cda_m2,cda_sigma_m2,statistical_m2,torque_m2,cells,chi2_per_dof,residual_correlation,cda_torque_correlation\n");
     out.value().write(line.finish());
     if (auto err = out.value().close()) {
       std::fprintf(stderr, "roadload calibrate: %s\n", err->to_string().c_str());
       return kExitCantCreate;
     }
   }
-  std::printf("CdA %.3f +- %.3f m^2 (cells' scatter %.3f, flywheel torque %.3f) from %zu cells, chi2/dof %.2f, neighbours' "
-              "correlation %.2f; prior %.2f\n",
-              fit.cda_m2, fit.sigma_m2, fit.statistical_m2, fit.torque_m2, fit.cells, fit.chi2_per_dof, fit.residual_correlation,
-              prior_m2);
+  std::printf(
+      "CdA %.3f +- %.3f m^2 (cells' scatter %.3f, flywheel torque %.3f) from %zu cells, chi2/dof %.2f, neighbours' "
+      "correlation %.2f; prior %.2f\n",
+      fit.cda_m2, fit.sigma_m2, fit.statistical_m2, fit.torque_m2, fit.cells, fit.chi2_per_dof, fit.residual_correlation, prior_m2);
   std::printf("roadload analyze ... --engine-losses %s --cda %.4f --cda-sigma %.4f --cda-torque-correlation %.3f\n",
               o.engine_losses.c_str(), fit.cda_m2, fit.sigma_m2, fit.torque_bias_correlation);
   return kExitOk;

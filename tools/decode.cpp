@@ -53,8 +53,7 @@ void print_stamp(std::FILE* out, CaptureTime t) {
   std::fprintf(out, "(%010" PRId64 ".%06" PRId64 ")", ns / 1'000'000'000, (ns % 1'000'000'000) / 1000);
 }
 
-void print_signals(std::FILE* out, const j1939::Message& m, const j1939::MessageDef& def,
-                   const recording::InterfaceTable& ifaces) {
+void print_signals(std::FILE* out, const j1939::Message& m, const j1939::MessageDef& def, const recording::InterfaceTable& ifaces) {
   print_stamp(out, m.t);
   const std::string_view iface = ifaces.name(m.iface);
   std::fprintf(out, " %.*s %02X %s", static_cast<int>(iface.size()), iface.data(), m.sa, def.name.c_str());
@@ -73,8 +72,8 @@ void print_signals(std::FILE* out, const j1939::Message& m, const j1939::Message
 void print_tp(std::FILE* out, const j1939::Message& m, const recording::InterfaceTable& ifaces) {
   print_stamp(out, m.t);
   const std::string_view iface = ifaces.name(m.iface);
-  std::fprintf(out, " %.*s TP pgn=%u sa=0x%02x da=0x%02x len=%zu data=", static_cast<int>(iface.size()), iface.data(),
-               m.pgn, m.sa, m.da, m.data.size());
+  std::fprintf(out, " %.*s TP pgn=%u sa=0x%02x da=0x%02x len=%zu data=", static_cast<int>(iface.size()), iface.data(), m.pgn, m.sa,
+               m.da, m.data.size());
   for (std::uint8_t b : m.data) std::fprintf(out, "%02x", b);
   std::fputc('\n', out);
 }
@@ -90,10 +89,9 @@ void print_pgn_stats(std::FILE* out, const std::map<j1939::Pgn, PgnStats>& stats
       std::snprintf(hex, sizeof hex, "%02X", static_cast<unsigned>(a));
       sources += (sources.empty() ? "" : ";") + std::string(hex);
     }
-    const double period_ms =
-        s.frames > 1 ? to_seconds(s.last - s.first) * 1e3 / static_cast<double>(s.frames - 1) : 0.0;
-    std::fprintf(out, "%u,%s,%" PRIu64 ",%s,%.3f,%" PRIu64 "\n", pgn, def != nullptr ? def->name.c_str() : "",
-                 s.frames, sources.c_str(), period_ms, s.tp_messages);
+    const double period_ms = s.frames > 1 ? to_seconds(s.last - s.first) * 1e3 / static_cast<double>(s.frames - 1) : 0.0;
+    std::fprintf(out, "%u,%s,%" PRIu64 ",%s,%.3f,%" PRIu64 "\n", pgn, def != nullptr ? def->name.c_str() : "", s.frames,
+                 sources.c_str(), period_ms, s.tp_messages);
   }
 }
 
@@ -101,13 +99,12 @@ void print_summary(const KindCounts& k, const recording::RecordingReader& rec, c
   std::uint64_t ignored = 0;
   for (const auto& s : rec.streams()) ignored += s->counts().ignored_lines;
   std::fprintf(stderr,
-               "frames=%" PRIu64 " extended=%" PRIu64 " standard_11bit=%" PRIu64 " remote=%" PRIu64
-               " error=%" PRIu64 " fd=%" PRIu64 " ignored_lines=%" PRIu64 " malformed_lines=%" PRIu64 "\n",
+               "frames=%" PRIu64 " extended=%" PRIu64 " standard_11bit=%" PRIu64 " remote=%" PRIu64 " error=%" PRIu64 " fd=%" PRIu64
+               " ignored_lines=%" PRIu64 " malformed_lines=%" PRIu64 "\n",
                k.total(), k.extended, k.standard, k.remote, k.error, k.fd, ignored, rec.errors().count());
   std::fprintf(stderr,
                "transport: completed=%" PRIu64 " bam=%" PRIu64 " rts=%" PRIu64 " etp=%" PRIu64 " aborted=%" PRIu64
-               " timed_out=%" PRIu64 " superseded=%" PRIu64 " duplicates=%" PRIu64 " orphans=%" PRIu64
-               " malformed=%" PRIu64 "\n",
+               " timed_out=%" PRIu64 " superseded=%" PRIu64 " duplicates=%" PRIu64 " orphans=%" PRIu64 " malformed=%" PRIu64 "\n",
                tp.completed, tp.bam_started, tp.rts_started, tp.etp_started, tp.aborted, tp.timed_out, tp.superseded,
                tp.duplicate_packets, tp.orphan_packets, tp.malformed);
   for (const ParseError& e : rec.errors().kept()) std::fprintf(stderr, "%s\n", e.to_string().c_str());

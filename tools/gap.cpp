@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "command.hpp"
-#include "roadload/gap/engine.hpp"
-#include "roadload/gap/model_choice.hpp"
-#include "roadload/gap/output.hpp"
 #include "gap_commands.hpp"
 #include "options.hpp"
 #include "roadload/definitions.hpp"
+#include "roadload/gap/engine.hpp"
+#include "roadload/gap/model_choice.hpp"
+#include "roadload/gap/output.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -100,7 +100,8 @@ int run_diagnosis(OptionParser& opt) {
   const gap::ModelLibrary lib = gap::build_library(runs, db, options);
   const gap::GapResult result = gap::run_gap(lib, runs, db, options);
   gap::print_result(stdout, result, run_lines);
-  for (const auto& [path, text] : {std::pair{json, gap::result_json(result, run_lines)}, std::pair{features, gap::features_csv(result)}}) {
+  for (const auto& [path, text] :
+       {std::pair{json, gap::result_json(result, run_lines)}, std::pair{features, gap::features_csv(result)}}) {
     if (path.empty()) continue;
     if (auto err = gap::write_text_file(path, text)) {
       std::fprintf(stderr, "roadload gap: %s\n", err->to_string().c_str());

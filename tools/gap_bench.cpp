@@ -5,9 +5,9 @@
 #include <string>
 
 #include "command.hpp"
-#include "roadload/gap/bench.hpp"
 #include "gap_commands.hpp"
 #include "roadload/definitions.hpp"
+#include "roadload/gap/bench.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -74,8 +74,9 @@ void print_case(std::size_t i, const gap::CaseOutcome& o) {
   const auto& d = o.result.diagnosis;
   char shrink[16] = "-";
   if (o.visible) std::snprintf(shrink, sizeof shrink, "%.2f", o.shrink);
-  std::printf("%4zu  %-48s %-44s %8.1f %7s %s\n", i + 1, gap::describe_effects(o.truth.effects).c_str(), gap::named_effects(o).c_str(),
-              d.singles.empty() ? 0.0 : d.singles.front().gain, shrink, o.named_right ? "" : "  <- wrong");
+  std::printf("%4zu  %-48s %-44s %8.1f %7s %s\n", i + 1, gap::describe_effects(o.truth.effects).c_str(),
+              gap::named_effects(o).c_str(), d.singles.empty() ? 0.0 : d.singles.front().gain, shrink,
+              o.named_right ? "" : "  <- wrong");
   std::fflush(stdout);
 }
 
@@ -89,8 +90,7 @@ void print_score(const gap::BenchScore& score, std::size_t libraries) {
   std::printf("\ntop-1 %zu/%zu; shrink over %zu visible effect cases; false alarms %zu/%zu null runs; %zu model libraries\n",
               score.right, score.cases, score.visible, score.alarms, score.nulls, libraries);
   std::printf("goals: top1 >= 0.90, shrink >= 0.70, false_alarm <= 0.05\n");
-  std::printf("cases=%zu top1=%.3f shrink=%.3f false_alarm=%.3f\n", score.cases, score.top1(), score.shrink(),
-              score.false_alarm());
+  std::printf("cases=%zu top1=%.3f shrink=%.3f false_alarm=%.3f\n", score.cases, score.top1(), score.shrink(), score.false_alarm());
 }
 
 }  // namespace

@@ -3,10 +3,10 @@
 #include <string>
 
 #include "command.hpp"
-#include "roadload/gap/output.hpp"
-#include "roadload/gap/tables.hpp"
 #include "gap_commands.hpp"
 #include "roadload/definitions.hpp"
+#include "roadload/gap/output.hpp"
+#include "roadload/gap/tables.hpp"
 #include "roadload/results/json.hpp"
 
 namespace roadload::cli {
@@ -28,22 +28,24 @@ std::string tables_json(const gap::TablesResult& t) {
   std::string j = "{\n  \"rows\": [";
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const auto& r = t.rows[i];
-    j += std::string(i ? "," : "") + "\n    {\"pavement\": " + results::json_quote(r.name) + ", \"report_w\": " +
-         gap::json_number(r.report_w) + ", \"before_w\": " + gap::json_number(r.before_w) + ", \"after_w\": " +
-         gap::json_number(r.after_w) + "}";
+    j += std::string(i ? "," : "") + "\n    {\"pavement\": " + results::json_quote(r.name) +
+         ", \"report_w\": " + gap::json_number(r.report_w) + ", \"before_w\": " + gap::json_number(r.before_w) +
+         ", \"after_w\": " + gap::json_number(r.after_w) + "}";
   }
   j += "\n  ],\n  \"candidates\": [";
   for (std::size_t i = 0; i < t.candidates.size(); ++i) {
     const auto& c = t.candidates[i];
     j += std::string(i ? "," : "") + "\n    {\"effect\": " + results::json_quote(std::string(sim::effect_info(c.effect).name)) +
          ", \"reaches_mainline_ratio\": " + (c.reached ? "true" : "false") + ", \"magnitude\": " + gap::json_number(c.magnitude) +
-         ", \"highway_ratio\": " + gap::json_number(c.highway_ratio) + ", \"holdout_error\": " + gap::json_number(c.holdout_error) + "}";
+         ", \"highway_ratio\": " + gap::json_number(c.highway_ratio) + ", \"holdout_error\": " + gap::json_number(c.holdout_error) +
+         "}";
   }
   j += "\n  ],\n  \"effect\": ";
-  j += t.chosen >= 0 ? results::json_quote(std::string(sim::effect_info(t.candidates[static_cast<std::size_t>(t.chosen)].effect).name))
-                     : std::string("null");
-  j += ",\n  \"report_mainline_ratio\": " + gap::json_number(gap::kReportMainlineRatio) + ",\n  \"report_highway_ratio\": " +
-       gap::json_number(gap::kReportHighwayRatio) + "\n}\n";
+  j += t.chosen >= 0
+           ? results::json_quote(std::string(sim::effect_info(t.candidates[static_cast<std::size_t>(t.chosen)].effect).name))
+           : std::string("null");
+  j += ",\n  \"report_mainline_ratio\": " + gap::json_number(gap::kReportMainlineRatio) +
+       ",\n  \"report_highway_ratio\": " + gap::json_number(gap::kReportHighwayRatio) + "\n}\n";
   return j;
 }
 

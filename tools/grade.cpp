@@ -113,8 +113,7 @@ std::optional<int> read_track(const std::string& path, const Options& o, Track& 
   } else if (it != vehicle.end()) {
     t.antenna_height_m = it->second;
   } else {
-    std::fprintf(stderr,
-                 "roadload grade: %s: meta.toml: vehicle.gnss_antenna_height_m: not given; heights are the antenna's\n",
+    std::fprintf(stderr, "roadload grade: %s: meta.toml: vehicle.gnss_antenna_height_m: not given; heights are the antenna's\n",
                  path.c_str());
   }
   while (const recording::Record* r = reader.value().next()) {
@@ -169,8 +168,8 @@ void compare(const GradeProfile& gnss, const GradeProfile& survey, bool quiet) {
     }
     const double diff = pct(b.grade_rad) - survey_pct;
     if (!quiet) {
-      std::printf("%8.1f %9.4f %9.4f %9.4f %9.4f %6zu\n", b.s_m, pct(b.grade_rad), 100 * b.grade_sigma_rad, survey_pct,
-                  diff, b.passes);
+      std::printf("%8.1f %9.4f %9.4f %9.4f %9.4f %6zu\n", b.s_m, pct(b.grade_rad), 100 * b.grade_sigma_rad, survey_pct, diff,
+                  b.passes);
     }
     diff2 += diff * diff;
     ++n;
@@ -183,8 +182,7 @@ void compare(const GradeProfile& gnss, const GradeProfile& survey, bool quiet) {
                "grade: passes %zu; GNSS fixes: %zu used, %zu off the route, %zu beyond its ends, %zu without a 3-D "
                "fix, %zu with poor hdop\n",
                gnss.passes(), f.used, f.off_route, f.beyond_ends, f.no_3d_fix, f.poor_hdop);
-  std::fprintf(stderr, "grade: %zu of %zu bins with a grade (--min-passes %zu)\n", n, gnss.bins().size(),
-               gnss.config().min_passes);
+  std::fprintf(stderr, "grade: %zu of %zu bins with a grade (--min-passes %zu)\n", n, gnss.bins().size(), gnss.config().min_passes);
   if (n == 0) return;
   const double rms_pct = std::sqrt(diff2 / static_cast<double>(n));
   std::fprintf(stderr, "grade: against the survey: RMS difference %.4f %% of grade; ", rms_pct);
@@ -225,8 +223,10 @@ int run_grade(Args args) {
   if (auto code = write_csv(o.out, gnss)) return *code;
   compare(gnss, survey, o.quiet);
   if (gnss.bins_with_grade() == 0) {
-    std::fprintf(stderr, "roadload grade: no bin has a grade: passes %zu, recordings %zu, --min-passes %zu (drive the "
-                 "route again, in either direction)\n", gnss.passes(), tracks.size(), o.cfg.min_passes);
+    std::fprintf(stderr,
+                 "roadload grade: no bin has a grade: passes %zu, recordings %zu, --min-passes %zu (drive the "
+                 "route again, in either direction)\n",
+                 gnss.passes(), tracks.size(), o.cfg.min_passes);
     return kExitDataErr;
   }
   return malformed > 0 ? kExitDataErr : kExitOk;

@@ -63,8 +63,7 @@ std::optional<double> OptionParser::real(std::string_view name, double min, doub
   double d = 0;
   const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), d);
   if (ec != std::errc() || end != v->data() + v->size() || d < min || d > max) {
-    fail(std::string(name) + ": '" + std::string(*v) + "' is not a number in " + std::to_string(min) + ".." +
-         std::to_string(max));
+    fail(std::string(name) + ": '" + std::string(*v) + "' is not a number in " + std::to_string(min) + ".." + std::to_string(max));
     return std::nullopt;
   }
   return d;
@@ -79,8 +78,8 @@ std::optional<std::string_view> OptionParser::positional() {
 }
 
 int OptionParser::fail(const std::string& message) {
-  if (!failed_) std::fprintf(stderr, "roadload %.*s: %s (see --help)\n", static_cast<int>(command_.size()),
-                             command_.data(), message.c_str());
+  if (!failed_)
+    std::fprintf(stderr, "roadload %.*s: %s (see --help)\n", static_cast<int>(command_.size()), command_.data(), message.c_str());
   failed_ = true;
   return kExitUsage;
 }

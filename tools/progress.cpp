@@ -9,9 +9,7 @@ namespace roadload::cli {
 Progress::Progress(std::string what, bool quiet)
     : what_(std::move(what)), quiet_(quiet), tty_(isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
 
-double Progress::wall_s() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-}
+double Progress::wall_s() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
 
 void Progress::update(double fraction) {
   if (quiet_) return;

@@ -150,9 +150,7 @@ int run_psd(Args args) {
   if (opt.failed()) return kExitUsage;
   if (o.input.empty()) return opt.fail("a recording or CSV file is required");
   if (o.axis != "x" && o.axis != "y" && o.axis != "z" && o.axis != "all") return opt.fail("--axis: expected x, y, z or all");
-  const auto config = [&](double fs) {
-    return spectra::WelchConfig{fs, o.nperseg, o.noverlap.value_or(o.nperseg / 2)};
-  };
+  const auto config = [&](double fs) { return spectra::WelchConfig{fs, o.nperseg, o.noverlap.value_or(o.nperseg / 2)}; };
   if (auto why = spectra::check(config(o.fs_hz.value_or(1.0)))) return opt.fail(*why);
 
   std::vector<Channel> channels;

@@ -12,10 +12,10 @@
 
 #include "command.hpp"
 #include "options.hpp"
+#include "replay_injector.hpp"
 #include "roadload/can/socketcan_sender.hpp"
 #include "roadload/io/posix_time.hpp"
 #include "roadload/io/replay_origin.hpp"
-#include "replay_injector.hpp"
 #include "roadload/recording/candump.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/writer.hpp"
@@ -175,7 +175,9 @@ class Replay {
     }
     if (!injector_ || o_.faults.empty()) return;
     const InjectedCounts& c = injector_->counts();
-    std::fprintf(stderr, "replay: faults: %llu dropped, %llu duplicated, %llu error frames, %llu silenced by bus-off, %llu transport packets withheld\n",
+    std::fprintf(stderr,
+                 "replay: faults: %llu dropped, %llu duplicated, %llu error frames, %llu silenced by bus-off, %llu transport packets "
+                 "withheld\n",
                  static_cast<unsigned long long>(c.dropped), static_cast<unsigned long long>(c.duplicated),
                  static_cast<unsigned long long>(c.error_frames), static_cast<unsigned long long>(c.silenced),
                  static_cast<unsigned long long>(c.truncated));

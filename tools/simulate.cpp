@@ -12,8 +12,8 @@
 #include "progress.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/recording/writer.hpp"
-#include "roadload/sim/recording_sink.hpp"
 #include "roadload/sim/effects.hpp"
+#include "roadload/sim/recording_sink.hpp"
 #include "roadload/sim/scenario.hpp"
 #include "roadload/sim/simulation.hpp"
 
@@ -40,9 +40,8 @@ constexpr const char* kHelp =
 int list_effects() {
   std::printf("%-22s %-9s %9s %9s %9s  %s\n", "effect", "unit", "typical", "min", "max", "model");
   for (const auto& e : sim::effect_catalog()) {
-    std::printf("%-22.*s %-9.*s %9g %9g %9g  %.*s\n", static_cast<int>(e.name.size()), e.name.data(),
-                static_cast<int>(e.unit.size()), e.unit.data(), e.typical, e.min, e.max,
-                static_cast<int>(e.summary.size()), e.summary.data());
+    std::printf("%-22.*s %-9.*s %9g %9g %9g  %.*s\n", static_cast<int>(e.name.size()), e.name.data(), static_cast<int>(e.unit.size()),
+                e.unit.data(), e.typical, e.min, e.max, static_cast<int>(e.summary.size()), e.summary.data());
   }
   return kExitOk;
 }
@@ -125,7 +124,8 @@ void print_summary(const sim::Simulation& simulation, const std::string& name, s
                    double wall) {
   const sim::FuelSpec& fuel = simulation.plant().truck().fuel;
   std::fprintf(stderr,
-               "simulate: %s seed %" PRIu64 ": %.1f s over %.0f m in %.1f s wall (%.1fx real time); "
+               "simulate: %s seed %" PRIu64
+               ": %.1f s over %.0f m in %.1f s wall (%.1fx real time); "
                "%" PRIu64 " CAN frames, %" PRIu64 " accelerometer samples, %" PRIu64 " GNSS fixes, %" PRIu64
                " weather samples; fuel %.3f L\n",
                name.c_str(), seed, sum.simulated_s, sum.distance_m, wall, wall > 0 ? sum.simulated_s / wall : 0.0, sum.frames,

@@ -87,7 +87,8 @@ Parsed<RouteFile> load_route_file(const std::string& path) {
 
 std::vector<CellSpan> cell_spans(const std::vector<CellDef>& cells) {
   std::vector<CellSpan> out;
-  for (const CellDef& c : cells) out.push_back({c.id, c.start_m, c.end_m, c.iri_m_per_km.value_or(std::numeric_limits<double>::quiet_NaN())});
+  for (const CellDef& c : cells)
+    out.push_back({c.id, c.start_m, c.end_m, c.iri_m_per_km.value_or(std::numeric_limits<double>::quiet_NaN())});
   return out;
 }
 

@@ -11,7 +11,6 @@
 namespace roadload {
 namespace {
 
-
 using detail::TomlFields;
 
 const toml::table& section(const TomlFields& f, const toml::table& root, std::string_view name) {
@@ -21,10 +20,11 @@ const toml::table& section(const TomlFields& f, const toml::table& root, std::st
 }
 
 VehicleAxle read_axle(const TomlFields& f, const toml::table& t, const std::string& where) {
-  f.only(t, {"name", "unit", "position_m", "load_kg", "unsprung_kg", "report_unsprung_kg", "tires", "tire_radius_m",
-             "wheel_inertia_kgm2", "driven", "spring_npm", "damper_nspm", "tire_stiffness_npm", "tire_damping_nspm",
-             "axle_mount", "frame_mount"},
-         where);
+  f.only(
+      t,
+      {"name", "unit", "position_m", "load_kg", "unsprung_kg", "report_unsprung_kg", "tires", "tire_radius_m", "wheel_inertia_kgm2",
+       "driven", "spring_npm", "damper_nspm", "tire_stiffness_npm", "tire_damping_nspm", "axle_mount", "frame_mount"},
+      where);
   VehicleAxle a;
   a.name = f.required_text(t, "name", where);
   a.unit = f.required_text(t, "unit", where);
@@ -45,8 +45,7 @@ VehicleAxle read_axle(const TomlFields& f, const toml::table& t, const std::stri
   return a;
 }
 
-AccelerometerMount read_accelerometer(const TomlFields& f, const toml::table& t, const std::string& where,
-                                      const Vehicle& v) {
+AccelerometerMount read_accelerometer(const TomlFields& f, const toml::table& t, const std::string& where, const Vehicle& v) {
   f.only(t, {"name", "position", "axle", "on_axle", "range_g"}, where);
   AccelerometerMount m;
   m.name = f.required_text(t, "name", where);
@@ -74,8 +73,9 @@ std::vector<T> read_array(const TomlFields& f, const toml::table& root, std::str
 
 void read_engine(const TomlFields& f, const toml::table& t, EngineDescription& e) {
   const std::string w = "engine.";
-  f.only(t, {"reference_torque_nm", "idle_rpm", "inertia_kgm2", "full_load_rpm", "full_load_fraction", "friction_a_pct",
-             "friction_b_pct", "friction_c_pct"},
+  f.only(t,
+         {"reference_torque_nm", "idle_rpm", "inertia_kgm2", "full_load_rpm", "full_load_fraction", "friction_a_pct",
+          "friction_b_pct", "friction_c_pct"},
          w);
   e.reference_torque_nm = f.required_in(t, "reference_torque_nm", w, 1, 64255);  // SPN 544's range
   e.idle_rpm = f.required_in(t, "idle_rpm", w, 100, 3000);
@@ -112,8 +112,7 @@ struct NumberField {
 };
 
 template <typename T, std::size_t N>
-void read_numbers(const TomlFields& f, const toml::table& t, const std::string& where, const NumberField<T> (&fields)[N],
-                  T& out) {
+void read_numbers(const TomlFields& f, const toml::table& t, const std::string& where, const NumberField<T> (&fields)[N], T& out) {
   for (const auto& [key, node] : t) {
     const auto known = std::find_if(std::begin(fields), std::end(fields), [&](const auto& n) { return key.str() == n.key; });
     if (known == std::end(fields)) f.fail(&node, where + std::string(key.str()), "unknown key");
@@ -130,12 +129,9 @@ constexpr NumberField<FuelDescription> kFuelFields[] = {
 };
 
 constexpr NumberField<AccessoryDescription> kAccessoryFields[] = {
-    {"alternator_w", &AccessoryDescription::alternator_w, 0, 1e5},
-    {"steering_w", &AccessoryDescription::steering_w, 0, 1e5},
-    {"compressor_w", &AccessoryDescription::compressor_w, 0, 1e5},
-    {"fan_engaged_w", &AccessoryDescription::fan_engaged_w, 0, 2e5},
-    {"fan_ref_rpm", &AccessoryDescription::fan_ref_rpm, 100, 8000},
-    {"fan_idle_w", &AccessoryDescription::fan_idle_w, 0, 1e5},
+    {"alternator_w", &AccessoryDescription::alternator_w, 0, 1e5},  {"steering_w", &AccessoryDescription::steering_w, 0, 1e5},
+    {"compressor_w", &AccessoryDescription::compressor_w, 0, 1e5},  {"fan_engaged_w", &AccessoryDescription::fan_engaged_w, 0, 2e5},
+    {"fan_ref_rpm", &AccessoryDescription::fan_ref_rpm, 100, 8000}, {"fan_idle_w", &AccessoryDescription::fan_idle_w, 0, 1e5},
 };
 
 constexpr NumberField<Vehicle> kBodyFields[] = {
@@ -168,9 +164,7 @@ Parsed<Vehicle> load_vehicle_file(const std::string& path) {
   const toml::table& root = parsed.value();
   TomlFields f(path);
   try {
-    f.only(root, {"name", "description", "vin", "body", "engine", "driveline", "fuel", "accessories", "axle",
-                  "accelerometer"},
-           "");
+    f.only(root, {"name", "description", "vin", "body", "engine", "driveline", "fuel", "accessories", "axle", "accelerometer"}, "");
     Vehicle v;
     v.source = path;
     v.name = f.required_text(root, "name", "");
@@ -181,7 +175,8 @@ Parsed<Vehicle> load_vehicle_file(const std::string& path) {
     read_driveline(f, section(f, root, "driveline"), v.driveline);
     read_numbers(f, section(f, root, "fuel"), "fuel.", kFuelFields, v.fuel);
     read_numbers(f, section(f, root, "accessories"), "accessories.", kAccessoryFields, v.accessories);
-    v.axles = read_array<VehicleAxle>(f, root, "axle", [&](const toml::table& t, const std::string& w) { return read_axle(f, t, w); });
+    v.axles = read_array<VehicleAxle>(f, root, "axle",
+                                      [&](const toml::table& t, const std::string& w) { return read_axle(f, t, w); });
     check_axles(f, root, v);
     v.accelerometers = read_array<AccelerometerMount>(
         f, root, "accelerometer", [&](const toml::table& t, const std::string& w) { return read_accelerometer(f, t, w, v); });

@@ -5,8 +5,7 @@
 
 namespace roadload {
 
-AeroDrive analyse_for_aero(const AnalyzerConfig& base,
-                           const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze) {
+AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze) {
   // Held: CdA's prior sigma and the torque calibration's sigma near zero, so that each cell's
   // sigma is its own noise, not the common part this calibration is about.
   AnalyzerConfig held = base;

@@ -40,8 +40,7 @@ bool CellEstimates::inside(const CellSpan& c, double s_front_m, double s_cg_m) c
                                                : s_cg_m >= c.start_m && s_cg_m < c.end_m;
 }
 
-void CellEstimates::tick(double s_front_m, double s_cg_m, double speed_mps, Unusable why, CrrMean filter_now,
-                         std::size_t step) {
+void CellEstimates::tick(double s_front_m, double s_cg_m, double speed_mps, Unusable why, CrrMean filter_now, std::size_t step) {
   for (std::size_t i = 0; i < cells_.size(); ++i) {
     if (!inside(cells_[i], s_front_m, s_cg_m)) continue;
     Cell& c = state_[i];

@@ -44,8 +44,8 @@ Frame find_frame(std::span<const SensorPlacement> sensors, const Vehicle& v, std
     if (v.axles[j].unit != v.axles[i].unit) continue;
     const Found f = find_sensor(sensors, v.axles[j].frame_mount);
     if (f.id < 0) continue;
-    const double score =
-        std::abs(v.axles[j].position_m - v.axles[i].position_m) + (j == i ? -1e6 : 0.0) + (f.left == left ? 0.0 : 1e3);
+    const double score = std::abs(v.axles[j].position_m - v.axles[i].position_m) + (j == i ? -1e6 : 0.0) +
+                         (f.left == left ? 0.0 : 1e3);
     if (score < best_score) {
       best_score = score;
       best = {f, j};
@@ -56,8 +56,8 @@ Frame find_frame(std::span<const SensorPlacement> sensors, const Vehicle& v, std
 
 }  // namespace
 
-Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, const Vehicle& vehicle,
-                                     std::string_view source, LayoutOptions options) {
+Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, const Vehicle& vehicle, std::string_view source,
+                                     LayoutOptions options) {
   auto fail = [&](std::string field, std::string message) {
     return ParseError{std::string(source), 0, std::move(field), std::move(message)};
   };
@@ -65,7 +65,8 @@ Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, c
   if (vehicle.axles.empty()) return fail("vehicle", "the vehicle has no axles");
   for (std::size_t i = 0; i < vehicle.axles.size(); ++i) {
     const VehicleAxle& d = vehicle.axles[i];
-    if (!(d.load_kg > 0) || !std::isfinite(d.load_kg)) return fail("vehicle." + d.name + "_load_kg", "axle load must be a positive number");
+    if (!(d.load_kg > 0) || !std::isfinite(d.load_kg))
+      return fail("vehicle." + d.name + "_load_kg", "axle load must be a positive number");
     if (!(d.unsprung_kg > 0) || !(d.unsprung_kg < d.load_kg)) {
       return fail("vehicle." + d.name + "_unsprung_kg", "unsprung mass " + std::to_string(d.unsprung_kg) +
                                                             " kg must be above 0 and below the axle load " +
@@ -78,7 +79,8 @@ Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, c
     };
     const Found axle = find_sensor(sensors, d.axle_mount);
     if (axle.id < 0) {
-      if (auto e = skip_or_fail("[[sensor]] position", "no accelerometer at '" + d.axle_mount + "-left' (or -right) for axle " + d.name)) {
+      if (auto e = skip_or_fail("[[sensor]] position",
+                                "no accelerometer at '" + d.axle_mount + "-left' (or -right) for axle " + d.name)) {
         return *e;
       }
       continue;
@@ -86,8 +88,8 @@ Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, c
     const Frame frame = find_frame(sensors, vehicle, i, axle.left);
     if (frame.sensor.id < 0) {
       if (auto e = skip_or_fail("[[sensor]] position", "no frame accelerometer on the " + d.unit + " for axle " + d.name +
-                                                             " (looked for '" + d.frame_mount +
-                                                             "-left' and the unit's other frame positions)")) {
+                                                           " (looked for '" + d.frame_mount +
+                                                           "-left' and the unit's other frame positions)")) {
         return *e;
       }
       continue;
@@ -116,13 +118,9 @@ Parsed<AxleLayout> build_axle_layout(std::span<const SensorPlacement> sensors, c
   return layout;
 }
 
-ForceStats rolling_resistance(const ForceStats& fz, double crr) {
-  return {fz.count, crr * fz.mean_n, std::abs(crr) * fz.std_n};
-}
+ForceStats rolling_resistance(const ForceStats& fz, double crr) { return {fz.count, crr * fz.mean_n, std::abs(crr) * fz.std_n}; }
 
-ForceStats ContactForces::stats(const RunningStats& r) {
-  return {r.n, r.mean, r.std()};
-}
+ForceStats ContactForces::stats(const RunningStats& r) { return {r.n, r.mean, r.std()}; }
 
 ContactForces::ContactForces(AxleLayout layout, std::size_t cell_count, ContactConfig config)
     : layout_(std::move(layout)),
@@ -269,11 +267,8 @@ void ContactForces::push(const AccelSample& s) {
           ++c.paired;
           add_force(axle, s.t, st.deviation, a_c);
           return;
-        case History::Found::stale:
-          ++c.stale_frame;
-          return;
-        case History::Found::not_kept:
-          break;
+        case History::Found::stale: ++c.stale_frame; return;
+        case History::Found::not_kept: break;
       }
     }
     ++c.undelayed;

@@ -25,9 +25,7 @@ Decay lumped(Offset a, Offset b) {
 
 }  // namespace
 
-double eec3_quantization_sigma_nm(double reference_torque_nm) {
-  return reference_torque_nm * 0.01 * std::sqrt(2.0 / 12.0);
-}
+double eec3_quantization_sigma_nm(double reference_torque_nm) { return reference_torque_nm * 0.01 * std::sqrt(2.0 / 12.0); }
 
 void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> torque_bias_sigma_nm) {
   Vec x;
@@ -58,8 +56,8 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
   const double v_air = v + in.headwind_mps;
   const double weight = m * model::kGravity_mps2;
   const double half_rho = 0.5 * in.air_density_kgpm3;
-  const model::Resistances r = model::resistances(m, x(CrrState::crr), x(CrrState::cda), in.air_density_kgpm3, v_air,
-                                                  in.grade_rad, x(CrrState::grade_error));
+  const model::Resistances r = model::resistances(m, x(CrrState::crr), x(CrrState::cda), in.air_density_kgpm3, v_air, in.grade_rad,
+                                                  x(CrrState::grade_error));
   const double aero = r.aero_n;
   const double bias_n = in.wheel_force_per_flywheel_nm * x(CrrState::torque_bias);
   const double accel = (in.tractive_n + bias_n - aero - r.grade_n - r.rolling_n) / m_eff;

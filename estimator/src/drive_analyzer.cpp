@@ -8,7 +8,7 @@ namespace roadload {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr std::uint64_t kNisBatch = 50;  // 5 s at CCVS1's 10 Hz, longer than the innovations' memory
+constexpr std::uint64_t kNisBatch = 50;           // 5 s at CCVS1's 10 Hz, longer than the innovations' memory
 constexpr std::size_t kSmootherCapacity = 36000;  // an hour at CCVS1's 10 Hz before it grows
 
 }  // namespace
@@ -33,8 +33,7 @@ double truck_length_m(const std::vector<AxleLoad>& axles) {
 
 }  // namespace
 
-DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std::vector<CellSpan> cells,
-                             AnalyzerConfig config)
+DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std::vector<CellSpan> cells, AnalyzerConfig config)
     : route_(std::move(route)),
       grade_(GradeProfile::from_survey(route_, config.survey_elevation_sigma_m)),
       config_(std::move(config)),
@@ -292,8 +291,7 @@ CellLimits DriveAnalyzer::cell_limits() const {
 }
 
 std::vector<CellResult> DriveAnalyzer::cells() const {
-  std::vector<CellResult> out =
-      cells_.results(cell_limits(), [this](std::span<const std::size_t> steps) { return crr_mean(steps); });
+  std::vector<CellResult> out = cells_.results(cell_limits(), [this](std::span<const std::size_t> steps) { return crr_mean(steps); });
   if (!config_.keep_history) return out;
   const std::vector<FuelBreakdown>& fuel = fuel_.cells();
   for (std::size_t i = 0; i < out.size(); ++i) {

@@ -60,12 +60,8 @@ void FuelBreakdown::add(const PowerInterval& p, double energy_jpl) {
   row(FuelUse::driveline) += flywheel_j - wheel_j;
 }
 
-double FuelBreakdown::sum_l(double energy_jpl) const {
-  return std::accumulate(energy_j.begin(), energy_j.end(), 0.0) / energy_jpl;
-}
+double FuelBreakdown::sum_l(double energy_jpl) const { return std::accumulate(energy_j.begin(), energy_j.end(), 0.0) / energy_jpl; }
 
-double FuelBreakdown::closure(double energy_jpl) const {
-  return fuel_l > 0 ? (sum_l(energy_jpl) - fuel_l) / fuel_l : 0.0;
-}
+double FuelBreakdown::closure(double energy_jpl) const { return fuel_l > 0 ? (sum_l(energy_jpl) - fuel_l) / fuel_l : 0.0; }
 
 }  // namespace roadload

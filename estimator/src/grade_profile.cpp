@@ -22,9 +22,7 @@ struct Placed {
 
 // Bins are bin_m long from the route's start; the last one ends at the route's end (half a bin
 // to one and a half long: a sliver would hold no fix), its centre in the middle.
-std::size_t bin_count(double length_m, double bin_m) {
-  return static_cast<std::size_t>(std::max(1.0, std::round(length_m / bin_m)));
-}
+std::size_t bin_count(double length_m, double bin_m) { return static_cast<std::size_t>(std::max(1.0, std::round(length_m / bin_m))); }
 
 std::vector<GradeBin> make_bins(double length_m, double bin_m) {
   const std::size_t n = bin_count(length_m, bin_m);
@@ -44,8 +42,8 @@ std::size_t bin_of(double s_m, double bin_m, std::size_t bins) {
 // d(atan x)/dx: a slope's standard error as the angle's.
 double angle_sigma(double slope, double slope_sigma) { return slope_sigma / (1.0 + slope * slope); }
 
-std::optional<Placed> place(const RouteGeometry& route, const GnssFix& f, double antenna_height_m,
-                            const GradeConfig& cfg, GnssFixCounts& n) {
+std::optional<Placed> place(const RouteGeometry& route, const GnssFix& f, double antenna_height_m, const GradeConfig& cfg,
+                            GnssFixCounts& n) {
   // A 2-D fix holds its height at a guess; a NaN coordinate is a receiver without a solution.
   const bool finite = std::isfinite(f.lat_deg) && std::isfinite(f.lon_deg) && std::isfinite(f.alt_m);
   if (static_cast<int>(f.mode) < static_cast<int>(GnssFixMode::fix_3d) || !finite) {
@@ -237,8 +235,7 @@ GradeProfile GradeProfile::from_survey(const RouteGeometry& route, double survey
   return g;
 }
 
-GradeProfile GradeProfile::from_gnss(const RouteGeometry& route, std::span<const GnssTrack> tracks,
-                                     const GradeConfig& cfg) {
+GradeProfile GradeProfile::from_gnss(const RouteGeometry& route, std::span<const GnssTrack> tracks, const GradeConfig& cfg) {
   GradeProfile g(cfg, route.length_m());
   std::vector<std::vector<double>> heights_m;  // [pass][bin]
   for (const GnssTrack& track : tracks) {

@@ -5,8 +5,7 @@
 namespace roadload {
 
 std::optional<TireCrr> tire_crr(const CellResult& cell, double dissipated_w, double relative_error) {
-  if (cell.samples == 0 || !(cell.speed_mps > 0) || !(cell.weight_n > 0) || !(cell.crr_sigma > 0) ||
-      !std::isfinite(dissipated_w)) {
+  if (cell.samples == 0 || !(cell.speed_mps > 0) || !(cell.weight_n > 0) || !(cell.crr_sigma > 0) || !std::isfinite(dissipated_w)) {
     return std::nullopt;
   }
   const double interval_z = (cell.crr_hi - cell.crr) / cell.crr_sigma;

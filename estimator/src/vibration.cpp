@@ -51,9 +51,8 @@ std::vector<spectra::ModeSensor> mode_sensors(const AxleLayout& layout, std::spa
 
 }  // namespace
 
-VibrationAnalysis::VibrationAnalysis(const AxleLayout& layout, std::span<const VibrationSensor> sensors,
-                                     std::size_t cell_count, std::vector<int> cell_group, std::size_t group_count,
-                                     VibrationConfig config)
+VibrationAnalysis::VibrationAnalysis(const AxleLayout& layout, std::span<const VibrationSensor> sensors, std::size_t cell_count,
+                                     std::vector<int> cell_group, std::size_t group_count, VibrationConfig config)
     : layout_(layout),
       cell_group_(cell_group),
       grid_(grid_sensors(sensors), config.grid),

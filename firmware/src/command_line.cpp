@@ -34,9 +34,7 @@ const char* const kUsage =
 
 namespace {
 
-ParseError arg_error(const std::string& field, const std::string& message) {
-  return ParseError{"command line", 0, field, message};
-}
+ParseError arg_error(const std::string& field, const std::string& message) { return ParseError{"command line", 0, field, message}; }
 
 }  // namespace
 

@@ -158,7 +158,8 @@ std::optional<ParseError> validate(const DaemonConfig& c) {
     if (b.interface.empty() || b.interface.size() > 15) return field_error(w + "interface", "expected 1 to 15 characters");
     if (!ifaces.insert(b.interface).second) return field_error(w + "interface", "'" + b.interface + "' listed twice");
     if (!(b.bitrate_bps >= 10'000 && b.bitrate_bps <= 8'000'000)) return field_error(w + "bitrate_bps", "expected 10000 to 8000000");
-    if (b.receive_buffer_kib < 64 || b.receive_buffer_kib > 1 << 20) return field_error(w + "receive_buffer_kib", "expected 64 to 1048576");
+    if (b.receive_buffer_kib < 64 || b.receive_buffer_kib > 1 << 20)
+      return field_error(w + "receive_buffer_kib", "expected 64 to 1048576");
   }
   if (c.can.size() > 8) return field_error("can", "at most 8 buses");
   std::set<int> ids;
@@ -213,10 +214,10 @@ std::string format_config(const DaemonConfig& c) {
     << "\ninterval_s = " << c.status.interval.count() << "\n";
   o << "\n[replay]\nrecording = " << quoted(c.replay.recording) << "\nrate = " << c.replay.rate
     << "\ncan = " << (c.replay.can ? "true" : "false") << "\norigin_file = " << quoted(c.replay.origin_file) << "\n";
-  o << "\n[estimator]\nvehicle = " << quoted(c.estimator.vehicle) << "\nroute = " << quoted(c.estimator.route) << "\nresults_dir = " << quoted(c.estimator.results_dir)
-    << "\nengine_losses = " << quoted(c.estimator.engine_losses) << "\ncda_m2 = " << c.estimator.cda_m2
-    << "\ncda_sigma_m2 = " << c.estimator.cda_sigma_m2 << "\ncda_torque_correlation = " << c.estimator.cda_torque_correlation
-    << "\n";
+  o << "\n[estimator]\nvehicle = " << quoted(c.estimator.vehicle) << "\nroute = " << quoted(c.estimator.route)
+    << "\nresults_dir = " << quoted(c.estimator.results_dir) << "\nengine_losses = " << quoted(c.estimator.engine_losses)
+    << "\ncda_m2 = " << c.estimator.cda_m2 << "\ncda_sigma_m2 = " << c.estimator.cda_sigma_m2
+    << "\ncda_torque_correlation = " << c.estimator.cda_torque_correlation << "\n";
   return o.str();
 }
 

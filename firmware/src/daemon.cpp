@@ -49,8 +49,7 @@ Daemon::Daemon(DaemonSetup setup, DaemonSources sources, io::WaitClock& clock)
     cfg.keep_history = false;
     analyzer_.emplace(*setup_.db, setup_.route, setup_.cells, cfg);
     if (setup_.layout) {
-      vibration_.emplace(*setup_.layout, setup_.accelerometers, setup_.cells.size(), setup_.cell_group,
-                         setup_.group_count);
+      vibration_.emplace(*setup_.layout, setup_.accelerometers, setup_.cells.size(), setup_.cell_group, setup_.group_count);
       analyzer_->attach(&*vibration_);
     }
   }
@@ -275,7 +274,8 @@ std::optional<ParseError> Daemon::write_results(const std::string& dir) const {
     for (const AxleContact& a : setup_.layout->axles) axles.push_back(a.name);
   }
   const VibrationAnalysis* va = vibration_ ? &*vibration_ : nullptr;
-  if (auto e = results::write_cells_csv(dir + "/cells.csv", analyzer_->cells(), va ? axles : std::vector<std::string>{}, va)) return e;
+  if (auto e = results::write_cells_csv(dir + "/cells.csv", analyzer_->cells(), va ? axles : std::vector<std::string>{}, va))
+    return e;
   return results::write_trip_json(dir + "/trip.json", analyzer_->trip(), "  \"estimate\": \"live filter\"");
 }
 

@@ -29,8 +29,7 @@ std::string segment_name(std::uint64_t sequence) {
   std::tm utc{};
   if (gmtime_r(&now, &utc) != nullptr) std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", &utc);
   char name[64];
-  std::snprintf(name, sizeof name, "%0*llu-%s", static_cast<int>(kSequenceDigits),
-                static_cast<unsigned long long>(sequence), stamp);
+  std::snprintf(name, sizeof name, "%0*llu-%s", static_cast<int>(kSequenceDigits), static_cast<unsigned long long>(sequence), stamp);
   return name;
 }
 

@@ -41,8 +41,8 @@ Parsed<io::ReplayOrigin> replay_origin(const ReplayConfig& r, io::WaitClock& clo
 }
 
 template <typename Sample, typename ChannelT>
-void add_replay(const std::string& folder, const io::ReplayOrigin& origin, io::WaitClock& clock, SourceKind kind,
-                const char* name, std::unique_ptr<ChannelT>& out, std::vector<std::string>& notes) {
+void add_replay(const std::string& folder, const io::ReplayOrigin& origin, io::WaitClock& clock, SourceKind kind, const char* name,
+                std::unique_ptr<ChannelT>& out, std::vector<std::string>& notes) {
   auto src = io::ReplaySource<Sample>::open(folder, origin.timing, clock, name, origin.faults);
   std::string note = name;
   if (!src) {
@@ -89,8 +89,7 @@ Parsed<BuiltSources> build_sources(const DaemonConfig& c, io::WaitClock& clock, 
     add_replay<AccelSample>(c.replay.recording, origin.value(), clock, SourceKind::accelerometer, "accel", accel, notes);
     if (accel) b.sources.accel.push_back(std::move(accel));
     add_replay<GnssFix>(c.replay.recording, origin.value(), clock, SourceKind::gnss, "gnss", b.sources.gnss, notes);
-    add_replay<WeatherSample>(c.replay.recording, origin.value(), clock, SourceKind::weather, "weather",
-                              b.sources.weather, notes);
+    add_replay<WeatherSample>(c.replay.recording, origin.value(), clock, SourceKind::weather, "weather", b.sources.weather, notes);
     return b;
   }
   if (c.accelerometers.empty()) notes.push_back("accelerometers: none configured, skipped");

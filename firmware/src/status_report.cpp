@@ -52,7 +52,8 @@ std::vector<std::string> warnings_for(const StatusReport& r) {
     }
   }
   const J1939Report& j = r.j1939;
-  if (j.gaps_recent > 0) w.push_back("j1939: " + std::to_string(j.gaps_recent) + " gaps in periodic messages (frames lost before the gateway)");
+  if (j.gaps_recent > 0)
+    w.push_back("j1939: " + std::to_string(j.gaps_recent) + " gaps in periodic messages (frames lost before the gateway)");
   if (j.repeats_recent > 0) w.push_back("j1939: " + std::to_string(j.repeats_recent) + " frames repeated");
   if (j.tp_incomplete_recent > 0) w.push_back("j1939: " + std::to_string(j.tp_incomplete_recent) + " transport sessions incomplete");
   if (r.sync.clock_steps > 0) w.push_back("wall clock stepped " + std::to_string(r.sync.clock_steps) + "x (data unaffected)");
@@ -83,8 +84,8 @@ std::string format_text(const StatusReport& r) {
   }
   const J1939Report& j = r.j1939;
   if (j.cadence.gaps + j.cadence.repeats + j.tp_incomplete > 0) {
-    line += " | j1939 gaps " + std::to_string(j.cadence.gaps) + " repeats " + std::to_string(j.cadence.repeats) +
-            " tp-incomplete " + std::to_string(j.tp_incomplete);
+    line += " | j1939 gaps " + std::to_string(j.cadence.gaps) + " repeats " + std::to_string(j.cadence.repeats) + " tp-incomplete " +
+            std::to_string(j.tp_incomplete);
   }
   line += r.sync.clock_steps == 0 && r.sync.unplaced_stamps == 0 ? " | sync ok" : " | sync degraded";
   for (const std::string& w : r.warnings) line += " | WARN " + w;
@@ -104,7 +105,8 @@ std::string format_json(const StatusReport& r) {
   j += ",\"sources\":[";
   for (std::size_t i = 0; i < r.sources.size(); ++i) {
     const SourceReport& s = r.sources[i];
-    j += (i ? ",{" : "{") + std::string("\"name\":") + results::json_quote(s.name) + ",\"kind\":" + results::json_quote(to_string(s.kind));
+    j += (i ? ",{" : "{") + std::string("\"name\":") + results::json_quote(s.name) +
+         ",\"kind\":" + results::json_quote(to_string(s.kind));
     j += ",\"state\":" + results::json_quote(io::to_string(s.status.state)) + ",\"items\":" + std::to_string(s.status.items);
     j += ",\"rate_per_s\":" + json_number(s.rate_per_s, "%.1f");
     if (s.kind == SourceKind::can) j += ",\"bus_load\":" + json_number(s.bus_load, "%.4f");
@@ -122,8 +124,9 @@ std::string format_json(const StatusReport& r) {
   j += ",\"sync\":{\"clock_steps\":" + std::to_string(r.sync.clock_steps) +
        ",\"unplaced_stamps\":" + std::to_string(r.sync.unplaced_stamps) + "}";
   j += ",\"j1939\":{\"gaps\":" + std::to_string(r.j1939.cadence.gaps) + ",\"repeats\":" + std::to_string(r.j1939.cadence.repeats) +
-       ",\"untracked\":" + std::to_string(r.j1939.cadence.untracked) + ",\"too_fast\":" + std::to_string(r.j1939.cadence.too_fast) + ",\"tp_completed\":" + std::to_string(r.j1939.tp_completed) +
-       ",\"tp_incomplete\":" + std::to_string(r.j1939.tp_incomplete) + "}";
+       ",\"untracked\":" + std::to_string(r.j1939.cadence.untracked) + ",\"too_fast\":" + std::to_string(r.j1939.cadence.too_fast) +
+       ",\"tp_completed\":" + std::to_string(r.j1939.tp_completed) + ",\"tp_incomplete\":" + std::to_string(r.j1939.tp_incomplete) +
+       "}";
   j += ",\"warnings\":[";
   for (std::size_t i = 0; i < r.warnings.size(); ++i) j += (i ? "," : "") + results::json_quote(r.warnings[i]);
   return j + "]}\n";

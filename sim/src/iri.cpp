@@ -99,8 +99,7 @@ double iri_m_per_km(const RoadProfile& profile, double from_m, double to_m) {
   const Mat5 step = golden_car_step(dx_m / kIriSpeed_mps);
   const auto init_samples = static_cast<std::size_t>(std::round(kIriInitLength_m / dx_m));
   const std::size_t init_end = std::min(last, first + init_samples);
-  const double init_slope =
-      init_end > first ? (y[init_end] - y[first]) / (static_cast<double>(init_end - first) * dx_m) : 0.0;
+  const double init_slope = init_end > first ? (y[init_end] - y[first]) / (static_cast<double>(init_end - first) * dx_m) : 0.0;
   std::array<double, 4> z{init_slope, 0.0, init_slope, 0.0};
   double sum = 0.0;
   std::size_t count = 0;

@@ -22,10 +22,9 @@ struct Sender {
   std::uint8_t priority;
 };
 constexpr Sender kSenders[] = {
-    {"EEC1", 0x00, 3}, {"EEC2", 0x00, 3}, {"EEC3", 0x00, 6}, {"EC1", 0x00, 6},  {"CCVS1", 0x00, 6},
-    {"LFE1", 0x00, 6}, {"ET1", 0x00, 6},  {"FD1", 0x00, 6},  {"DM1", 0x00, 6},  {"AMB", 0x00, 6},
-    {"ETC1", 0x03, 3}, {"ETC2", 0x03, 6}, {"EBC1", 0x0B, 6}, {"EBC2", 0x0B, 6}, {"VD", 0x17, 6},
-    {"VDHR", 0x17, 6}, {"VP1", 0x1C, 6},
+    {"EEC1", 0x00, 3}, {"EEC2", 0x00, 3}, {"EEC3", 0x00, 6}, {"EC1", 0x00, 6},  {"CCVS1", 0x00, 6}, {"LFE1", 0x00, 6},
+    {"ET1", 0x00, 6},  {"FD1", 0x00, 6},  {"DM1", 0x00, 6},  {"AMB", 0x00, 6},  {"ETC1", 0x03, 3},  {"ETC2", 0x03, 6},
+    {"EBC1", 0x0B, 6}, {"EBC2", 0x0B, 6}, {"VD", 0x17, 6},   {"VDHR", 0x17, 6}, {"VP1", 0x1C, 6},
 };
 
 double b(bool v) { return v ? 1.0 : 0.0; }
@@ -147,8 +146,7 @@ double frame_bits(std::size_t bytes) {
 
 }  // namespace
 
-J1939Bus::J1939Bus(const j1939::Database& db, BusOptions options, Rng rng)
-    : db_(db), options_(std::move(options)), rng_(rng) {
+J1939Bus::J1939Bus(const j1939::Database& db, BusOptions options, Rng rng) : db_(db), options_(std::move(options)), rng_(rng) {
   std::map<std::uint8_t, double> ecu_rate;  // one oscillator per ECU, shared by its messages
   for (const Sender& s : kSenders) {
     const j1939::MessageDef* def = db_.find_name(s.message);
@@ -264,8 +262,11 @@ void J1939Bus::run_until(double t_s, const BusView& view, const std::function<vo
     }
     const auto size = static_cast<std::uint16_t>(data.size());
     const auto packets = static_cast<std::uint8_t>((data.size() + 6) / 7);
-    const std::array<std::uint8_t, 8> cm{j1939::tp_control::kBam, static_cast<std::uint8_t>(size & 0xFF),
-                                         static_cast<std::uint8_t>(size >> 8), packets, 0xFF,
+    const std::array<std::uint8_t, 8> cm{j1939::tp_control::kBam,
+                                         static_cast<std::uint8_t>(size & 0xFF),
+                                         static_cast<std::uint8_t>(size >> 8),
+                                         packets,
+                                         0xFF,
                                          static_cast<std::uint8_t>(s.def->pgn & 0xFF),
                                          static_cast<std::uint8_t>((s.def->pgn >> 8) & 0xFF),
                                          static_cast<std::uint8_t>(s.def->pgn >> 16)};

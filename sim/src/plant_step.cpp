@@ -194,8 +194,7 @@ void TruckPlant::finish_step(double dt_s, const Motion& m, const Resisting& r, d
   state_.fuel_kgps = fuel_j / truck_.fuel.lhv_jpkg / dt_s;
   state_.fuel_lph = fuel_rate_lph(truck_.fuel, state_.fuel_kgps);
   state_.tractive_n = m.tractive;
-  state_.driveline_loss_n =
-      state_.clutch_engaged && m.dx > 0 ? state_.clutch_torque_nm * m.omega_mean_dt / m.dx - m.tractive : 0.0;
+  state_.driveline_loss_n = state_.clutch_engaged && m.dx > 0 ? state_.clutch_torque_nm * m.omega_mean_dt / m.dx - m.tractive : 0.0;
   state_.roll_n = r.roll;
   state_.aero_n = r.aero;
   state_.grade_n = r.grade;

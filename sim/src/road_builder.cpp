@@ -9,7 +9,7 @@
 namespace roadload::sim {
 namespace {
 
-constexpr double kRunIn_m = 40.0;       // beyond the truck's length (17.7 m) at both ends
+constexpr double kRunIn_m = 40.0;  // beyond the truck's length (17.7 m) at both ends
 constexpr double kTruckLength_m = 20.0;
 
 }  // namespace

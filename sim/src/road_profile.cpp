@@ -42,8 +42,8 @@ double integral_m2(std::span<const double> z, double start_m, double dx_m, doubl
 // the n^-2 law in O(1) per sample. The leak (n_low) only bounds the variance at very long
 // wavelengths. One normal is drawn per sample whatever the G_d, so a segment's G_d does not shift
 // the noise of the segments after it.
-void add_roughness(std::vector<double>& z, std::span<const ProfileSegment> segments, double start_m,
-                   double dx_m, double n_low_cycles_per_m, Rng rng) {
+void add_roughness(std::vector<double>& z, std::span<const ProfileSegment> segments, double start_m, double dx_m,
+                   double n_low_cycles_per_m, Rng rng) {
   const double leak = std::exp(-2.0 * std::numbers::pi * n_low_cycles_per_m * dx_m);
   const double slope_scale = 2.0 * std::numbers::pi * kN0_cycles_per_m / std::sqrt(2.0 * dx_m);
   std::size_t seg = 0;
@@ -109,8 +109,8 @@ double iso8608_class_gd_m3(char cls) {
   return std::ldexp(16e-6, 2 * (cls - 'A'));
 }
 
-RoadProfile RoadProfile::generate(std::span<const ProfileSegment> segments, double start_m, double end_m,
-                                  std::uint64_t seed, const ProfileOptions& options) {
+RoadProfile RoadProfile::generate(std::span<const ProfileSegment> segments, double start_m, double end_m, std::uint64_t seed,
+                                  const ProfileOptions& options) {
   const double dx_m = options.dx_m;
   // The tolerance keeps an end on the grid from adding a sample through rounding.
   const double cells = std::max(0.0, std::ceil((end_m - start_m) / dx_m - 1e-9));
@@ -124,16 +124,14 @@ RoadProfile RoadProfile::generate(std::span<const ProfileSegment> segments, doub
   return RoadProfile(std::move(z), std::move(joints_m), start_m, dx_m, options.footprint_m);
 }
 
-RoadProfile RoadProfile::from_samples(std::vector<double> heights_m, double start_m, double dx_m,
-                                      double footprint_m) {
+RoadProfile RoadProfile::from_samples(std::vector<double> heights_m, double start_m, double dx_m, double footprint_m) {
   if (heights_m.empty()) heights_m.push_back(0.0);
   return RoadProfile(std::move(heights_m), {}, start_m, dx_m, footprint_m);
 }
 
 // A truck tire bridges features shorter than its contact patch; a moving average over the footprint
 // is the simplest envelope that does (it nulls wavelengths of one footprint and its submultiples).
-RoadProfile::RoadProfile(std::vector<double> raw, std::vector<double> joints_m, double start_m, double dx_m,
-                         double footprint_m)
+RoadProfile::RoadProfile(std::vector<double> raw, std::vector<double> joints_m, double start_m, double dx_m, double footprint_m)
     : raw_(std::move(raw)), joints_m_(std::move(joints_m)), start_m_(start_m), dx_m_(dx_m) {
   if (!(footprint_m > 0.0)) {
     enveloped_ = raw_;
@@ -142,16 +140,13 @@ RoadProfile::RoadProfile(std::vector<double> raw, std::vector<double> joints_m, 
   enveloped_.resize(raw_.size());
   for (std::size_t i = 0; i < raw_.size(); ++i) {
     const double x_m = start_m_ + static_cast<double>(i) * dx_m_;
-    enveloped_[i] =
-        integral_m2(raw_, start_m_, dx_m_, x_m - 0.5 * footprint_m, x_m + 0.5 * footprint_m) / footprint_m;
+    enveloped_[i] = integral_m2(raw_, start_m_, dx_m_, x_m - 0.5 * footprint_m, x_m + 0.5 * footprint_m) / footprint_m;
   }
 }
 
 double RoadProfile::height_m(double x_m) const { return interpolate(raw_, start_m_, dx_m_, x_m); }
 
-double RoadProfile::enveloped_height_m(double x_m) const {
-  return interpolate(enveloped_, start_m_, dx_m_, x_m);
-}
+double RoadProfile::enveloped_height_m(double x_m) const { return interpolate(enveloped_, start_m_, dx_m_, x_m); }
 
 double RoadProfile::end_m() const { return start_m_ + static_cast<double>(raw_.size() - 1) * dx_m_; }
 

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace roadload::sim {
 namespace {
 
@@ -60,8 +59,7 @@ Parsed<Route> Route::build(RouteDef def) {
   }
   for (std::size_t i = 0; i + 1 < def.points.size(); ++i) {
     double s12 = 0, azi1 = 0, azi2 = 0;
-    geod.Inverse(def.points[i].lat_deg, def.points[i].lon_deg, def.points[i + 1].lat_deg, def.points[i + 1].lon_deg,
-                 s12, azi1, azi2);
+    geod.Inverse(def.points[i].lat_deg, def.points[i].lon_deg, def.points[i + 1].lat_deg, def.points[i + 1].lon_deg, s12, azi1, azi2);
     if (s12 < 1e-3) return ParseError{where, 0, "point[" + std::to_string(i + 1) + "]", "repeats the previous point"};
     r.cumulative_m_.push_back(r.cumulative_m_.back() + s12);
     r.azimuth_deg_.push_back(azi1);

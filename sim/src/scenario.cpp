@@ -32,8 +32,7 @@ std::string resolve_route(const std::string& name, const fs::path& scenario_path
 void read_weather(const detail::TomlFields& f, const toml::table& root, WeatherSpec& w) {
   const toml::table* t = root["weather"].as_table();
   if (t == nullptr) return;
-  f.only(*t, {"air_temp_c", "pressure_pa", "wind_speed_mps", "wind_from_deg", "wander_mps", "temp_drift_c_per_h"},
-         "weather.");
+  f.only(*t, {"air_temp_c", "pressure_pa", "wind_speed_mps", "wind_from_deg", "wander_mps", "temp_drift_c_per_h"}, "weather.");
   w.air_temp_c = f.number(*t, "air_temp_c", "weather.", w.air_temp_c);
   w.pressure_pa = f.number(*t, "pressure_pa", "weather.", w.pressure_pa);
   w.wind_speed_mps = f.number(*t, "wind_speed_mps", "weather.", w.wind_speed_mps);
@@ -47,8 +46,9 @@ void read_weather(const detail::TomlFields& f, const toml::table& root, WeatherS
 void read_clocks(const detail::TomlFields& f, const toml::table& root, ClockSpec& c) {
   const toml::table* t = root["clocks"].as_table();
   if (t == nullptr) return;
-  f.only(*t, {"can_rx_latency_s", "can_rx_jitter_s", "ecu_drift_ppm", "accel_offset_s", "accel_drift_ppm", "gnss_latency_s",
-              "weather_offset_s"},
+  f.only(*t,
+         {"can_rx_latency_s", "can_rx_jitter_s", "ecu_drift_ppm", "accel_offset_s", "accel_drift_ppm", "gnss_latency_s",
+          "weather_offset_s"},
          "clocks.");
   c.can_rx_latency = Seconds{f.number(*t, "can_rx_latency_s", "clocks.", c.can_rx_latency.count())};
   c.can_rx_jitter = Seconds{f.number(*t, "can_rx_jitter_s", "clocks.", c.can_rx_jitter.count())};
@@ -110,12 +110,82 @@ Vehicle read_vehicle(const detail::TomlFields& f, const toml::table& root, const
   return std::move(v.value());
 }
 
+// Cruise at a set speed (the default), a neutral coast-down, or a standstill rev-hold.
+void read_mode(const detail::TomlFields& f, const toml::table& root, Scenario& s) {
+  const auto mode = f.text(root, "mode", "");
+  if (mode && *mode != "cruise" && *mode != "coast" && *mode != "rev-hold") {
+    f.fail(root.get("mode"), "mode", "expected \"cruise\", \"coast\" or \"rev-hold\"");
+  }
+  if (mode == "rev-hold") {
+    read_rev_hold(f, root, s);
+    return;
+  }
+  const char* speed_key = root.contains("speed_mph") ? "speed_mph" : "speed_mps";
+  if (auto mph = f.number(root, "speed_mph", "")) {
+    s.speed_mps = *mph * kMps_per_mph;
+  } else {
+    s.speed_mps = f.required_number(root, "speed_mps", "");
+  }
+  if (s.speed_mps <= 0 || s.speed_mps > 40) f.fail(root.get(speed_key), speed_key, "outside 0-40 m/s (0-89 mph)");
+  s.coast = mode == "coast";
+}
+
+// This truck against its vehicle file: cargo, engine friction, accessories and drag area.
+void read_truck_scales(const detail::TomlFields& f, const toml::table& root, Scenario& s) {
+  for (auto [key, value] : {std::pair{"load_scale", &s.load_scale}, std::pair{"engine_friction_scale", &s.engine_friction_scale},
+                            std::pair{"accessory_scale", &s.accessory_scale}, std::pair{"cda_scale", &s.cda_scale}}) {
+    *value = f.number(root, key, "", *value);
+    if (*value < 0.5 || *value > 1.5) f.fail(root.get(key), key, "outside 0.5-1.5");
+  }
+  if (auto u = f.text(root, "unsprung", "")) {
+    if (*u != "physical" && *u != "report") f.fail(root.get("unsprung"), "unsprung", "expected \"physical\" or \"report\"");
+    s.unsprung = *u == "report" ? UnsprungDefinition::report : UnsprungDefinition::physical;
+  }
+}
+
+// The sensors' rates and how many accelerometers, and the physics' step.
+void read_rates(const detail::TomlFields& f, const toml::table& root, Scenario& s) {
+  s.accel_rate_hz = f.number(root, "accel_rate_hz", "", s.accel_rate_hz);
+  if (s.accel_rate_hz < 1 || s.accel_rate_hz > 4000) f.fail(root.get("accel_rate_hz"), "accel_rate_hz", "outside 1-4000 Hz");
+  const double count = f.number(root, "accelerometers", "", 8.0);
+  if (count < 0 || count > 32) f.fail(root.get("accelerometers"), "accelerometers", "outside 0-32");
+  s.accelerometers = static_cast<std::size_t>(count);
+  s.gnss_rate_hz = f.number(root, "gnss_rate_hz", "", s.gnss_rate_hz);
+  if (s.gnss_rate_hz < 0.1 || s.gnss_rate_hz > 100) f.fail(root.get("gnss_rate_hz"), "gnss_rate_hz", "outside 0.1-100 Hz");
+  s.physics_rate_hz = std::max(f.number(root, "physics_rate_hz", "", s.physics_rate_hz), 2.0 * s.accel_rate_hz);
+  if (s.physics_rate_hz > 20000) f.fail(root.get("physics_rate_hz"), "physics_rate_hz", "above 20 kHz");
+}
+
 Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::path& path, const std::string& data_dir) {
   Scenario s;
   s.source = path.string();
-  f.only(root, {"name", "description", "route", "speed_mph", "speed_mps", "start_m", "end_m", "duration_s", "start_utc",
-                "road_seed", "load_scale", "engine_friction_scale", "accessory_scale", "cda_scale", "accel_rate_hz", "accelerometers", "gnss_rate_hz", "physics_rate_hz", "unsprung", "mode",
-                "hold_rpm", "hold_s", "weather", "clocks", "effects", "vehicle"},
+  f.only(root,
+         {"name",
+          "description",
+          "route",
+          "speed_mph",
+          "speed_mps",
+          "start_m",
+          "end_m",
+          "duration_s",
+          "start_utc",
+          "road_seed",
+          "load_scale",
+          "engine_friction_scale",
+          "accessory_scale",
+          "cda_scale",
+          "accel_rate_hz",
+          "accelerometers",
+          "gnss_rate_hz",
+          "physics_rate_hz",
+          "unsprung",
+          "mode",
+          "hold_rpm",
+          "hold_s",
+          "weather",
+          "clocks",
+          "effects",
+          "vehicle"},
          "");
   s.name = f.required_text(root, "name", "");
   s.description = f.text(root, "description", "").value_or("");
@@ -124,22 +194,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
   if (!route) throw detail::TomlFailure{route.error()};
   s.route = std::move(route.value());
   s.vehicle = read_vehicle(f, root, path, data_dir);
-  const auto mode = f.text(root, "mode", "");
-  if (mode && *mode != "cruise" && *mode != "coast" && *mode != "rev-hold") {
-    f.fail(root.get("mode"), "mode", "expected \"cruise\", \"coast\" or \"rev-hold\"");
-  }
-  if (mode == "rev-hold") {
-    read_rev_hold(f, root, s);
-  } else {
-    const char* speed_key = root.contains("speed_mph") ? "speed_mph" : "speed_mps";
-    if (auto mph = f.number(root, "speed_mph", "")) {
-      s.speed_mps = *mph * kMps_per_mph;
-    } else {
-      s.speed_mps = f.required_number(root, "speed_mps", "");
-    }
-    if (s.speed_mps <= 0 || s.speed_mps > 40) f.fail(root.get(speed_key), speed_key, "outside 0-40 m/s (0-89 mph)");
-    s.coast = mode == "coast";
-  }
+  read_mode(f, root, s);
   s.start_m = f.number(root, "start_m", "", 0.0);
   if (auto end = f.number(root, "end_m", "")) s.end_m = *end;
   if (s.hold_rpm.empty()) {
@@ -154,26 +209,8 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
     if (!seed->is_integer() || *seed->value<std::int64_t>() < 0) f.fail(seed, "road_seed", "expected a non-negative integer");
     s.road_seed = static_cast<std::uint64_t>(*seed->value<std::int64_t>());
   }
-  s.load_scale = f.number(root, "load_scale", "", s.load_scale);
-  if (s.load_scale < 0.5 || s.load_scale > 1.5) f.fail(root.get("load_scale"), "load_scale", "outside 0.5-1.5");
-  for (auto [key, value] : {std::pair{"engine_friction_scale", &s.engine_friction_scale}, std::pair{"accessory_scale", &s.accessory_scale},
-                             std::pair{"cda_scale", &s.cda_scale}}) {
-    *value = f.number(root, key, "", *value);
-    if (*value < 0.5 || *value > 1.5) f.fail(root.get(key), key, "outside 0.5-1.5");
-  }
-  s.accel_rate_hz = f.number(root, "accel_rate_hz", "", s.accel_rate_hz);
-  if (s.accel_rate_hz < 1 || s.accel_rate_hz > 4000) f.fail(root.get("accel_rate_hz"), "accel_rate_hz", "outside 1-4000 Hz");
-  const double count = f.number(root, "accelerometers", "", 8.0);
-  if (count < 0 || count > 32) f.fail(root.get("accelerometers"), "accelerometers", "outside 0-32");
-  s.accelerometers = static_cast<std::size_t>(count);
-  s.gnss_rate_hz = f.number(root, "gnss_rate_hz", "", s.gnss_rate_hz);
-  if (s.gnss_rate_hz < 0.1 || s.gnss_rate_hz > 100) f.fail(root.get("gnss_rate_hz"), "gnss_rate_hz", "outside 0.1-100 Hz");
-  s.physics_rate_hz = std::max(f.number(root, "physics_rate_hz", "", s.physics_rate_hz), 2.0 * s.accel_rate_hz);
-  if (s.physics_rate_hz > 20000) f.fail(root.get("physics_rate_hz"), "physics_rate_hz", "above 20 kHz");
-  if (auto u = f.text(root, "unsprung", "")) {
-    if (*u != "physical" && *u != "report") f.fail(root.get("unsprung"), "unsprung", "expected \"physical\" or \"report\"");
-    s.unsprung = *u == "report" ? UnsprungDefinition::report : UnsprungDefinition::physical;
-  }
+  read_truck_scales(f, root, s);
+  read_rates(f, root, s);
   read_weather(f, root, s.weather);
   read_clocks(f, root, s.clocks);
   read_effects(f, root, s.effects);

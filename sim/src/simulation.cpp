@@ -43,8 +43,8 @@ TruckParams scenario_truck(const Scenario& s) {
   t.engine.friction_a_pct *= s.engine_friction_scale;
   t.engine.friction_b_pct *= s.engine_friction_scale;
   t.engine.friction_c_pct *= s.engine_friction_scale;
-  for (double* w : {&t.accessories.alternator_w, &t.accessories.steering_w, &t.accessories.compressor_w,
-                    &t.accessories.fan_engaged_w, &t.accessories.fan_idle_w}) {
+  for (double* w : {&t.accessories.alternator_w, &t.accessories.steering_w, &t.accessories.compressor_w, &t.accessories.fan_engaged_w,
+                    &t.accessories.fan_idle_w}) {
     *w *= s.accessory_scale;
   }
   return t;
@@ -174,8 +174,12 @@ struct Simulation::Parts {
       const double w = (t - t_before_s) / dt;
       const double x = x_before + w * (s.x_m - x_before);
       const Route::Position pos = route.at(x - truck.gnss_antenna_behind_front_m);
-      const GnssTruth g{t, pos.lat_deg, pos.lon_deg, pos.elev_m + truck.gnss_antenna_height_m,
-                        v_before + w * (s.speed_mps - v_before), pos.heading_deg};
+      const GnssTruth g{t,
+                        pos.lat_deg,
+                        pos.lon_deg,
+                        pos.elev_m + truck.gnss_antenna_height_m,
+                        v_before + w * (s.speed_mps - v_before),
+                        pos.heading_deg};
       GnssFix fix = gnss.fix(g);
       sink.gnss(fix);
       ++sum.gnss_fixes;

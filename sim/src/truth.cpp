@@ -9,7 +9,8 @@ namespace {
 constexpr const char* kSeriesHeader =
     "t_ns,x_m,speed_mps,accel_mps2,grade_rad,gear,engine_rpm,indicated_torque_nm,clutch_torque_nm,"
     "friction_torque_nm,accessory_torque_nm,fan_torque_nm,fuel_lph,crr,f_tractive_n,f_roll_n,f_aero_n,f_grade_n,"
-    "f_profile_n,f_brake_n,f_inertia_n,f_driveline_loss_n,air_density_kgpm3,airspeed_mps,yaw_deg,air_temp_c,damper_power_w,tire_power_w\n";
+    "f_profile_n,f_brake_n,f_inertia_n,f_driveline_loss_n,air_density_kgpm3,airspeed_mps,yaw_deg,air_temp_c,damper_power_w,tire_"
+    "power_w\n";
 
 }  // namespace
 
@@ -64,12 +65,23 @@ void TruthRecorder::observe(const TruckState& s, const Environment& env, double 
     tire += o.tire_power_w;
   }
   const double m_inertia = s.tractive_n - s.roll_n - s.aero_n - s.grade_n - s.profile_n - s.brake_n;
-  const std::array<double, kSeriesFields> v{s.indicated_torque_nm, s.clutch_torque_nm, s.friction_torque_nm,
-                                            s.accessory_torque_nm, s.fan_torque_nm,   s.fuel_lph,
-                                            s.crr_mean,            s.tractive_n,      s.roll_n,
-                                            s.aero_n,              s.grade_n,         s.profile_n,
-                                            s.brake_n,             m_inertia,         damper,
-                                            tire,                  s.driveline_loss_n};
+  const std::array<double, kSeriesFields> v{s.indicated_torque_nm,
+                                            s.clutch_torque_nm,
+                                            s.friction_torque_nm,
+                                            s.accessory_torque_nm,
+                                            s.fan_torque_nm,
+                                            s.fuel_lph,
+                                            s.crr_mean,
+                                            s.tractive_n,
+                                            s.roll_n,
+                                            s.aero_n,
+                                            s.grade_n,
+                                            s.profile_n,
+                                            s.brake_n,
+                                            m_inertia,
+                                            damper,
+                                            tire,
+                                            s.driveline_loss_n};
   for (std::size_t k = 0; k < kSeriesFields; ++k) sum_[k] += v[k] * dt_s;
   sum_dt_ += dt_s;
   if (series_.is_open() && s.t_s >= next_series_s_ - 1e-9) {

@@ -14,8 +14,7 @@ constexpr double kGustTau_s = 4.0;
 
 }  // namespace
 
-WindField::WindField(const WeatherSpec& spec, double gust_sigma_mps, Rng rng)
-    : spec_(spec), gust_sigma_(gust_sigma_mps), rng_(rng) {}
+WindField::WindField(const WeatherSpec& spec, double gust_sigma_mps, Rng rng) : spec_(spec), gust_sigma_(gust_sigma_mps), rng_(rng) {}
 
 WindField::Decay WindField::decay(double sigma, double tau_s, double dt_s) {
   const double a = std::exp(-dt_s / tau_s);

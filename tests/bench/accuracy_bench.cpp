@@ -28,9 +28,9 @@
 #include "roadload/engine_loss_calibration.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/running_stats.hpp"
-#include "roadload/tire_crr.hpp"
 #include "roadload/sim/scenario.hpp"
 #include "roadload/sim/truth.hpp"
+#include "roadload/tire_crr.hpp"
 #include "simulated_drive.hpp"
 
 namespace {
@@ -135,8 +135,8 @@ Calibration calibrate(const j1939::Database& db, std::uint64_t seed, const Truck
     const PavementGroups groups = sim::test::pavement_groups(sc);
     drives[k] = analyse_for_aero(base, [&](const AnalyzerConfig& cfg) {
       DriveAnalyzer a(db, route, sim::test::cell_spans(sc), cfg);
-      VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()),
-                           sc.route.cells.size(), groups.cell_group, groups.names.size());
+      VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()), sc.route.cells.size(),
+                           groups.cell_group, groups.names.size());
       a.attach(&va);
       sim::test::analyze(a, sink, true);
       return with_tire_crr(a.cells(), va);
@@ -146,13 +146,13 @@ Calibration calibrate(const j1939::Database& db, std::uint64_t seed, const Truck
   return c;
 }
 
-void tally(const sim::Scenario& sc, const sim::Simulation& sim, const sim::test::MemorySink& sink,
-           const sim::TruthRecorder& truth, const j1939::Database& db, const AnalyzerConfig& cfg, Tally& t) {
+void tally(const sim::Scenario& sc, const sim::Simulation& sim, const sim::test::MemorySink& sink, const sim::TruthRecorder& truth,
+           const j1939::Database& db, const AnalyzerConfig& cfg, Tally& t) {
   const RouteGeometry route = route_of(sc);
   DriveAnalyzer analyzer(db, route, sim::test::cell_spans(sc), cfg);
   const PavementGroups groups = sim::test::pavement_groups(sc);
-  VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()),
-                       sc.route.cells.size(), groups.cell_group, groups.names.size());
+  VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()), sc.route.cells.size(),
+                       groups.cell_group, groups.names.size());
   analyzer.attach(&va);
   sim::test::analyze(analyzer, sink, true);
   DriveAnalyzer bound(db, route, sim::test::cell_spans(sc), nuisance_known(cfg));
@@ -221,8 +221,8 @@ AnalyzerConfig calibrated_config(const Calibration& cal) {
   return c;
 }
 
-void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database& db, const AnalyzerConfig& calibrated,
-             Tally& as_sent, Tally& with_calibration) {
+void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database& db, const AnalyzerConfig& calibrated, Tally& as_sent,
+             Tally& with_calibration) {
   sim::Simulation sim(sc, seed, db);
   sim::test::MemorySink sink;
   sim::TruthRecorder truth(sim.route(), sim.plant().truck());
@@ -244,26 +244,35 @@ void report(const char* name, const Tally& t, bool per_cell_goal) {
   const auto n = static_cast<double>(t.cells);
   const double mse = t.se / n, bias = t.bias / n;
   const double bound = t.bound_var / n;
-  std::printf("%-28s %2zu runs %4zu cells: RMSE %.5f (bias %+.5f, scatter %.5f), mean sigma %.5f, coverage %5.1f %%\n",
-              name, t.runs, t.cells, std::sqrt(mse), bias, std::sqrt(std::max(0.0, mse - bias * bias)), t.sigma / n,
+  std::printf("%-28s %2zu runs %4zu cells: RMSE %.5f (bias %+.5f, scatter %.5f), mean sigma %.5f, coverage %5.1f %%\n", name, t.runs,
+              t.cells, std::sqrt(mse), bias, std::sqrt(std::max(0.0, mse - bias * bias)), t.sigma / n,
               100.0 * static_cast<double>(t.inside) / n);
   std::printf("%-28s Cramer-Rao sigma %.6f; MSE / bound %.1f (scatter alone %.1f); trip CRR error RMS %.5f, max %.5f\n", "",
               std::sqrt(bound), mse / bound, (mse - bias * bias) / bound, std::sqrt(t.trip_se / static_cast<double>(t.runs)),
               t.trip_max);
   const double mse_total = t.se_total / n, bias_total = t.bias_total / n;
-  std::printf("%-28s against the tires' CRR + suspension and tire dissipation / (v m g): RMSE %.5f (bias %+.5f), "
-              "coverage %5.1f %%\n", "", std::sqrt(mse_total), bias_total, 100.0 * static_cast<double>(t.inside_total) / n);
+  std::printf(
+      "%-28s against the tires' CRR + suspension and tire dissipation / (v m g): RMSE %.5f (bias %+.5f), "
+      "coverage %5.1f %%\n",
+      "", std::sqrt(mse_total), bias_total, 100.0 * static_cast<double>(t.inside_total) / n);
   const auto nt = static_cast<double>(t.cells_tire);
   const double mse_tire = t.se_tire / nt;
   const double cover_tire = static_cast<double>(t.inside_tire) / nt;
-  std::printf("%-28s tires' CRR (less the accelerometers' dissipation) against the tires' CRR, %zu cells: RMSE %.5f "
-              "(bias %+.5f), coverage %5.1f %%\n", "", t.cells_tire, std::sqrt(mse_tire), t.bias_tire / nt, 100.0 * cover_tire);
+  std::printf(
+      "%-28s tires' CRR (less the accelerometers' dissipation) against the tires' CRR, %zu cells: RMSE %.5f "
+      "(bias %+.5f), coverage %5.1f %%\n",
+      "", t.cells_tire, std::sqrt(mse_tire), t.bias_tire / nt, 100.0 * cover_tire);
   const auto runs = static_cast<double>(t.runs);
   const double lo = chi2_quantile(runs, -1.96), hi = chi2_quantile(runs, 1.96);
-  std::printf("%-28s consistency: trip CRR NEES (against tires + dissipation) over runs %.2f, 95 %% band of chi-square(%zu) [%.2f, %.2f]: %s; "
-              "mean NIS %.3f (band +- %.3f): %s\n", "", t.trip_nees, t.runs, lo, hi,
-              t.trip_nees < lo ? "below (intervals conservative)" : t.trip_nees > hi ? "ABOVE (overconfident)" : "inside",
-              t.nis / runs, t.nis_band / runs, std::abs(t.nis / runs - 1.0) <= t.nis_band / runs ? "inside" : "outside");
+  std::printf(
+      "%-28s consistency: trip CRR NEES (against tires + dissipation) over runs %.2f, 95 %% band of chi-square(%zu) [%.2f, %.2f]: "
+      "%s; "
+      "mean NIS %.3f (band +- %.3f): %s\n",
+      "", t.trip_nees, t.runs, lo, hi,
+      t.trip_nees < lo   ? "below (intervals conservative)"
+      : t.trip_nees > hi ? "ABOVE (overconfident)"
+                         : "inside",
+      t.nis / runs, t.nis_band / runs, std::abs(t.nis / runs - 1.0) <= t.nis_band / runs ? "inside" : "outside");
   if (per_cell_goal) {
     const double cover = static_cast<double>(t.inside) / n;
     std::printf("%-28s goal RMSE <= 0.00025: %s; goal coverage 80-97 %%: %s (force balance); tires' CRR: %s, %s\n", "",
@@ -310,11 +319,12 @@ int main(int argc, char** argv) {
     loss_sigma.add(cals.back().losses.sigma_nm());
   }
   std::fprintf(stderr, "\n");
-  std::printf("calibrations (seeds %llu-%llu): engine losses at %zu speeds, sigma %.2f N m; CdA sigma %.3f m^2, its error "
-              "over sigma: mean %+.2f, RMS %.2f\n",
-              static_cast<unsigned long long>(kCalibrationSeeds + 1), static_cast<unsigned long long>(kCalibrationSeeds + most),
-              cals.front().losses.size(), loss_sigma.mean, cda_sigma.mean, cda_error_sigmas.mean,
-              std::sqrt(cda_error_sigmas.m2 / static_cast<double>(cda_error_sigmas.n) + cda_error_sigmas.mean * cda_error_sigmas.mean));
+  std::printf(
+      "calibrations (seeds %llu-%llu): engine losses at %zu speeds, sigma %.2f N m; CdA sigma %.3f m^2, its error "
+      "over sigma: mean %+.2f, RMS %.2f\n",
+      static_cast<unsigned long long>(kCalibrationSeeds + 1), static_cast<unsigned long long>(kCalibrationSeeds + most),
+      cals.front().losses.size(), loss_sigma.mean, cda_sigma.mean, cda_error_sigmas.mean,
+      std::sqrt(cda_error_sigmas.m2 / static_cast<double>(cda_error_sigmas.n) + cda_error_sigmas.mean * cda_error_sigmas.mean));
   for (const char* name : {"mnroad-mainline-30mph", "th10-55mph", "th66-55mph"}) {
     Tally as_sent, with_calibration;
     const bool mainline = std::string(name) == "mnroad-mainline-30mph";

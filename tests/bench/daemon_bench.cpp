@@ -14,11 +14,11 @@
 #include <string>
 #include <thread>
 
+#include "daemon_setup.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/firmware/daemon.hpp"
 #include "roadload/sim/scenario.hpp"
 #include "roadload/sim/simulation.hpp"
-#include "daemon_setup.hpp"
 #include "simulated_drive.hpp"
 
 namespace {
@@ -115,7 +115,8 @@ class AccelGenerator final : public io::Source<AccelSample> {
 double cpu_s() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 double rss_mib(const char* field) {
@@ -132,8 +133,8 @@ struct Run {
   std::uint64_t frames = 0, samples = 0, dropped = 0, lost = 0;
 };
 
-Run run(const sim::Scenario& sc, const std::vector<CanFrame>& drive, const recording::Metadata& meta,
-        const j1939::Database& db, bool estimate, double seconds) {
+Run run(const sim::Scenario& sc, const std::vector<CanFrame>& drive, const recording::Metadata& meta, const j1939::Database& db,
+        bool estimate, double seconds) {
   const auto dir = std::filesystem::temp_directory_path() / ("bench-daemon-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   io::MonotonicClock clock;
@@ -141,8 +142,8 @@ Run run(const sim::Scenario& sc, const std::vector<CanFrame>& drive, const recor
   DaemonSources sources;
   sources.can.push_back(std::make_unique<CanChannel>(std::make_unique<CanGenerator>(drive, start), SourceKind::can, "can0"));
   for (int i = 0; i < kAccelerometers; ++i) {
-    sources.accel.push_back(std::make_unique<AccelChannel>(
-        std::make_unique<AccelGenerator>(static_cast<std::uint8_t>(i), start), SourceKind::accelerometer, "accel"));
+    sources.accel.push_back(std::make_unique<AccelChannel>(std::make_unique<AccelGenerator>(static_cast<std::uint8_t>(i), start),
+                                                           SourceKind::accelerometer, "accel"));
   }
   DaemonSetup setup = test::simulated_daemon_setup(sc, meta, db, dir.string(), estimate);
   Daemon daemon(std::move(setup), std::move(sources), clock);
@@ -193,13 +194,14 @@ int main(int argc, char** argv) {
   simulation.run(sink, nullptr);
   // The simulated truck's accelerometer layout, at this benchmark's rate.
   meta.sensors.clear();
-  const char* positions[kAccelerometers] = {"tractor-front-axle-left", "tractor-front-frame-left", "tractor-drive1-axle-left",
+  const char* positions[kAccelerometers] = {"tractor-front-axle-left",   "tractor-front-frame-left", "tractor-drive1-axle-left",
                                             "tractor-drive1-frame-left", "tractor-drive2-axle-left", "trailer-axle1-left",
-                                            "trailer-axle1-frame-left", "trailer-axle2-left"};
-  for (int i = 0; i < kAccelerometers; ++i) meta.sensors.push_back({i, "A" + std::to_string(i), "accelerometer", positions[i], "ADXL355", kAccelHz});
+                                            "trailer-axle1-frame-left",  "trailer-axle2-left"};
+  for (int i = 0; i < kAccelerometers; ++i)
+    meta.sensors.push_back({i, "A" + std::to_string(i), "accelerometer", positions[i], "ADXL355", kAccelHz});
 
-  std::printf("bench_daemon: %.0f s real time, 500 kbit/s bus at %.0f frames/s + %d accelerometers x 3 axes at %.0f Hz\n",
-              seconds, kBusFps, kAccelerometers, kAccelHz);
+  std::printf("bench_daemon: %.0f s real time, 500 kbit/s bus at %.0f frames/s + %d accelerometers x 3 axes at %.0f Hz\n", seconds,
+              kBusFps, kAccelerometers, kAccelHz);
   const Run ref = run(sc.value(), sink.frames, meta, db, false, seconds);
   const Run full = run(sc.value(), sink.frames, meta, db, true, seconds);
   std::printf("  %-34s %12s %12s %8s\n", "", "record only", "+ estimator", "ratio");

@@ -1,7 +1,7 @@
 // Parse + decode throughput of a large candump log against `wc -l` of the same file, the floor
 // any line-oriented reader pays. Prints figures; it does not pass or fail.
-#include <cinttypes>
 #include <chrono>
+#include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -108,13 +108,13 @@ int main(int argc, char** argv) {
   std::remove(path.c_str());
 
   const double fps = static_cast<double>(parsed) / decode_s;
-  std::printf("decode benchmark: %" PRIu64 " frames (%" PRIu64 " signal values, %" PRIu64 " errors, checksum %.6g)\n",
-              parsed, values, errors.count(), checksum);
+  std::printf("decode benchmark: %" PRIu64 " frames (%" PRIu64 " signal values, %" PRIu64 " errors, checksum %.6g)\n", parsed, values,
+              errors.count(), checksum);
   std::printf("  wc -l          %8.3f s\n", wc_s);
   std::printf("  parse only     %8.3f s   %.2f M frames/s   ratio to wc -l %.1fx\n", parse_s,
               static_cast<double>(parsed) / parse_s / 1e6, parse_s / wc_s);
-  std::printf("  parse+decode   %8.3f s   %.2f M frames/s   ratio to wc -l %.1fx   (goals: >= 2 M frames/s, <= 5x)\n",
-              decode_s, fps / 1e6, decode_s / wc_s);
+  std::printf("  parse+decode   %8.3f s   %.2f M frames/s   ratio to wc -l %.1fx   (goals: >= 2 M frames/s, <= 5x)\n", decode_s,
+              fps / 1e6, decode_s / wc_s);
   std::printf("  8-hour drive at full 500 kbit/s (110 M frames): %.1f s projected (goal < 60 s)\n", 110e6 / fps);
   return frames == parsed && errors.count() == 0 ? 0 : 1;
 }

@@ -13,11 +13,11 @@
 
 #include "roadload/definitions.hpp"
 #include "roadload/drive_analyzer.hpp"
+#include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/sim/scenario.hpp"
 #include "roadload/sim/truth.hpp"
 #include "roadload/spectra/modes.hpp"
 #include "simulated_drive.hpp"
-#include "roadload/recording/vehicle_setup.hpp"
 
 namespace {
 
@@ -26,7 +26,7 @@ using namespace roadload;
 struct Tally {
   std::size_t runs = 0, cells = 0;
   double damper_trip_max = 0, damper_cell_max = 0, tire_trip_max = 0, tire_cell_max = 0, eq27_trip = 0;
-  double damper_est = 0, damper_true = 0;                   // trip means, summed over runs
+  double damper_est = 0, damper_true = 0;                                               // trip means, summed over runs
   double concrete_est = 0, bituminous_est = 0, concrete_true = 0, bituminous_true = 0;  // power x time
   double concrete_s = 0, bituminous_s = 0;
   std::map<std::string, std::size_t> joint_found, joint_tried;
@@ -43,8 +43,8 @@ void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database&
   auto route = RouteGeometry::build(sc.route.points);
   if (!route) std::exit(1);
   const PavementGroups groups = sim::test::pavement_groups(sc);
-  VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()),
-                       sc.route.cells.size(), groups.cell_group, groups.names.size());
+  VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()), sc.route.cells.size(),
+                       groups.cell_group, groups.names.size());
   DriveAnalyzer analyzer(db, *route, sim::test::cell_spans(sc), analyzer_config(sc.vehicle));
   analyzer.attach(&va);
   sim::test::analyze(analyzer, sink, true);
@@ -105,11 +105,12 @@ void run_one(const sim::Scenario& sc, std::uint64_t seed, const j1939::Database&
 
 void report(const char* name, const Tally& t) {
   std::printf("%-22s %zu runs %3zu cells: dampers: trip error max %.1f %% (goal 2 %%: %s), worst cell %.1f %% (goal 5 %%: %s)\n",
-              name, t.runs, t.cells, 100 * t.damper_trip_max, t.damper_trip_max <= 0.02 ? "met" : "NOT met",
-              100 * t.damper_cell_max, t.damper_cell_max <= 0.05 ? "met" : "NOT met");
-  std::printf("%-22s tires: from the deflection rate trip error max %.1f %%, worst cell %.1f %%; Eq. 2.7 (absolute axle "
-              "motion) %+.0f %% on average\n", "", 100 * t.tire_trip_max, 100 * t.tire_cell_max,
-              100 * t.eq27_trip / static_cast<double>(t.runs));
+              name, t.runs, t.cells, 100 * t.damper_trip_max, t.damper_trip_max <= 0.02 ? "met" : "NOT met", 100 * t.damper_cell_max,
+              t.damper_cell_max <= 0.05 ? "met" : "NOT met");
+  std::printf(
+      "%-22s tires: from the deflection rate trip error max %.1f %%, worst cell %.1f %%; Eq. 2.7 (absolute axle "
+      "motion) %+.0f %% on average\n",
+      "", 100 * t.tire_trip_max, 100 * t.tire_cell_max, 100 * t.eq27_trip / static_cast<double>(t.runs));
   for (const auto& [group, tried] : t.joint_tried) {
     const std::size_t found = t.joint_found.count(group) ? t.joint_found.at(group) : 0;
     std::printf("%-22s joint line %-15s found in %zu of %zu runs", "", group.c_str(), found, tried);

@@ -51,8 +51,9 @@ int main() {
     g.update_speed(in.t, g.speed_mps() + 0.01 * std::sin(static_cast<double>(i)), 0.03);
     sink += g.crr();
   });
-  std::printf("crr filter (%d states): predict %.1f ns, predict + speed update %.1f ns per step (%.2fx the predict); "
-              "goal < 1000 ns: %s   [checksum %.3g]\n",
-              roadload::CrrState::count, predict, step, step / predict, step < 1000 ? "met" : "NOT met", sink);
+  std::printf(
+      "crr filter (%d states): predict %.1f ns, predict + speed update %.1f ns per step (%.2fx the predict); "
+      "goal < 1000 ns: %s   [checksum %.3g]\n",
+      roadload::CrrState::count, predict, step, step / predict, step < 1000 ? "met" : "NOT met", sink);
   return 0;
 }

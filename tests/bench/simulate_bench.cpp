@@ -77,9 +77,8 @@ int main(int argc, char** argv) {
   bare.accelerometers = 0;
   const Timing plant = run(bare, db, nullptr);
 
-  std::printf("simulate: %.0f s of driving (%.1f km), %zu accelerometers x 3 axes at %.0f Hz\n",
-              full.summary.simulated_s, full.summary.distance_m / 1000, sc.value().accelerometers,
-              sc.value().accel_rate_hz);
+  std::printf("simulate: %.0f s of driving (%.1f km), %zu accelerometers x 3 axes at %.0f Hz\n", full.summary.simulated_s,
+              full.summary.distance_m / 1000, sc.value().accelerometers, sc.value().accel_rate_hz);
   std::printf("  full run, recording written : %7.2f s wall  %6.1fx real time  %" PRIu64 " accel samples, %" PRIu64
               " CAN frames, %.2f GB\n",
               full.wall_s, full.summary.simulated_s / full.wall_s, full.summary.accel_samples, full.summary.frames,

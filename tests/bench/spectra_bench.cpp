@@ -65,9 +65,9 @@ double streaming_welch(const std::vector<std::vector<double>>& x, std::vector<st
 
 double pipeline(const std::vector<std::vector<double>>& x) {
   // The MnROAD layout: five axles, eight sensors as the report mounted them.
-  const char* positions[kSensors] = {"tractor-front-axle-left",  "tractor-front-frame-left", "tractor-drive1-axle-left",
+  const char* positions[kSensors] = {"tractor-front-axle-left",   "tractor-front-frame-left", "tractor-drive1-axle-left",
                                      "tractor-drive1-frame-left", "tractor-drive2-axle-left", "trailer-axle1-left",
-                                     "trailer-axle1-frame-left", "trailer-axle2-left"};
+                                     "trailer-axle1-frame-left",  "trailer-axle2-left"};
   std::vector<roadload::SensorPlacement> placements;
   std::vector<roadload::VibrationSensor> sensors;
   for (std::size_t s = 0; s < kSensors; ++s) {
@@ -154,8 +154,10 @@ int main(int argc, char** argv) {
     const double ref = std::norm(fd[k]);
     if (ref > 1e-6 * peak) worst = std::max(worst, std::abs(static_cast<double>(std::norm(ff[k])) - ref) / ref);
   }
-  std::printf("  Eigen FFT, 4096 real points: double %.1f us, float %.1f us (ratio %.2f); float |X|^2 against double: worst %.1e relative "
-              "(bins above 1e-6 of the peak)\n", nd / 1e3, nf / 1e3, nd / nf, worst);
+  std::printf(
+      "  Eigen FFT, 4096 real points: double %.1f us, float %.1f us (ratio %.2f); float |X|^2 against double: worst %.1e relative "
+      "(bins above 1e-6 of the peak)\n",
+      nd / 1e3, nf / 1e3, nd / nf, worst);
   std::printf("  16 channels at 4 kHz need %.0f transforms of 4096 points a second: %.3f %% of a core in double\n",
               16 * 4000.0 / 2048.0, 100.0 * 16 * 4000.0 / 2048.0 * nd * 1e-9);
 

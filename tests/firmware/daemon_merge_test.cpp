@@ -45,8 +45,7 @@ LiveEstimate live_estimate(const SimulatedDrive& drive, std::chrono::millisecond
   const std::size_t half = drive.sink.frames.size() / 2;
   sources.can.front() = std::make_unique<CanChannel>(
       std::make_unique<StallingSource<CanFrame>>(
-          std::make_unique<MemorySource<CanFrame>>(drive.sink.frames, gate, drive.sink.frames.size(), "can0", pace), half,
-          can_stall),
+          std::make_unique<MemorySource<CanFrame>>(drive.sink.frames, gate, drive.sink.frames.size(), "can0", pace), half, can_stall),
       SourceKind::can, "can0");
   Daemon daemon(daemon_setup(drive, dir), std::move(sources), clock);
   daemon.start();

@@ -55,8 +55,8 @@ TEST(DaemonRecordsDrive, RecordingReadsBackAsTheDriveAndTheFilterTracksIt) {
   for (const SourceReport& s : r.sources) EXPECT_EQ(s.ring_dropped, 0u) << s.name;
   EXPECT_EQ(r.recording.lines_lost, 0u);
   EXPECT_EQ(r.recording.error, 0);
-  EXPECT_EQ(r.recording.lines, drive.sink.frames.size() + drive.sink.accels.size() + drive.sink.fixes.size() +
-                                   drive.sink.weather_samples.size());
+  EXPECT_EQ(r.recording.lines,
+            drive.sink.frames.size() + drive.sink.accels.size() + drive.sink.fixes.size() + drive.sink.weather_samples.size());
 
   const auto segments = std::vector<std::filesystem::path>(std::filesystem::directory_iterator(dir), {});
   ASSERT_EQ(segments.size(), 1u);
@@ -81,15 +81,14 @@ TEST(DaemonRecordsDrive, RecordingReadsBackAsTheDriveAndTheFilterTracksIt) {
   }
   // Samples of different parts stamped alike may come in either order; each part's own stay in order.
   auto by_time_then_sensor = [](std::vector<AccelSample> v) {
-    std::stable_sort(v.begin(), v.end(), [](const AccelSample& a, const AccelSample& b) {
-      return a.t != b.t ? a.t < b.t : a.sensor < b.sensor;
-    });
+    std::stable_sort(v.begin(), v.end(),
+                     [](const AccelSample& a, const AccelSample& b) { return a.t != b.t ? a.t < b.t : a.sensor < b.sensor; });
     return v;
   };
   for (std::size_t i = 1; i < accels.size(); ++i) {
     ASSERT_LE(accels[i - 1].t, accels[i].t) << "accel.csv row " << i << ": sensor " << int{accels[i - 1].sensor} << " at "
-                                            << to_ns(accels[i - 1].t) << " ns, then sensor " << int{accels[i].sensor}
-                                            << " at " << to_ns(accels[i].t) << " ns";
+                                            << to_ns(accels[i - 1].t) << " ns, then sensor " << int{accels[i].sensor} << " at "
+                                            << to_ns(accels[i].t) << " ns";
   }
   EXPECT_EQ(first_difference(rows(by_time_then_sensor(accels)), rows(by_time_then_sensor(drive.sink.accels))), "");
   EXPECT_EQ(first_difference(rows(fixes), rows(drive.sink.fixes)), "");

@@ -79,7 +79,9 @@ class PaceClock final : public io::WaitClock {
   CaptureTime now() const override { return pace_.now(); }
   void sleep_until(CaptureTime t, Nanoseconds limit) override {
     const auto wait = std::min(t - now(), limit);
-    if (wait.count() > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(static_cast<std::int64_t>(static_cast<double>(wait.count()) / pace_.speedup)));
+    if (wait.count() > 0)
+      std::this_thread::sleep_for(
+          std::chrono::nanoseconds(static_cast<std::int64_t>(static_cast<double>(wait.count()) / pace_.speedup)));
   }
 
  private:

@@ -19,9 +19,7 @@ SourceReport bus(io::SourceState state, const char* detail, std::uint64_t restar
   return s;
 }
 
-bool has(const std::vector<std::string>& w, const std::string& text) {
-  return std::find(w.begin(), w.end(), text) != w.end();
-}
+bool has(const std::vector<std::string>& w, const std::string& text) { return std::find(w.begin(), w.end(), text) != w.end(); }
 
 TEST(StatusWarnings, ABusOffWithinOneIntervalIsReportedAsARecovery) {
   StatusReport r;

@@ -18,9 +18,7 @@
 namespace roadload::fuzz {
 namespace {
 
-std::string_view text(const std::uint8_t* data, std::size_t size) {
-  return {reinterpret_cast<const char*>(data), size};
-}
+std::string_view text(const std::uint8_t* data, std::size_t size) { return {reinterpret_cast<const char*>(data), size}; }
 
 // A property, not just "no crash": a violated one aborts so the fuzzer keeps the input.
 void require(bool ok, const char* what) {
@@ -93,7 +91,8 @@ void json(const std::uint8_t* data, std::size_t size) {
     return;
   }
   (void)doc.value().number_at("fuel.rolling_l");
-  if (const results::JsonValue* groups = doc.value().find("groups")) require(groups->items().size() <= size, "items bounded by input");
+  if (const results::JsonValue* groups = doc.value().find("groups"))
+    require(groups->items().size() <= size, "items bounded by input");
 }
 
 // Each 12-byte chunk is a frame: 4 bytes id, 1 byte length, 7 bytes of payload prefix; stamps
@@ -107,8 +106,8 @@ void transport(const std::uint8_t* data, std::size_t size) {
   for (std::size_t i = 0; i + 12 <= size; i += 12) {
     CanFrame f;
     f.kind = CanFrameKind::extended;
-    f.id = (std::uint32_t{data[i]} << 24 | std::uint32_t{data[i + 1]} << 16 | std::uint32_t{data[i + 2]} << 8 |
-            data[i + 3]) & 0x1FFFFFFFu;
+    f.id = (std::uint32_t{data[i]} << 24 | std::uint32_t{data[i + 1]} << 16 | std::uint32_t{data[i + 2]} << 8 | data[i + 3]) &
+           0x1FFFFFFFu;
     if ((data[i] & 1) != 0) f.id = (f.id & 0xFF00FFFFu) | ((data[i] & 2) != 0 ? 0xEC0000u : 0xEB0000u);
     f.len = static_cast<std::uint8_t>(data[i + 4] % 9);
     for (std::size_t b = 0; b < 8; ++b) f.data[b] = data[i + 5 + (b % 7)];

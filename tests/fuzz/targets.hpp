@@ -20,8 +20,8 @@ struct Target {
 };
 
 inline constexpr Target kTargets[] = {
-    {"candump_line", candump_line}, {"dbc", dbc},             {"json", json},
-    {"metadata", metadata},         {"recording", recording}, {"transport", transport},
+    {"candump_line", candump_line}, {"dbc", dbc}, {"json", json}, {"metadata", metadata}, {"recording", recording},
+    {"transport", transport},
 };
 
 }  // namespace roadload::fuzz

@@ -28,9 +28,10 @@ struct Synthetic {
       Eigen::VectorXd d1(kFeatures), d2(kFeatures);
       const double phase = normal(rng), freq = 0.02 + 0.01 * static_cast<double>(c);
       for (Eigen::Index i = 0; i < kFeatures; ++i) {
-        const double shape = std::sin(freq * static_cast<double>(i) + phase) + 0.3 * static_cast<double>(static_cast<Eigen::Index>(c % 3) == i % 3);
-        d1(i) = 2.0 * shape;        // at magnitude 1
-        d2(i) = 4.4 * shape;        // at magnitude 2: 2 u + 0.1 u^2
+        const double shape = std::sin(freq * static_cast<double>(i) + phase) +
+                             0.3 * static_cast<double>(static_cast<Eigen::Index>(c % 3) == i % 3);
+        d1(i) = 2.0 * shape;  // at magnitude 1
+        d2(i) = 4.4 * shape;  // at magnitude 2: 2 u + 0.1 u^2
       }
       problem.candidates.push_back(Candidate::from_two("effect-" + std::to_string(c), "unit", 0.0, 0.0, 3.0, 1.0, d1, 2.0, d2));
     }

@@ -8,8 +8,8 @@
 
 #include <unistd.h>
 
-#include "roadload/gap/resimulate.hpp"
 #include "roadload/definitions.hpp"
+#include "roadload/gap/resimulate.hpp"
 #include "roadload/sim/recording_sink.hpp"
 #include "roadload/sim/simulation.hpp"
 

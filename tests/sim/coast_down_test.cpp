@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "vehicles.hpp"
 #include "roadload/sim/air.hpp"
 #include "roadload/sim/plant.hpp"
 #include "roadload/sim/units.hpp"
 #include "sim_fixture.hpp"
+#include "vehicles.hpp"
 
 namespace roadload::sim {
 namespace {
@@ -52,8 +52,8 @@ TEST(CoastDown, From65MphMatchesTheAnalyticSolution) {
   const double w = (v_prev - v_end) / (v_prev - plant.state().speed_mps);
   const double t_sim = t_prev + w * dt;
   const double x_sim = x_prev + w * (plant.state().x_m - x_prev) - 50;
-  std::printf("coast-down 65->30 mph: simulated %.2f s over %.1f m, analytic %.2f s over %.1f m\n", t_sim, x_sim,
-              t_analytic, x_analytic);
+  std::printf("coast-down 65->30 mph: simulated %.2f s over %.1f m, analytic %.2f s over %.1f m\n", t_sim, x_sim, t_analytic,
+              x_analytic);
   EXPECT_NEAR(t_sim / t_analytic, 1.0, 1e-3) << "simulated " << t_sim << " s, analytic " << t_analytic << " s";
   EXPECT_NEAR(x_sim / x_analytic, 1.0, 1e-3) << "simulated " << x_sim << " m, analytic " << x_analytic << " m";
 }

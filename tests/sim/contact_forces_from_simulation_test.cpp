@@ -22,7 +22,10 @@ namespace {
 class ContactSink final : public test::PlantStepSink {
  public:
   ContactSink(const Simulation& sim, ContactForces& cf, double warmup_s)
-      : PlantStepSink(sim), cf_(cf), warmup_s_(warmup_s), truth_trip_(cf.axle_count()),
+      : PlantStepSink(sim),
+        cf_(cf),
+        warmup_s_(warmup_s),
+        truth_trip_(cf.axle_count()),
         truth_cells_(sim.route().def().cells.size() * cf.axle_count()) {}
 
   const RunningStats& truth_trip(std::size_t axle) const { return truth_trip_[axle]; }
@@ -39,7 +42,7 @@ class ContactSink final : public test::PlantStepSink {
     std::array<int, kMaxContactAxles> cells{};
     for (std::size_t i = 0; i < cf_.axle_count(); ++i) cells[i] = cell_of(st, i);
     cf_.set_axle_cells(capture_time_from_ns(std::llround(st.t_s * 1e9)), std::span(cells.data(), cf_.axle_count()), st.grade_rad,
-                        st.speed_mps);
+                       st.speed_mps);
   }
   void observe_truth(const TruckState& st) {
     for (std::size_t i = 0; i < cf_.axle_count(); ++i) {
@@ -93,9 +96,10 @@ TEST(ContactForcesFromSimulation, MainlineAt30MphMatchesTheTrueTireForcePerAxle)
     const RunningStats& truth = sink.truth_trip(i);
     const double std_err = est.dynamic.std_n / truth.std() - 1.0;
     const double mean_err = est.fz.mean_n / truth.mean - 1.0;
-    std::printf("%-8s frame %-8s  F_z mean %8.0f N (truth %8.0f, %+.3f %%)  dynamic std %6.0f N (truth %6.0f, %+.1f %%)  paired %llu\n",
-                a.name.c_str(), a.frame_of.c_str(), est.fz.mean_n, truth.mean, 100 * mean_err, est.dynamic.std_n, truth.std(),
-                100 * std_err, static_cast<unsigned long long>(cf.counters(i).paired));
+    std::printf(
+        "%-8s frame %-8s  F_z mean %8.0f N (truth %8.0f, %+.3f %%)  dynamic std %6.0f N (truth %6.0f, %+.1f %%)  paired %llu\n",
+        a.name.c_str(), a.frame_of.c_str(), est.fz.mean_n, truth.mean, 100 * mean_err, est.dynamic.std_n, truth.std(), 100 * std_err,
+        static_cast<unsigned long long>(cf.counters(i).paired));
     EXPECT_LT(std::abs(std_err), 0.10) << a.name;
     EXPECT_LT(std::abs(mean_err), 0.01) << a.name;
     EXPECT_EQ(cf.counters(i).stale_frame, 0u) << a.name;

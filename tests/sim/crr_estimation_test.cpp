@@ -78,7 +78,6 @@ TEST(CrrEstimation, MainlineAt30MphFindsEachCellsCrr) {
   expect_nis_in_band(s);
 }
 
-
 // Issue 4's goal for the highways: the trip's CRR within 0.0003 of the truth at 55 mph.
 // The innovations are consistent with the filter's noise model at both speeds.
 TEST(CrrEstimation, Th10At55MphTripCrrWithin0p0003) {
@@ -92,7 +91,6 @@ TEST(CrrEstimation, Th66At55MphTripCrrWithin0p0003) {
   EXPECT_LT(std::abs(s.trip_error), 0.0003);
   expect_nis_in_band(s);
 }
-
 
 // What a cell says when an input the force balance needs is missing: the reason, not a number.
 std::vector<CellResult> cells_of_mainline(bool drop_transport, bool drop_elevation) {
@@ -136,7 +134,6 @@ TEST(CrrEstimation, CellsSayTheyLackGradeWithoutSurveyElevations) {
   EXPECT_NE(cells[0].reason.find("no elevation"), std::string::npos) << cells[0].reason;
   EXPECT_EQ(cells.back().reason, "not driven");
 }
-
 
 // Grade from four GNSS passes (the report's method) instead of the survey: the grade's sigma goes
 // into the force balance, so the intervals widen to what that grade allows and still cover.
@@ -215,8 +212,7 @@ TEST(CrrEstimation, TheTripSigmaIsThatOfTheAverageOverCells) {
   known.filter.truck.cda_sigma_m2 = 1e-6;
   known.filter.torque_bias_sigma_nm = 1e-6;
   const auto [trip_known, cell_known] = analyse(known);
-  std::printf("trip sigma %.6f (cells %.6f); with CdA and the torque known %.6f (cells %.6f)\n", trip, cell, trip_known,
-              cell_known);
+  std::printf("trip sigma %.6f (cells %.6f); with CdA and the torque known %.6f (cells %.6f)\n", trip, cell, trip_known, cell_known);
   // 29 cells: their own errors average to about a fifth.
   EXPECT_LT(trip_known, 0.4 * cell_known);
 }

@@ -13,9 +13,9 @@ namespace {
 struct Observed {
   std::uint64_t digest = 1469598103934665603ULL;  // FNV-1a over everything the sensors wrote
   std::string meta;
-  double crr_mean = 0;         // truth
-  double reported_torque = 0;  // mean EEC1 actual torque, % (as sent)
-  double indicated_torque = 0; // truth, % of reference
+  double crr_mean = 0;          // truth
+  double reported_torque = 0;   // mean EEC1 actual torque, % (as sent)
+  double indicated_torque = 0;  // truth, % of reference
   std::size_t frames = 0;
 
   void mix(const void* p, std::size_t n) {
@@ -90,10 +90,10 @@ TEST(Effects, EveryEffectChangesWhatTheSensorsSeeAndNoneIsNamed) {
 TEST(Effects, CrrEffectsMoveTheTrueRollingResistanceTheRightWay) {
   const double base = observe(std::nullopt, 0).crr_mean;
   EXPECT_NEAR(base, 0.0061, 0.0002);
-  EXPECT_GT(observe(Effect::tire_warmup, 0.3).crr_mean, base * 1.01);    // 30 min warm: 6.7 % excess
+  EXPECT_GT(observe(Effect::tire_warmup, 0.3).crr_mean, base * 1.01);        // 30 min warm: 6.7 % excess
   EXPECT_LT(observe(Effect::temperature_crr, 0.006).crr_mean, base * 0.92);  // 31.1 C vs 14.3 C: -10 %
-  EXPECT_GT(observe(Effect::speed_crr, 0.01).crr_mean, base * 1.10);     // 55 vs 30 mph: +11 %
-  EXPECT_GT(observe(Effect::tire_pressure, -0.1).crr_mean, base * 1.02); // -10 % pressure: +3 %
+  EXPECT_GT(observe(Effect::speed_crr, 0.01).crr_mean, base * 1.10);         // 55 vs 30 mph: +11 %
+  EXPECT_GT(observe(Effect::tire_pressure, -0.1).crr_mean, base * 1.02);     // -10 % pressure: +3 %
 }
 
 TEST(Effects, TorqueBiasScalesOnlyTheReportedTorque) {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "vehicles.hpp"
 #include "roadload/sim/units.hpp"
 #include "sim_fixture.hpp"
+#include "vehicles.hpp"
 
 namespace roadload::sim {
 namespace {
@@ -37,8 +37,8 @@ class EnergyBalance : public ::testing::Test {
 
 TEST_F(EnergyBalance, FuelEnergyEqualsEveryWorkAndLossWithinOnePerMille) {
   const EnergyLedger& e = summary_.ledger;
-  const double out = e.thermal_j + e.friction_j + e.accessories_j + e.fan_j + e.driveline_j + e.roll_j + e.aero_j +
-                     e.grade_j + e.profile_j + e.brake_j + e.kinetic_j + e.clutch_j;
+  const double out = e.thermal_j + e.friction_j + e.accessories_j + e.fan_j + e.driveline_j + e.roll_j + e.aero_j + e.grade_j +
+                     e.profile_j + e.brake_j + e.kinetic_j + e.clutch_j;
   ASSERT_GT(e.fuel_j, 1e7);
   std::printf("fuel %.6g J, sum of works and losses %.6g J, ratio %.9f\n", e.fuel_j, out, out / e.fuel_j);
   EXPECT_NEAR(out / e.fuel_j, 1.0, 1e-3);
@@ -100,10 +100,10 @@ TEST(EnergyBalanceWithShifts, AcceleratingThroughAGearChangeStillCloses) {
   EXPECT_GE(shifts, 1) << "from gear " << first_gear;
   EXPECT_GT(plant.state().speed_mps, 60 * 0.44704);
   const EnergyLedger& e = plant.ledger();
-  const double out = e.thermal_j + e.friction_j + e.accessories_j + e.fan_j + e.driveline_j + e.roll_j + e.aero_j +
-                     e.grade_j + e.profile_j + e.brake_j + e.kinetic_j + e.clutch_j;
-  std::printf("accelerating 40->64 mph: %d shifts, fuel %.6g J, works and losses %.6g J, clutch %.1f J\n", shifts,
-              e.fuel_j, out, e.clutch_j);
+  const double out = e.thermal_j + e.friction_j + e.accessories_j + e.fan_j + e.driveline_j + e.roll_j + e.aero_j + e.grade_j +
+                     e.profile_j + e.brake_j + e.kinetic_j + e.clutch_j;
+  std::printf("accelerating 40->64 mph: %d shifts, fuel %.6g J, works and losses %.6g J, clutch %.1f J\n", shifts, e.fuel_j, out,
+              e.clutch_j);
   EXPECT_NEAR(out / e.fuel_j, 1.0, 1e-3);
 }
 

@@ -75,8 +75,8 @@ TEST(EngineLossCalibration, EachHoldIsThePlantsLossesToEec1sResolution) {
       worst = std::max(worst, std::abs(h.point.loss_nm - truth));
       worst_eec3 = std::max(worst_eec3, std::abs(h.eec3_loss_nm - truth));
     }
-    std::printf("engine losses at %zu speeds: calibration within %.2f N m of the plant, EEC3 within %.2f N m\n", holds.size(),
-                worst, worst_eec3);
+    std::printf("engine losses at %zu speeds: calibration within %.2f N m of the plant, EEC3 within %.2f N m\n", holds.size(), worst,
+                worst_eec3);
     EXPECT_GT(worst_eec3, 8.0);
   });
 }
@@ -98,8 +98,8 @@ TEST(EngineLossCalibration, TheFrictionCurveSplitsFrictionFromAccessoriesWhereEe
       // The accessories, the loss less the curve, as a share of what they are.
       worst_accessories = std::max(worst_accessories, std::abs(h.point.loss_nm - h.point.friction_nm - accessories) / accessories);
     }
-    std::printf("friction within %.2f N m of the plant's, EEC3 within %.2f N m; accessories within %.1f %%\n",
-                worst, worst_eec3, 100 * worst_accessories);
+    std::printf("friction within %.2f N m of the plant's, EEC3 within %.2f N m; accessories within %.1f %%\n", worst, worst_eec3,
+                100 * worst_accessories);
     EXPECT_LT(worst, 3.0);
     EXPECT_GT(worst_eec3, 8.0);
     EXPECT_LT(worst_accessories, 0.05);

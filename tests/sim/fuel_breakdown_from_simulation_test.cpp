@@ -87,8 +87,8 @@ double row_error(const Outcome& o, FuelUse u, double truth_j) {
 void check(const char* scenario) {
   const Outcome o = drive(scenario);
   const double fuel_err = o.trip.fuel_l / o.plant_fuel_l - 1.0;
-  std::printf("%s: fuel %.4f L measured, %.4f L plant (%+.2f %%), closure %+.2f %%\n", scenario, o.trip.fuel_l,
-              o.plant_fuel_l, 100 * fuel_err, 100 * o.trip.closure());
+  std::printf("%s: fuel %.4f L measured, %.4f L plant (%+.2f %%), closure %+.2f %%\n", scenario, o.trip.fuel_l, o.plant_fuel_l,
+              100 * fuel_err, 100 * o.trip.closure());
   EXPECT_LT(std::abs(fuel_err), 0.01);
   EXPECT_LT(std::abs(o.trip.closure()), 0.01);
 

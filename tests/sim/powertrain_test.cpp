@@ -5,9 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "vehicles.hpp"
 #include "roadload/sim/powertrain.hpp"
 #include "roadload/sim/units.hpp"
+#include "vehicles.hpp"
 
 namespace roadload::sim {
 namespace {

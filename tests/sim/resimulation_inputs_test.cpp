@@ -26,7 +26,7 @@ TEST(WindTrace, IsTheMeanWindInterpolatedInTimeWithNoWander) {
   for (int i = 0; i < 15000; ++i) field.advance(0.001);  // t = 30 s: past the end
   e = field.at_truck();
   EXPECT_NEAR(e.wind_speed_mps, 3.0, 1e-12);
-  EXPECT_NEAR(e.wind_from_deg, 0.0, 1e-9);  // blowing south: from the north
+  EXPECT_NEAR(e.wind_from_deg, 0.0, 1e-9);                  // blowing south: from the north
   EXPECT_NEAR(field.at_mast().wind_speed_mps, 3.0, 1e-12);  // the mast measured it
 }
 

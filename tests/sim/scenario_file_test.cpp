@@ -14,7 +14,8 @@ namespace fs = std::filesystem;
 class ScenarioFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("roadload-scenario-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = fs::temp_directory_path() /
+           ("roadload-scenario-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "scenarios");
     fs::create_directories(dir_ / "routes");
@@ -67,16 +68,18 @@ TEST_F(ScenarioFile, RouteErrorsNameTheRouteFile) {
   EXPECT_NE(s.error().file.find("routes/r.toml"), std::string::npos);
   EXPECT_EQ(s.error().field, "point");  // fewer than two points
 
-  write("routes/r.toml", "name = \"r\"\n[[point]]\nlat_deg = 95\nlon_deg = -93\nelev_m = 250\n"
-                         "[[point]]\nlat_deg = 45\nlon_deg = -93\nelev_m = 250\n");
+  write("routes/r.toml",
+        "name = \"r\"\n[[point]]\nlat_deg = 95\nlon_deg = -93\nelev_m = 250\n"
+        "[[point]]\nlat_deg = 45\nlon_deg = -93\nelev_m = 250\n");
   s = load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\n");
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().field, "point[0].lat_deg");
   EXPECT_EQ(s.error().line, 3);
 
-  write("routes/r.toml", "name = \"r\"\n[[point]]\nlat_deg = 45\nlon_deg = -93\nelev_m = 250\n"
-                         "[[point]]\nlat_deg = 45\nlon_deg = -92.99\nelev_m = 250\n"
-                         "[[cell]]\nid = \"A\"\nstart_m = 10\nlength_m = 5000\nsurface = \"bituminous\"\ncrr = 0.006\n");
+  write("routes/r.toml",
+        "name = \"r\"\n[[point]]\nlat_deg = 45\nlon_deg = -93\nelev_m = 250\n"
+        "[[point]]\nlat_deg = 45\nlon_deg = -92.99\nelev_m = 250\n"
+        "[[cell]]\nid = \"A\"\nstart_m = 10\nlength_m = 5000\nsurface = \"bituminous\"\ncrr = 0.006\n");
   s = load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\n");
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().field, "cell A");

@@ -7,10 +7,10 @@
 #include <cstdio>
 
 #include "roadload/drive_signals.hpp"
-#include "vehicles.hpp"
 #include "roadload/engine_loss_calibration.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "sim_fixture.hpp"
+#include "vehicles.hpp"
 
 namespace roadload::sim {
 namespace {
@@ -100,8 +100,7 @@ TEST(TractionFromJ1939, CalibratedEngineLossesRemoveEec3sRounding) {
   ASSERT_EQ(calibrated.n, as_sent.n);
   const double bias_sent = as_sent.sum / static_cast<double>(as_sent.n);
   const double bias_cal = calibrated.sum / static_cast<double>(calibrated.n);
-  std::printf("tractive force bias at 30 mph: EEC3 as sent %.1f N, with the engine-loss calibration %.1f N\n", bias_sent,
-              bias_cal);
+  std::printf("tractive force bias at 30 mph: EEC3 as sent %.1f N, with the engine-loss calibration %.1f N\n", bias_sent, bias_cal);
   // 1 N m at the flywheel is 8.7 N at the wheels in 8th gear; the calibration's sigma is 0.9 N m.
   EXPECT_GT(std::abs(bias_sent), 80.0);
   EXPECT_LT(std::abs(bias_cal), 20.0);

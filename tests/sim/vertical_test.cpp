@@ -157,8 +157,8 @@ TEST(QuarterCar, ResonancePeaksSitAtTheModalFrequencies) {
     EXPECT_NEAR(body_sim / m.body_hz, 1.0, 0.03);
     EXPECT_NEAR(hop_sim / m.hop_hz, 1.0, 0.03);
     RecordProperty("peaks_m_s_" + std::to_string(static_cast<int>(p.sprung_kg)),
-                   std::to_string(body_sim) + " / " + std::to_string(hop_sim) + " Hz vs undamped " +
-                       std::to_string(m.body_hz) + " / " + std::to_string(m.hop_hz));
+                   std::to_string(body_sim) + " / " + std::to_string(hop_sim) + " Hz vs undamped " + std::to_string(m.body_hz) +
+                       " / " + std::to_string(m.hop_hz));
   }
 }
 
@@ -176,8 +176,7 @@ void expect_energy_closes(std::span<const AxleParams> axles, double height_rms_m
     for (std::size_t i = 0; i < axles.size(); ++i) end[i] = roads[i].next();
     model.step(kDt_s, start, end);
     start = end;
-    for (std::size_t i = 0; i < axles.size(); ++i)
-      min_tire_force_n = std::min(min_tire_force_n, model.outputs(i).tire_force_n);
+    for (std::size_t i = 0; i < axles.size(); ++i) min_tire_force_n = std::min(min_tire_force_n, model.outputs(i).tire_force_n);
   }
   EXPECT_GT(min_tire_force_n, 0.0) << "this check is for closure in contact; lift-off has its own";
   for (std::size_t i = 0; i < axles.size(); ++i) {

@@ -10,11 +10,11 @@
 #include <span>
 #include <vector>
 
+#include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/running_stats.hpp"
 #include "roadload/spectra/modes.hpp"
 #include "roadload/vibration.hpp"
 #include "sim_fixture.hpp"
-#include "roadload/recording/vehicle_setup.hpp"
 
 namespace roadload::sim {
 namespace {
@@ -115,8 +115,8 @@ DriveResult run_drive(const std::string& scenario, std::uint64_t seed, double jo
   const Powers truth = sink.truth_trip();
   r.trip_damper_ratio = trip_damper / truth.damper_w;
   std::printf("%s seed %llu: trip damper %.1f W (truth %.1f, %+.1f %%); tire Eq. 2.7 %.1f W, from deflection %.1f W (truth %.1f)\n",
-              scenario.c_str(), static_cast<unsigned long long>(seed), trip_damper, truth.damper_w,
-              100 * (r.trip_damper_ratio - 1), trip_eq27, trip_defl, truth.tire_w);
+              scenario.c_str(), static_cast<unsigned long long>(seed), trip_damper, truth.damper_w, 100 * (r.trip_damper_ratio - 1),
+              trip_eq27, trip_defl, truth.tire_w);
   for (std::size_t c = 0; c < cells.size(); ++c) {
     double est = 0, segs = 1e9;
     for (std::size_t a = 0; a < sp.axle_count(); ++a) {

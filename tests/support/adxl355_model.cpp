@@ -14,9 +14,7 @@ using namespace accel::adxl355;
 constexpr std::int32_t kTemp25C = 1885;  // TEMP2:TEMP1 at 25 °C (Linux's adxl355 driver)
 constexpr std::uint32_t kEmptyEntry = kEntryEmpty;
 
-std::uint32_t entry(std::int32_t raw, bool x) {
-  return (static_cast<std::uint32_t>(raw) & 0xFFFFFu) << 4 | (x ? kEntryX : 0u);
-}
+std::uint32_t entry(std::int32_t raw, bool x) { return (static_cast<std::uint32_t>(raw) & 0xFFFFFu) << 4 | (x ? kEntryX : 0u); }
 
 }  // namespace
 
@@ -38,8 +36,7 @@ void Adxl355Model::advance(Nanoseconds d) { pass(d.count()); }
 
 bool Adxl355Model::transfer(std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) {
   if (tx.empty() || tx.size() != rx.size()) return false;
-  const auto duration = config_.transfer_overhead_ns +
-                        std::llround(static_cast<double>(tx.size()) * 8e9 / config_.spi_clock_hz);
+  const auto duration = config_.transfer_overhead_ns + std::llround(static_cast<double>(tx.size()) * 8e9 / config_.spi_clock_hz);
   if (fail_transfers_ > 0) {
     --fail_transfers_;
     pass(duration);

@@ -27,15 +27,15 @@
 namespace roadload::test {
 
 struct Adxl355ModelConfig {
-  double rate_offset_ppm = 0;                   // the oscillator against nominal: +20000 is 2 % fast
-  std::int64_t latency_min_ns = 0;              // interrupt latency, uniform per edge, added to its stamp
+  double rate_offset_ppm = 0;       // the oscillator against nominal: +20000 is 2 % fast
+  std::int64_t latency_min_ns = 0;  // interrupt latency, uniform per edge, added to its stamp
   std::int64_t latency_max_ns = 0;
   std::uint64_t seed = 1;
-  double spi_clock_hz = 8e6;                    // a transfer lasts overhead + 8 bits per byte at this clock
-  std::int64_t transfer_overhead_ns = 20'000;   // ioctl and controller set-up per transfer
-  std::int64_t reset_busy_ns = 1'000'000;       // NVM_BUSY after RESET
-  std::int64_t start_ns = 1'000'000'000;        // virtual CLOCK_MONOTONIC at construction
-  std::size_t log_capacity = 1 << 20;           // samples logged for the tests; the log never grows past it
+  double spi_clock_hz = 8e6;                   // a transfer lasts overhead + 8 bits per byte at this clock
+  std::int64_t transfer_overhead_ns = 20'000;  // ioctl and controller set-up per transfer
+  std::int64_t reset_busy_ns = 1'000'000;      // NVM_BUSY after RESET
+  std::int64_t start_ns = 1'000'000'000;       // virtual CLOCK_MONOTONIC at construction
+  std::size_t log_capacity = 1 << 20;          // samples logged for the tests; the log never grows past it
 };
 
 // What the part measures: acceleration in m/s² per axis at a virtual time in s.
@@ -46,7 +46,7 @@ struct ModelSample {
   std::int64_t t_ns = 0;              // sampling instant, the data-ready edge, virtual CLOCK_MONOTONIC
   std::array<std::int32_t, 3> raw{};  // LSB
   double mps2_per_lsb = 0;
-  bool lost = false;                  // overwritten in a full FIFO, or an entry lost on purpose
+  bool lost = false;  // overwritten in a full FIFO, or an entry lost on purpose
 };
 
 class Adxl355Model final : public accel::SpiBus, public accel::DataReadyLine {
@@ -58,15 +58,15 @@ class Adxl355Model final : public accel::SpiBus, public accel::DataReadyLine {
   int wait(Nanoseconds timeout, std::int64_t& edge_mono_ns) override;
   std::int64_t now_ns() const override { return now_; }
 
-  void advance(Nanoseconds d);                        // time passes without the reader: a stall
+  void advance(Nanoseconds d);                         // time passes without the reader: a stall
   void fail_transfers(int n) { fail_transfers_ = n; }  // the next n transfers fail before reaching the part
   void set_id(std::uint8_t reg, std::uint8_t value);   // DEVID_AD..REVID read `value`
-  void lose_next_x_entry() { lose_x_ = true; }        // the next sample's x entry never reaches the FIFO
+  void lose_next_x_entry() { lose_x_ = true; }         // the next sample's x entry never reaches the FIFO
   void power_cycle();                                  // registers to defaults, standby, FIFO empty
 
   std::uint8_t reg(std::uint8_t r) const { return regs_[r]; }
   const std::vector<ModelSample>& samples() const { return log_; }
-  std::uint64_t fifo_lost() const { return fifo_lost_; }         // samples overwritten in the FIFO
+  std::uint64_t fifo_lost() const { return fifo_lost_; }            // samples overwritten in the FIFO
   std::uint64_t events_dropped() const { return events_dropped_; }  // edges the full kernel queue dropped
   double rate_hz() const { return 1e9 / period_ns_; }
 
@@ -93,9 +93,9 @@ class Adxl355Model final : public accel::SpiBus, public accel::DataReadyLine {
   std::int64_t busy_until_ = 0;
   bool measuring_ = false;
   bool data_rdy_ = false, fifo_ovr_ = false;
-  std::int64_t t_on_ = 0;         // measurement started, ns
-  std::uint64_t taken_ = 0;       // samples since then
-  double period_ns_ = 250'000;    // the oscillator's output period
+  std::int64_t t_on_ = 0;       // measurement started, ns
+  std::uint64_t taken_ = 0;     // samples since then
+  double period_ns_ = 250'000;  // the oscillator's output period
   std::array<std::int32_t, 3> latest_{};
 
   std::array<std::uint32_t, 96> fifo_{};       // entries: 20-bit value << 4 | empty << 1 | x

@@ -126,8 +126,8 @@ TEST(Adxl355Driver, ConfiguresRangeRateAndMeasurementWithDataReadyOn) {
   ASSERT_TRUE(rig.source) << rig.error->to_string();
   EXPECT_EQ(rig.model.reg(adxl355::kRange) & adxl355::kRangeMask, 2);
   EXPECT_EQ(rig.model.reg(adxl355::kRange) & ~adxl355::kRangeMask, 0x80);  // reset's other bits kept
-  EXPECT_EQ(rig.model.reg(adxl355::kFilter), 2);                            // 1000 Hz, high-pass off
-  EXPECT_EQ(rig.model.reg(adxl355::kPowerCtl), 0);                          // measuring, DRDY on
+  EXPECT_EQ(rig.model.reg(adxl355::kFilter), 2);                           // 1000 Hz, high-pass off
+  EXPECT_EQ(rig.model.reg(adxl355::kPowerCtl), 0);                         // measuring, DRDY on
   rig.run(200 * kMs);
   EXPECT_NEAR(rig.source->sample_clock().rate_hz(), 1000.0, 1.0);
   EXPECT_EQ(rig.source->status().state, io::SourceState::up);
@@ -174,9 +174,10 @@ TEST(Adxl355Driver, SampleTimesWithin50usOfTrueInstantsDespiteOscillatorOffsetAn
   const std::int64_t warm = rig.model.now_ns() + 250 * kMs;  // the fit's window fills first
   rig.run(5'000 * kMs);
   const Comparison c = compare(rig, warm);
-  std::printf("adxl355: worst sample time error %.1f us over %zu samples (+2 %% oscillator, 0-200 us latency), "
-              "rate %.2f Hz fitted, %.2f Hz true\n",
-              c.worst_us, c.compared, rig.source->sample_clock().rate_hz(), rig.model.rate_hz());
+  std::printf(
+      "adxl355: worst sample time error %.1f us over %zu samples (+2 %% oscillator, 0-200 us latency), "
+      "rate %.2f Hz fitted, %.2f Hz true\n",
+      c.worst_us, c.compared, rig.source->sample_clock().rate_hz(), rig.model.rate_hz());
   EXPECT_LT(c.worst_us, 50.0);
   EXPECT_NEAR(rig.source->sample_clock().rate_hz(), rig.model.rate_hz(), 0.5);
   EXPECT_NE(std::string(rig.source->status().detail).find("adxl355 4080."), std::string::npos) << rig.source->status().detail;

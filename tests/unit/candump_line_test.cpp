@@ -71,10 +71,10 @@ TEST(CandumpLine, LinesCanplayerIgnoresAreIgnored) {
 }
 
 TEST(CandumpLine, FormatRoundTripsEveryKind) {
-  for (const char* line : {"(1635188455.029900) can0 0CF00400#607D844A1400F084", "(0000000001.000000) can0 123#R", "(0000000001.000000) can0 123#R2",
-                           "(0000000001.000000) can0 1CECFF00#R", "(0000000001.000000) can0 20000080#0000000000000000",
-                           "(0000000001.000000) can0 18FEF100##1112233445566778899AABBCC",
-                           "(0000000001.000000) can0 7FF#"}) {
+  for (const char* line :
+       {"(1635188455.029900) can0 0CF00400#607D844A1400F084", "(0000000001.000000) can0 123#R", "(0000000001.000000) can0 123#R2",
+        "(0000000001.000000) can0 1CECFF00#R", "(0000000001.000000) can0 20000080#0000000000000000",
+        "(0000000001.000000) can0 18FEF100##1112233445566778899AABBCC", "(0000000001.000000) can0 7FF#"}) {
     const Parsed p = parse(line);
     ASSERT_FALSE(p.error) << line;
     EXPECT_EQ(format(p.frame), line);
@@ -94,21 +94,15 @@ TEST_P(CandumpLineRejects, NamingTheField) {
   EXPECT_STREQ(p.error->field, GetParam().field);
 }
 
-INSTANTIATE_TEST_SUITE_P(Malformed, CandumpLineRejects,
-                         testing::Values(BadLine{"(1.00) can0 123#", "timestamp"},
-                                         BadLine{"(1.000000 can0 123#", "timestamp"},
-                                         BadLine{"(16351888455.031950) can0 123#", "timestamp"},
-                                         BadLine{"(1.000000)can0 123#", "interface"},
-                                         BadLine{"(1.000000) can0", "interface"},
-                                         BadLine{"(1.000000) a_name_longer_than_15 123#", "interface"},
-                                         BadLine{"(1.000000) can0 12#00", "identifier"},
-                                         BadLine{"(1.000000) can0 800#00", "identifier"},
-                                         BadLine{"(1.000000) can0 1G3#00", "identifier"},
-                                         BadLine{"(1.000000) can0 123#0", "data"},
-                                         BadLine{"(1.000000) can0 123#001122334455667788", "data"},
-                                         BadLine{"(1.000000) can0 123#zz", "data"},
-                                         BadLine{"(1.000000) can0 123##", "flags"},
-                                         BadLine{"(1.000000) can0 123#R9", "data"}));
+INSTANTIATE_TEST_SUITE_P(
+    Malformed, CandumpLineRejects,
+    testing::Values(BadLine{"(1.00) can0 123#", "timestamp"}, BadLine{"(1.000000 can0 123#", "timestamp"},
+                    BadLine{"(16351888455.031950) can0 123#", "timestamp"}, BadLine{"(1.000000)can0 123#", "interface"},
+                    BadLine{"(1.000000) can0", "interface"}, BadLine{"(1.000000) a_name_longer_than_15 123#", "interface"},
+                    BadLine{"(1.000000) can0 12#00", "identifier"}, BadLine{"(1.000000) can0 800#00", "identifier"},
+                    BadLine{"(1.000000) can0 1G3#00", "identifier"}, BadLine{"(1.000000) can0 123#0", "data"},
+                    BadLine{"(1.000000) can0 123#001122334455667788", "data"}, BadLine{"(1.000000) can0 123#zz", "data"},
+                    BadLine{"(1.000000) can0 123##", "flags"}, BadLine{"(1.000000) can0 123#R9", "data"}));
 
 }  // namespace
 }  // namespace roadload::recording

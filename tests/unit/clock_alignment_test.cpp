@@ -1,9 +1,9 @@
 // One capture clock for CAN and accelerometers (issue 6: alignment under 0.5 ms). Simulated here:
 // CAN frames stamped by the kernel in CLOCK_REALTIME (offset 1.7e18 ns, stepped +-2 s and -5 ms by
-// NTP mid-run) and read 0-3 ms late, the clocks read (30 us apart at most) after each receive; an accelerometer whose oscillator runs 2.3 % fast and drifts,
-// its data-ready edges stamped in CLOCK_MONOTONIC with 0-400 us of interrupt latency and FIFO
-// bursts of 20-40 samples. Both streams are placed on the capture clock and compared with the
-// truth; the worst error of each bounds their misalignment.
+// NTP mid-run) and read 0-3 ms late, the clocks read (30 us apart at most) after each receive; an accelerometer whose oscillator
+// runs 2.3 % fast and drifts, its data-ready edges stamped in CLOCK_MONOTONIC with 0-400 us of interrupt latency and FIFO bursts of
+// 20-40 samples. Both streams are placed on the capture clock and compared with the truth; the worst error of each bounds their
+// misalignment.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -42,8 +42,8 @@ TEST(RealtimeMap, CanStampsSurviveWallClockSteps) {
   std::uint64_t frames = 0, placed = 0;
   std::int64_t read = 0;
   for (std::int64_t t = 1'000 * kMs; t < 121'000 * kMs; t += kMs / 2, ++frames) {  // a frame every 0.5 ms
-    const std::int64_t stamp = t + offset_at(t);  // the kernel stamps on arrival
-    read = std::max(read, t + latency(rng));      // the daemon reads in order
+    const std::int64_t stamp = t + offset_at(t);                                   // the kernel stamps on arrival
+    read = std::max(read, t + latency(rng));                                       // the daemon reads in order
     // Drawn one statement each: the order of a call's arguments is unspecified (GCC evaluates them
     // right to left on x86-64, left to right on aarch64), and it decides the random sequence.
     const double at = where(rng);

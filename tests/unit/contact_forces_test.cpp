@@ -68,8 +68,8 @@ double motion(std::size_t s, double t) {
 // frame_ahead_m / speed earlier (speed 0: undelayed).
 double expected_dynamic_std(const AxleContact& a, double speed_mps = kSpeed) {
   const double delay_s = speed_mps > 0 ? a.frame_ahead_m / speed_mps : 0.0;
-  const std::complex<double> at_w1 =
-      a.unsprung_kg * kAw + a.sprung_kg * kAc * std::polar(1.0, frame_phase(a.frame_sensor) - kW1 * delay_s);
+  const std::complex<double> at_w1 = a.unsprung_kg * kAw +
+                                     a.sprung_kg * kAc * std::polar(1.0, frame_phase(a.frame_sensor) - kW1 * delay_s);
   const double at_w2 = a.unsprung_kg * kBw;
   return std::sqrt((std::norm(at_w1) + at_w2 * at_w2) / 2.0);
 }

@@ -15,9 +15,9 @@ namespace roadload::contact_test {
 
 // The simulator's MnROAD layout: sensor ids 0..7.
 inline const std::vector<std::pair<std::int64_t, std::string>> kMounts = {
-    {0, "tractor-front-axle-left"}, {1, "tractor-front-frame-left"}, {2, "tractor-drive1-axle-left"},
+    {0, "tractor-front-axle-left"},   {1, "tractor-front-frame-left"}, {2, "tractor-drive1-axle-left"},
     {3, "tractor-drive1-frame-left"}, {4, "tractor-drive2-axle-left"}, {5, "trailer-axle1-left"},
-    {6, "trailer-axle1-frame-left"}, {7, "trailer-axle2-left"},
+    {6, "trailer-axle1-frame-left"},  {7, "trailer-axle2-left"},
 };
 
 inline std::vector<SensorPlacement> placements(const std::vector<std::pair<std::int64_t, std::string>>& mounts) {

@@ -32,9 +32,8 @@ struct Drive {
   std::vector<double> crr_true;
 };
 
-Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, const CrrFilterConfig& cfg,
-                 bool vary_speed = true, double crr_step_at_s = -1, double crr_after = 0, double torque_bias_nm = 0,
-                 double ripple_sigma_mps = 0) {
+Drive make_drive(std::uint64_t seed, double seconds, double crr, double cda, const CrrFilterConfig& cfg, bool vary_speed = true,
+                 double crr_step_at_s = -1, double crr_after = 0, double torque_bias_nm = 0, double ripple_sigma_mps = 0) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n01(0.0, 1.0);
   const model::TruckModel& tm = cfg.truck;
@@ -120,8 +119,8 @@ TEST(CrrFilter, NeesAndNisLieInTheir95PercentBandsWithATorqueBiasOnlyConsidered)
   double nees_sum = 0, nis_sum = 0;
   std::size_t nis_n = 0;
   for (int run = 0; run < kRuns; ++run) {
-    const Drive d = make_drive(100 + static_cast<std::uint64_t>(run), 600, 0.0055, 6.2 + 0.6 * std::sin(run), cfg, true,
-                               -1, 0, bias(rng));
+    const Drive d = make_drive(100 + static_cast<std::uint64_t>(run), 600, 0.0055, 6.2 + 0.6 * std::sin(run), cfg, true, -1, 0,
+                               bias(rng));
     CrrFilter f(cfg);
     f.start(capture_time_from_ns(0), d.speed_meas[0]);
     for (std::size_t k = 0; k < d.inputs.size(); ++k) {

@@ -45,8 +45,9 @@ TEST(DaemonConfig, OutOfRangeValueNamesTheField) {
 }
 
 TEST(DaemonConfig, TheTrucksCalibrationIsReadAndCheckedForRange) {
-  auto c = load_config(write_temp("[estimator]\nengine_losses = \"/etc/roadload/losses.csv\"\ncda_m2 = 6.22\ncda_sigma_m2 = 0.03\n"
-                                  "cda_torque_correlation = -0.64\n"));
+  auto c = load_config(
+      write_temp("[estimator]\nengine_losses = \"/etc/roadload/losses.csv\"\ncda_m2 = 6.22\ncda_sigma_m2 = 0.03\n"
+                 "cda_torque_correlation = -0.64\n"));
   ASSERT_TRUE(c.ok()) << c.error().to_string();
   EXPECT_EQ(c.value().estimator.engine_losses, "/etc/roadload/losses.csv");
   EXPECT_DOUBLE_EQ(c.value().estimator.cda_m2, 6.22);

@@ -113,10 +113,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"BO_ 2364540158 EEC1: 8 E\n\n SG_ S : 24|16@2+ (1,0) [0|1] \"\" X\n", 3, "SG_ byte order"},
                     BadCase{"BO_ 2364540158 EEC1: 8 E\n SG_ S : 24|16@1+ (1,0) [0|1] \"rpm X\n", 2, "SG_ unit"},
                     BadCase{"BO_ 2364540158 EEC1: 8 E\n SG_ S : 24|16@1+ (x,0) [0|1] \"\" X\n", 2, "SG_ factor"},
-                    BadCase{" SG_ S : 24|16@1+ (1,0) [0|1] \"\" X\n", 1, "SG_"},
-                    BadCase{"BO_ 99999999999 EEC1: 8 E\n", 1, "BO_ id"},
-                    BadCase{"FOO_ bar\n", 1, "keyword"},
-                    BadCase{"BO_ 1 A: 8 E\nBA_ \"SPN\" SG_ 2 S 190;\n", 2, "BA_ message id"},
+                    BadCase{" SG_ S : 24|16@1+ (1,0) [0|1] \"\" X\n", 1, "SG_"}, BadCase{"BO_ 99999999999 EEC1: 8 E\n", 1, "BO_ id"},
+                    BadCase{"FOO_ bar\n", 1, "keyword"}, BadCase{"BO_ 1 A: 8 E\nBA_ \"SPN\" SG_ 2 S 190;\n", 2, "BA_ message id"},
                     BadCase{"CM_ \"never ends\n", 1, "CM_"}));
 
 TEST(DbcReader, ErrorTextNamesFileLineAndField) {

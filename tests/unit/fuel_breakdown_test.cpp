@@ -9,7 +9,7 @@
 namespace roadload {
 namespace {
 
-constexpr double kOmega = 100.0;                         // rad/s: keeps the hand sums round
+constexpr double kOmega = 100.0;  // rad/s: keeps the hand sums round
 constexpr double kRpm = kOmega * 60.0 / (2.0 * std::numbers::pi);
 constexpr double kTolJ = 1e-6;
 
@@ -148,7 +148,7 @@ TEST(FuelBreakdown, WithoutTheEngineTorquesTheWheelSideSplitsAndTheRestIsEngine)
   b.add(blind);
   EXPECT_NEAR(b.fuel_l, 2 * 250e3 / kDieselEnergy_jpl, 1e-15);
   EXPECT_NEAR(b.unsplit_l, 250e3 / kDieselEnergy_jpl, 1e-15);
-  EXPECT_NEAR(b.energy(FuelUse::aero), 60e3, kTolJ);  // the wheel side of both intervals
+  EXPECT_NEAR(b.energy(FuelUse::aero), 60e3, kTolJ);        // the wheel side of both intervals
   EXPECT_NEAR(b.energy(FuelUse::accessories), 5e3, kTolJ);  // the engine side of the first only
   EXPECT_NEAR(b.energy(FuelUse::engine), 165e3 + 250e3 - 76e3, kTolJ);
   EXPECT_NEAR(b.closure(), 0.0, 1e-12);

@@ -99,8 +99,8 @@ std::vector<GnssFix> drive(const SyntheticRoute& r, double from_m, double to_m, 
 }
 
 // `passes` whole-route passes, alternately northbound and southbound, one track each.
-std::vector<std::vector<GnssFix>> drives(const SyntheticRoute& r, int passes, std::uint64_t seed,
-                                         double speed_mps = kSpeed_mps, const Noise& noise = {}) {
+std::vector<std::vector<GnssFix>> drives(const SyntheticRoute& r, int passes, std::uint64_t seed, double speed_mps = kSpeed_mps,
+                                         const Noise& noise = {}) {
   std::mt19937_64 rng(seed);
   std::vector<std::vector<GnssFix>> out;
   for (int p = 0; p < passes; ++p) {
@@ -134,9 +134,9 @@ double predicted_pass_slope_sigma(const Noise& n, double speed_mps, const GradeC
 
 // Over the bins whose +-base window lies inside the route.
 struct Errors {
-  double rms_rad = 0;           // grade error against the truth
-  double mean_sigma_rad = 0;    // reported standard error
-  double normalized_rms = 0;    // error / reported sigma
+  double rms_rad = 0;         // grade error against the truth
+  double mean_sigma_rad = 0;  // reported standard error
+  double normalized_rms = 0;  // error / reported sigma
   std::size_t bins = 0;
 };
 
@@ -175,7 +175,7 @@ TEST(GradeSurvey, IsTheSurveysCentralDifferenceWithTheSurveysError) {
     if (b.s_m < 30 || b.s_m > kLength_m - 30) continue;
     const double central = (r.geometry.elevation_m(b.s_m + 30) - r.geometry.elevation_m(b.s_m - 30)) / 60;
     EXPECT_NEAR(b.grade_rad, std::atan(central), 1e-12) << b.s_m;
-    EXPECT_NEAR(b.grade_rad, true_grade_rad(b.s_m), 4e-4) << b.s_m;  // +-30 m smoothing, 20 m chords
+    EXPECT_NEAR(b.grade_rad, true_grade_rad(b.s_m), 4e-4) << b.s_m;         // +-30 m smoothing, 20 m chords
     EXPECT_NEAR(b.grade_sigma_rad, std::sqrt(2.0) * sigma_m / 60.0, 1e-6);  // d atan = d slope / (1 + slope^2)
     EXPECT_DOUBLE_EQ(b.elevation_m, r.geometry.elevation_m(b.s_m));
   }
@@ -249,8 +249,8 @@ TEST(GradeGnss, MorePassesShrinkTheSigma) {
   const SyntheticRoute r = make_route(kLength_m);
   const Errors four = errors_of(gnss_profile(r, 4, 21));
   const Errors sixteen = errors_of(gnss_profile(r, 16, 22));
-  std::printf("4 passes: sigma %.4f %%, error %.4f %%; 16 passes: sigma %.4f %%, error %.4f %%\n",
-              100 * four.mean_sigma_rad, 100 * four.rms_rad, 100 * sixteen.mean_sigma_rad, 100 * sixteen.rms_rad);
+  std::printf("4 passes: sigma %.4f %%, error %.4f %%; 16 passes: sigma %.4f %%, error %.4f %%\n", 100 * four.mean_sigma_rad,
+              100 * four.rms_rad, 100 * sixteen.mean_sigma_rad, 100 * sixteen.rms_rad);
   // sqrt(16 / 4) = 2, give or take the scatter of a variance estimated from a few passes.
   EXPECT_GT(four.mean_sigma_rad / sixteen.mean_sigma_rad, 1.5);
   EXPECT_LT(four.mean_sigma_rad / sixteen.mean_sigma_rad, 2.7);

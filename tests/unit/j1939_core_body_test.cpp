@@ -173,7 +173,9 @@ TEST(CoreDbc, Dm1FirstDtcSpnAndFmiFromRealBam) {
   EXPECT_DOUBLE_EQ(value(1706, kDM1, kIdleDm1), 0.0);
   // An SPN above 65535 uses the 3 high bits: SPN 520192 = 0x7F000 -> low 0xF000, high 7;
   // byte 5 = 111 00011 (FMI 3) = 0xE3
-  const auto big = bytes("0000" "00F0E301");
+  const auto big = bytes(
+      "0000"
+      "00F0E301");
   EXPECT_EQ(roadload::j1939::extract_raw(*low, big) + (roadload::j1939::extract_raw(*high, big) << 16), 520192u);
   EXPECT_DOUBLE_EQ(value(1215, kDM1, big), 3.0);
 }
@@ -185,9 +187,15 @@ TEST(CoreDbc, Dm1OccurrenceCount126IsAValidCount) {
   EXPECT_EQ(oc.raw, 126u);
   EXPECT_EQ(oc.state, SignalState::valid);
   // The third DTC (61 02 09 01) counts 1; shift it into the first DTC's place to decode it.
-  const auto third = bytes("43FF" "61020901");
+  const auto third = bytes(
+      "43FF"
+      "61020901");
   EXPECT_DOUBLE_EQ(value(1216, kDM1, third), 1.0);
-  EXPECT_EQ(spn(1216, kDM1, bytes("43FF" "0000007F")).state, SignalState::not_available);
+  EXPECT_EQ(spn(1216, kDM1,
+                bytes("43FF"
+                      "0000007F"))
+                .state,
+            SignalState::not_available);
 }
 
 // ---------------------------------------------------------------------------------------------

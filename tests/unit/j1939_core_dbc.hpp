@@ -74,9 +74,9 @@ inline double value(std::uint32_t number, roadload::j1939::Pgn pgn, const std::v
   return r.get().value_or(-99999.0);
 }
 
-inline constexpr roadload::j1939::Pgn kEEC1 = 61444, kEEC2 = 61443, kEEC3 = 65247, kEC1 = 65251, kCCVS1 = 65265,
-                               kLFE1 = 65266, kETC1 = 61442, kETC2 = 61445, kAMB = 65269, kVD = 65248,
-                               kVDHR = 65217, kVP1 = 65267, kFD1 = 65213, kEBC1 = 61441, kDM1 = 65226,
-                               kERC1 = 61440, kEBC2 = 65215, kHOURS = 65253, kLFC = 65257, kET1 = 65262;
+inline constexpr roadload::j1939::Pgn kEEC1 = 61444, kEEC2 = 61443, kEEC3 = 65247, kEC1 = 65251, kCCVS1 = 65265, kLFE1 = 65266,
+                                      kETC1 = 61442, kETC2 = 61445, kAMB = 65269, kVD = 65248, kVDHR = 65217, kVP1 = 65267,
+                                      kFD1 = 65213, kEBC1 = 61441, kDM1 = 65226, kERC1 = 61440, kEBC2 = 65215, kHOURS = 65253,
+                                      kLFC = 65257, kET1 = 65262;
 
 }  // namespace roadload::j1939::core_dbc_test

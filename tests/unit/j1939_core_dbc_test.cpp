@@ -24,10 +24,9 @@ using namespace roadload::j1939::core_dbc_test;
 TEST(CoreDbc, LoadsAndDefinesEveryRequiredPgn) {
   const Database& db = core();
   const std::vector<std::pair<roadload::j1939::Pgn, std::string>> required = {
-      {kEEC1, "EEC1"},   {kEEC2, "EEC2"}, {kEEC3, "EEC3"}, {kEC1, "EC1"},     {kCCVS1, "CCVS1"},
-      {kLFE1, "LFE1"},   {kETC1, "ETC1"}, {kETC2, "ETC2"}, {kAMB, "AMB"},     {kVD, "VD"},
-      {kVDHR, "VDHR"},   {kVP1, "VP1"},   {kFD1, "FD1"},   {kEBC1, "EBC1"},   {kDM1, "DM1"},
-      {kERC1, "ERC1"},   {kEBC2, "EBC2"}, {kHOURS, "HOURS"}, {kLFC, "LFC"}, {kET1, "ET1"}};
+      {kEEC1, "EEC1"}, {kEEC2, "EEC2"}, {kEEC3, "EEC3"}, {kEC1, "EC1"},     {kCCVS1, "CCVS1"}, {kLFE1, "LFE1"}, {kETC1, "ETC1"},
+      {kETC2, "ETC2"}, {kAMB, "AMB"},   {kVD, "VD"},     {kVDHR, "VDHR"},   {kVP1, "VP1"},     {kFD1, "FD1"},   {kEBC1, "EBC1"},
+      {kDM1, "DM1"},   {kERC1, "ERC1"}, {kEBC2, "EBC2"}, {kHOURS, "HOURS"}, {kLFC, "LFC"},     {kET1, "ET1"}};
   for (const auto& [pgn, name] : required) {
     const MessageDef* m = db.find(pgn);
     ASSERT_NE(m, nullptr) << "PGN " << pgn;

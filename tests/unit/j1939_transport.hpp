@@ -52,8 +52,8 @@ struct Received {
 
 // Every counter that records something lost or irregular.
 inline std::uint64_t irregularities(const j::TpCounters& c) {
-  return c.aborted + c.timed_out + c.superseded + c.duplicate_packets + c.out_of_order_packets +
-         c.orphan_packets + c.bad_sequence + c.malformed + c.too_large + c.no_free_session;
+  return c.aborted + c.timed_out + c.superseded + c.duplicate_packets + c.out_of_order_packets + c.orphan_packets + c.bad_sequence +
+         c.malformed + c.too_large + c.no_free_session;
 }
 
 class J1939TransportTest : public ::testing::Test {
@@ -72,8 +72,7 @@ class J1939TransportTest : public ::testing::Test {
   }
   void push(const CanFrame& f) {
     if (auto m = tp_.push(f)) {
-      got_.push_back(Received{m->t, m->pgn, m->sa, m->da, m->priority, m->iface, m->extended,
-                              Bytes(m->data.begin(), m->data.end())});
+      got_.push_back(Received{m->t, m->pgn, m->sa, m->da, m->priority, m->iface, m->extended, Bytes(m->data.begin(), m->data.end())});
     }
     last_ = f.t;
     now_ = f.t + kStep;
@@ -112,8 +111,7 @@ class J1939TransportTest : public ::testing::Test {
     control(j::kPgnEtpCm, sa, da, {kEtpDpo, count, byte(offset), byte(offset >> 8), byte(offset >> 16)}, pgn);
   }
   void etp_eoma(std::uint8_t receiver, std::uint8_t sender, j::Pgn pgn, std::size_t size) {
-    control(j::kPgnEtpCm, receiver, sender, {kEtpEoma, byte(size), byte(size >> 8), byte(size >> 16), byte(size >> 24)},
-            pgn);
+    control(j::kPgnEtpCm, receiver, sender, {kEtpEoma, byte(size), byte(size >> 8), byte(size >> 16), byte(size >> 24)}, pgn);
   }
 
   // Data packet `packet` (1-based) of `payload`, padded with 0xFF, under sequence number `seq`.

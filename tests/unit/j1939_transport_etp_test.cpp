@@ -121,14 +121,10 @@ CanFrame parse_candump(std::string_view line) {
 TEST_F(J1939TransportTest, RealTruckEc1BamGivesReferenceTorque2386Nm) {
   // tests/data/traces/css-truck-idle.log lines 850-989: the EC1 BAM and one frame between.
   constexpr std::string_view kTrace[] = {
-      "(1635188457.419000) can0 1CECFF00#20270006FFE3FE00",
-      "(1635188457.420000) can0 0CF00400#507D84461400F084",
-      "(1635188457.478950) can0 1CEBFF00#015014BD32418C20",
-      "(1635188457.538950) can0 1CEBFF00#021CDFC02BE15834",
-      "(1635188457.598950) can0 1CEBFF00#03D3A041FFFF5209",
-      "(1635188457.658950) can0 1CEBFF00#04E0470341D07DE1",
-      "(1635188457.718950) can0 1CEBFF00#053041BC03FFFF80",
-      "(1635188457.778950) can0 1CEBFF00#06E0FFFFFFFFFFFF",
+      "(1635188457.419000) can0 1CECFF00#20270006FFE3FE00", "(1635188457.420000) can0 0CF00400#507D84461400F084",
+      "(1635188457.478950) can0 1CEBFF00#015014BD32418C20", "(1635188457.538950) can0 1CEBFF00#021CDFC02BE15834",
+      "(1635188457.598950) can0 1CEBFF00#03D3A041FFFF5209", "(1635188457.658950) can0 1CEBFF00#04E0470341D07DE1",
+      "(1635188457.718950) can0 1CEBFF00#053041BC03FFFF80", "(1635188457.778950) can0 1CEBFF00#06E0FFFFFFFFFFFF",
   };
   for (std::string_view line : kTrace) push(parse_candump(line));
   ASSERT_EQ(got_.size(), 1u);
@@ -218,13 +214,12 @@ TEST_F(J1939TransportTest, GarbageFramesNeverCrash) {
     CanFrame f;
     const std::uint64_t r = rng();
     f.kind = (r & 0xF) == 0 ? static_cast<CanFrameKind>((r >> 4) % 5) : CanFrameKind::extended;
-    f.id = j::make_can_id(byte(r >> 8), kPgns[(r >> 11) % 4], byte((r >> 13) % 3 == 0 ? 0xFF : (r >> 16) % 3),
-                          byte((r >> 18) % 3));
+    f.id = j::make_can_id(byte(r >> 8), kPgns[(r >> 11) % 4], byte((r >> 13) % 3 == 0 ? 0xFF : (r >> 16) % 3), byte((r >> 18) % 3));
     f.iface = byte((r >> 20) % 2);
     f.len = (r >> 22) % 16 == 0 ? byte(r >> 26) : 8;  // up to 255, beyond the data array
     for (auto& b : f.data) b = byte(rng());
     if ((r >> 34) % 3 == 0) f.data[0] = kControls[(r >> 36) % 9];
-    if ((r >> 40) % 2 == 0) f.data[0] = byte(1 + (r >> 41) % 8);  // plausible sequence
+    if ((r >> 40) % 2 == 0) f.data[0] = byte(1 + (r >> 41) % 8);    // plausible sequence
     if ((r >> 44) % 4 == 0) std::fill_n(f.data.begin() + 2, 3, 0);  // small sizes and offsets
     t += static_cast<std::int64_t>((r >> 48) % 20'000'000);
     // Now and then a stamp at either end of the clock, or from the past.

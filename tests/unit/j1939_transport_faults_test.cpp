@@ -100,7 +100,7 @@ TEST_F(J1939TransportTest, PacketsResentOnCtsAfterALossAreStoredBySequence) {
   cts(0x21, 0x00, kDm1, 5, 1);
   dts(0x00, 0x21, payload, 1, 2);
   dts(0x00, 0x21, payload, 4, 5);  // packet 3 lost on the bus
-  cts(0x21, 0x00, kDm1, 1, 3);    // the receiver asks for it again
+  cts(0x21, 0x00, kDm1, 1, 3);     // the receiver asks for it again
   EXPECT_TRUE(got_.empty());
   dt(0x00, 0x21, payload, 3);
   ASSERT_EQ(got_.size(), 1u);
@@ -139,11 +139,11 @@ TEST_F(J1939TransportTest, UnpaddedLastPacketIsAcceptedButATruncatedPacketIsMalf
   const Bytes payload = pattern(9);
   bam(0x00, kEc1, payload.size());
   const std::uint32_t id = j::make_can_id(7, j::kPgnTpDt, kGlobal, 0x00);
-  send(id, {});                                 // no sequence number
-  send(id, {1, payload[0], payload[1]});        // packet 1 needs 7 bytes
+  send(id, {});                           // no sequence number
+  send(id, {1, payload[0], payload[1]});  // packet 1 needs 7 bytes
   EXPECT_EQ(tp_.counters().malformed, 2u);
   dt(0x00, kGlobal, payload, 1);
-  send(id, {2, payload[7], payload[8]});        // packet 2 needs only 2
+  send(id, {2, payload[7], payload[8]});  // packet 2 needs only 2
   ASSERT_EQ(got_.size(), 1u);
   EXPECT_EQ(got_[0].data, payload);
 }
@@ -163,8 +163,8 @@ TEST_F(J1939TransportTest, ImpossibleAnnouncementsAreMalformed) {
   control(j::kPgnTpCm, 0x00, kGlobal, {kRts, 20, 0, 3, 0xFF}, kDm1);       // RTS to everyone
   control(j::kPgnTpCm, 0x00, 0x21, {kBam, 20, 0, 3, 0xFF}, kEc1);          // BAM to one node
   control(j::kPgnTpCm, 0x00, 0x21, {0x42, 20, 0, 3, 0xFF}, kDm1);          // unknown control
-  etp_rts(0x00, 0x21, kDm1, 1785);                                       // TP would do
-  send(j::make_can_id(7, j::kPgnTpCm, kGlobal, 0x00), {kBam, 20, 0, 3});  // short frame
+  etp_rts(0x00, 0x21, kDm1, 1785);                                         // TP would do
+  send(j::make_can_id(7, j::kPgnTpCm, kGlobal, 0x00), {kBam, 20, 0, 3});   // short frame
   EXPECT_EQ(tp_.counters().malformed, 7u);
   EXPECT_EQ(tp_.open_sessions(), 0u);
 }

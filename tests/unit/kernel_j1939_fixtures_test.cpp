@@ -51,9 +51,8 @@ TEST_P(KernelJ1939Capture, ReassemblesByteExact) {
 
 INSTANTIATE_TEST_SUITE_P(Linux61, KernelJ1939Capture,
                          testing::Values(KernelCase{"bam-9", 65251, 0x80, 0xFF}, KernelCase{"bam-100", 65280, 0x81, 0xFF},
-                                         KernelCase{"bam-1785", 65281, 0x82, 0xFF},
-                                         KernelCase{"rts-9", 61184, 0x40, 0x90}, KernelCase{"rts-100", 61184, 0x41, 0x91},
-                                         KernelCase{"rts-1785", 61184, 0x42, 0x92}),
+                                         KernelCase{"bam-1785", 65281, 0x82, 0xFF}, KernelCase{"rts-9", 61184, 0x40, 0x90},
+                                         KernelCase{"rts-100", 61184, 0x41, 0x91}, KernelCase{"rts-1785", 61184, 0x42, 0x92}),
                          [](const testing::TestParamInfo<KernelCase>& param_info) {
                            std::string n = param_info.param.name;
                            for (char& ch : n) ch = ch == '-' ? '_' : ch;

@@ -15,8 +15,8 @@ namespace fs = std::filesystem;
 class RecordingFolder : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("roadload-rec-" + std::to_string(::getpid()) + "-" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("roadload-rec-" + std::to_string(::getpid()) + "-" + testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -74,10 +74,10 @@ TEST_F(RecordingFolder, BadRowsAreReportedWithFileLineAndFieldAndSkipped) {
   write("accel.csv",
         "t_ns,sensor,x_mps2,y_mps2,z_mps2\n"
         "1,0,0,0,9.8\n"
-        "2,0,zero,0,9.8\n"   // line 3: x_mps2
-        "3,0,0,0\n"          // line 4: wrong field count
-        "4,300,0,0,9.8\n"    // line 5: sensor out of range
-        "5,0,0,0,nan\n"      // line 6: not finite
+        "2,0,zero,0,9.8\n"  // line 3: x_mps2
+        "3,0,0,0\n"         // line 4: wrong field count
+        "4,300,0,0,9.8\n"   // line 5: sensor out of range
+        "5,0,0,0,nan\n"     // line 6: not finite
         "6,0,0,0,9.8\n");
   auto rec = RecordingReader::open(dir_.string());
   ASSERT_TRUE(rec);

@@ -2,11 +2,11 @@
 // an anemometer row leaves the quantities it does not measure empty and they read as NaN.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/writer.hpp"

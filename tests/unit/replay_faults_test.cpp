@@ -34,11 +34,16 @@ TEST(ReplayFaults, ReadsEveryKind) {
 
 TEST(ReplayFaults, EachMistakeIsNamedByItsItem) {
   const std::pair<const char*, const char*> cases[] = {
-      {"drop=2", "drop=2"},           {"dup", "dup"},
-      {"error@", "error@"},           {"busoff@30", "busoff@30"},
-      {"gnss-outage@5+0", "gnss-outage@5+0"}, {"clock-step@5", "clock-step@5"},
-      {"error@5+1", "error@5+1"},     {"meteor@5", "meteor@5"},
-      {"drop=0.1,,dup=0.1", ""},      {"seed=1.5", "seed=1.5"},
+      {"drop=2", "drop=2"},
+      {"dup", "dup"},
+      {"error@", "error@"},
+      {"busoff@30", "busoff@30"},
+      {"gnss-outage@5+0", "gnss-outage@5+0"},
+      {"clock-step@5", "clock-step@5"},
+      {"error@5+1", "error@5+1"},
+      {"meteor@5", "meteor@5"},
+      {"drop=0.1,,dup=0.1", ""},
+      {"seed=1.5", "seed=1.5"},
       {"error@-1", "error@-1"},
   };
   for (const auto& [spec, item] : cases) {

@@ -14,7 +14,8 @@ TEST(ResultsJson, ReadsEveryKindAndNestedPaths) {
   "crr": 0.0061, "identified": true, "none": null,
   "fuel": {"rolling_l": 1.25e-1, "uses": [1, -2.5, 3]},
   "name": "conc\"rete\u00b5\n"
-})", "trip.json");
+})",
+                              "trip.json");
   ASSERT_TRUE(doc.ok()) << doc.error().to_string();
   const JsonValue& v = doc.value();
   EXPECT_DOUBLE_EQ(*v.number_at("crr"), 0.0061);

@@ -21,7 +21,7 @@ TEST(VehicleFile, TheMnroadTruckIsTheReportsTruck) {
   EXPECT_EQ(v.name, "mnroad-truck");
   EXPECT_EQ(v.vin, "1HSGSSJT8CJ536729");
   ASSERT_EQ(v.axles.size(), 5u);
-  EXPECT_DOUBLE_EQ(v.mass_kg(), 36152.0);                 // Table 6.1
+  EXPECT_DOUBLE_EQ(v.mass_kg(), 36152.0);                  // Table 6.1
   EXPECT_NEAR(v.cg_behind_front_m(), 9.742, 0.001);        // from Table 6.2's loads
   EXPECT_DOUBLE_EQ(v.engine.reference_torque_nm, 2386.0);  // EC1 SPN 544 of the idle trace
   EXPECT_EQ(v.driveline.gear_ratios.size(), 10u);

@@ -1,5 +1,6 @@
 #pragma once
 // Reading TOML configuration (routes, scenarios, vehicles) with errors that name file, line and field.
+#include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -7,7 +8,6 @@
 #include <optional>
 #include <string>
 #include <string_view>
-#include <toml++/toml.h>
 #include <vector>
 
 #include "roadload/parse_error.hpp"
@@ -114,8 +114,7 @@ inline Parsed<toml::table> parse_toml_file(const std::string& path) {
   if (!r) {
     const auto& e = r.error();
     const bool missing = e.source().begin.line == 0;
-    return ParseError{path, static_cast<long>(e.source().begin.line), missing ? "file" : "syntax",
-                      std::string(e.description())};
+    return ParseError{path, static_cast<long>(e.source().begin.line), missing ? "file" : "syntax", std::string(e.description())};
   }
   return std::move(r).table();
 }

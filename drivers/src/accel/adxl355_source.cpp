@@ -11,10 +11,10 @@ namespace {
 
 constexpr std::uint32_t kSpiClockHz = 8'000'000;  // under the part's 10 MHz maximum
 constexpr std::uint8_t kSpiMode0 = 0;             // CPOL 0, CPHA 0
-constexpr double kClockWindowS = 0.5;      // the rate is fitted over this much of the part's output
-constexpr std::size_t kSettledEdges = 64;  // edges in the fit before its line can tell a missing edge
-constexpr double kLineError = 0.25;        // how far the old line may be off after a resync, periods
-constexpr double kRefillSamples = 31;      // the FIFO's 32 samples, less one for a burst's own time
+constexpr double kClockWindowS = 0.5;             // the rate is fitted over this much of the part's output
+constexpr std::size_t kSettledEdges = 64;         // edges in the fit before its line can tell a missing edge
+constexpr double kLineError = 0.25;               // how far the old line may be off after a resync, periods
+constexpr double kRefillSamples = 31;             // the FIFO's 32 samples, less one for a burst's own time
 
 clock::SampleClockConfig clock_config(double odr_hz) {
   clock::SampleClockConfig c;
@@ -171,8 +171,7 @@ void Adxl355Source::restart_clock() {
 bool Adxl355Source::plausible(std::int64_t newest_index, std::int64_t read_ns) const {
   // A sample is read after it was taken. Until the fit holds enough edges its line may still lie
   // late by a first edge's latency, so it is not asked.
-  return fed_since_restart_ < kSettledEdges ||
-         to_ns(time_of(newest_index)) <= read_ns + static_cast<std::int64_t>(period_ns_ / 2);
+  return fed_since_restart_ < kSettledEdges || to_ns(time_of(newest_index)) <= read_ns + static_cast<std::int64_t>(period_ns_ / 2);
 }
 
 void Adxl355Source::enqueue(const FifoRead& f) {
@@ -386,8 +385,7 @@ void Adxl355Source::describe() {
 }
 
 Parsed<std::unique_ptr<io::Source<AccelSample>>> open_adxl355(const std::string& spidev_path, const std::string& gpiochip,
-                                                             unsigned line, std::uint8_t sensor_index, int range_g,
-                                                             double odr_hz) {
+                                                              unsigned line, std::uint8_t sensor_index, int range_g, double odr_hz) {
   auto bus = SpidevBus::open(spidev_path, kSpiClockHz, kSpiMode0);
   if (!bus) return bus.error();
   auto drdy = GpiodLine::open(gpiochip, line, "roadloadd");

@@ -43,8 +43,6 @@ int GpiodLine::wait(Nanoseconds timeout, std::int64_t& edge_mono_ns) {
   return 1;
 }
 
-std::int64_t GpiodLine::now_ns() const {
-  return io::read_clock(CLOCK_MONOTONIC).count();
-}
+std::int64_t GpiodLine::now_ns() const { return io::read_clock(CLOCK_MONOTONIC).count(); }
 
 }  // namespace roadload::accel

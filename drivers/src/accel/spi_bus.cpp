@@ -14,10 +14,10 @@ Parsed<std::unique_ptr<SpidevBus>> SpidevBus::open(const std::string& path, std:
   const int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
   if (fd < 0) return ParseError{path, 0, "open", std::strerror(errno)};
   const std::uint8_t bits = 8;
-  const char* failed = ioctl(fd, SPI_IOC_WR_MODE, &mode) != 0                ? "SPI_IOC_WR_MODE"
-                       : ioctl(fd, SPI_IOC_WR_BITS_PER_WORD, &bits) != 0     ? "SPI_IOC_WR_BITS_PER_WORD"
+  const char* failed = ioctl(fd, SPI_IOC_WR_MODE, &mode) != 0               ? "SPI_IOC_WR_MODE"
+                       : ioctl(fd, SPI_IOC_WR_BITS_PER_WORD, &bits) != 0    ? "SPI_IOC_WR_BITS_PER_WORD"
                        : ioctl(fd, SPI_IOC_WR_MAX_SPEED_HZ, &speed_hz) != 0 ? "SPI_IOC_WR_MAX_SPEED_HZ"
-                                                                              : nullptr;
+                                                                            : nullptr;
   if (failed != nullptr) {
     ParseError e{path, 0, failed, std::strerror(errno)};
     ::close(fd);

@@ -46,16 +46,14 @@ struct SocketCanSource::Buffers {
 Parsed<std::unique_ptr<SocketCanSource>> SocketCanSource::open(SocketCanConfig config) {
   if (config.interface.empty() || config.interface.size() >= IFNAMSIZ) {
     return ParseError{"can", 0, "interface",
-                      "'" + config.interface + "' is not an interface name (1 to " + std::to_string(IFNAMSIZ - 1) +
-                          " characters)"};
+                      "'" + config.interface + "' is not an interface name (1 to " + std::to_string(IFNAMSIZ - 1) + " characters)"};
   }
   std::unique_ptr<SocketCanSource> s(new SocketCanSource(std::move(config)));
   s->try_open();
   return s;
 }
 
-SocketCanSource::SocketCanSource(SocketCanConfig config)
-    : config_(std::move(config)), buf_(std::make_unique<Buffers>()) {
+SocketCanSource::SocketCanSource(SocketCanConfig config) : config_(std::move(config)), buf_(std::make_unique<Buffers>()) {
   for (std::size_t i = 0; i < kBatch; ++i) {
     buf_->iov[i] = {&buf_->frames[i], sizeof(canfd_frame)};
     std::memset(&buf_->msgs[i], 0, sizeof(mmsghdr));

@@ -32,8 +32,7 @@ std::optional<CaptureTime> RealtimeMap::map(std::int64_t realtime_ns, std::int64
     const Epoch& e = epochs_[(head_ + kEpochs - 1 - i) % kEpochs];
     const std::int64_t t = realtime_ns - e.offset_ns;
     const std::int64_t earliest = std::min(read_mono_ns - config_.max_latency_ns, e.first_mono_ns);
-    if (t <= read_mono_ns + config_.future_slack_ns && t >= earliest)
-      return capture_time_from_ns(t);
+    if (t <= read_mono_ns + config_.future_slack_ns && t >= earliest) return capture_time_from_ns(t);
   }
   ++counters_.unplaced;
   return std::nullopt;

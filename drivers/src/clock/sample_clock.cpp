@@ -5,8 +5,7 @@
 
 namespace roadload::clock {
 
-SampleClock::SampleClock(SampleClockConfig config)
-    : config_(config), period_s_(1.0 / config.nominal_rate_hz) {
+SampleClock::SampleClock(SampleClockConfig config) : config_(config), period_s_(1.0 / config.nominal_rate_hz) {
   config_.window_edges = std::clamp<std::size_t>(config_.window_edges, 2, kMaxEdges);
 }
 

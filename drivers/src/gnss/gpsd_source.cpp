@@ -51,8 +51,8 @@ const char* mode_text(GnssFixMode m) {
 }
 
 bool usable(const gps_fix_t& f) {
-  return std::isfinite(f.latitude) && std::isfinite(f.longitude) && std::abs(f.latitude) <= 90.0 &&
-         std::abs(f.longitude) <= 180.0 && f.time.tv_sec > 0 && f.time.tv_nsec >= 0 && f.time.tv_nsec < kNsPerS;
+  return std::isfinite(f.latitude) && std::isfinite(f.longitude) && std::abs(f.latitude) <= 90.0 && std::abs(f.longitude) <= 180.0 &&
+         f.time.tv_sec > 0 && f.time.tv_nsec >= 0 && f.time.tv_nsec < kNsPerS;
 }
 
 }  // namespace

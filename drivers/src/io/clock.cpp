@@ -19,9 +19,7 @@ const char* to_string(SourceState s) {
   return "?";
 }
 
-CaptureTime MonotonicClock::now() const {
-  return CaptureTime{read_clock(CLOCK_MONOTONIC)};
-}
+CaptureTime MonotonicClock::now() const { return CaptureTime{read_clock(CLOCK_MONOTONIC)}; }
 
 void MonotonicClock::sleep_until(CaptureTime t, Nanoseconds limit) {
   const timespec ts = to_timespec(std::min(t, now() + limit).time_since_epoch());

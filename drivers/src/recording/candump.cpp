@@ -95,8 +95,7 @@ std::string_view InterfaceTable::name(std::uint8_t index) const {
   return index < count_ ? std::string_view(names_[index]) : std::string_view("?");
 }
 
-std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTable& ifaces, CanFrame& out,
-                                            LineResult& result) {
+std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTable& ifaces, CanFrame& out, LineResult& result) {
   result = LineResult::ignored;
   if (line.empty() || line[0] != '(') return std::nullopt;
   if (auto e = parse_stamp(line, out.t)) return e;
@@ -162,8 +161,8 @@ std::size_t format_candump_line(const CanFrame& f, std::string_view iface, char*
   const std::int64_t ns = to_ns(f.t);
   const std::int64_t sec = ns / 1'000'000'000;
   const std::int64_t usec = (ns % 1'000'000'000) / 1000;
-  int n = std::snprintf(buf, kMaxLineChars, "(%010lld.%06lld) %.*s ", static_cast<long long>(sec),
-                        static_cast<long long>(usec), static_cast<int>(iface.size()), iface.data());
+  int n = std::snprintf(buf, kMaxLineChars, "(%010lld.%06lld) %.*s ", static_cast<long long>(sec), static_cast<long long>(usec),
+                        static_cast<int>(iface.size()), iface.data());
   std::size_t pos = static_cast<std::size_t>(n);
   auto put_id = [&](std::uint32_t id, int digits) {
     for (int d = digits - 1; d >= 0; --d) buf[pos++] = kHex[(id >> (4 * d)) & 0xF];

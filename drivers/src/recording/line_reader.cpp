@@ -1,7 +1,7 @@
 #include "roadload/recording/line_reader.hpp"
 
-#include <cerrno>
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 
 namespace roadload::recording {

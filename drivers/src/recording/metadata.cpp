@@ -1,7 +1,7 @@
 #include "roadload/recording/metadata.hpp"
 
-#include <sstream>
 #include <toml++/toml.h>
+#include <sstream>
 
 namespace roadload::recording {
 namespace {
@@ -130,8 +130,7 @@ Parsed<Metadata> parse_metadata(std::string_view text, std::string_view source) 
   toml::parse_result parsed = toml::parse(text, source);
   if (!parsed) {
     const toml::parse_error& e = parsed.error();
-    return ParseError{std::string(source), static_cast<long>(e.source().begin.line), "toml",
-                      std::string(e.description())};
+    return ParseError{std::string(source), static_cast<long>(e.source().begin.line), "toml", std::string(e.description())};
   }
   try {
     return Reader(source).read(parsed.table());

@@ -22,8 +22,7 @@ CaptureTime stamp_of(const Record& r) {
 template <typename Sample, typename Convert>
 class CsvStream final : public Stream {
  public:
-  CsvStream(CsvReader csv, const char* name, Convert convert)
-      : csv_(std::move(csv)), name_(name), convert_(convert) {}
+  CsvStream(CsvReader csv, const char* name, Convert convert) : csv_(std::move(csv)), name_(name), convert_(convert) {}
 
   bool next(Record& out, ErrorLog& errors) override {
     std::span<const std::string_view> row;
@@ -95,10 +94,9 @@ class Fields {
 };
 
 constexpr std::string_view kAccelColumns[] = {"t_ns", "sensor", "x_mps2", "y_mps2", "z_mps2"};
-constexpr std::string_view kGnssColumns[] = {"t_ns",   "utc_ns",    "lat_deg",    "lon_deg", "alt_m",
-                                             "speed_mps", "course_deg", "mode", "hdop"};
-constexpr std::string_view kWeatherColumns[] = {"t_ns", "station", "air_temp_c", "pressure_pa",
-                                                "wind_speed_mps", "wind_from_deg"};
+constexpr std::string_view kGnssColumns[] = {"t_ns",      "utc_ns",     "lat_deg", "lon_deg", "alt_m",
+                                             "speed_mps", "course_deg", "mode",    "hdop"};
+constexpr std::string_view kWeatherColumns[] = {"t_ns", "station", "air_temp_c", "pressure_pa", "wind_speed_mps", "wind_from_deg"};
 
 FieldError to_accel(std::span<const std::string_view> row, AccelSample& s) {
   Fields f(row);
@@ -122,7 +120,8 @@ FieldError to_gnss(std::span<const std::string_view> row, GnssFix& s) {
   s.mode = static_cast<GnssFixMode>(f.small(7, 5));
   s.hdop = f.f64_or_nan(8);  // gpsd reports HDOP only with satellites in view
   if (!f.error() && (s.lat_deg < -90 || s.lat_deg > 90)) return std::make_pair(std::size_t{2}, std::string("latitude out of range"));
-  if (!f.error() && (s.lon_deg < -180 || s.lon_deg > 180)) return std::make_pair(std::size_t{3}, std::string("longitude out of range"));
+  if (!f.error() && (s.lon_deg < -180 || s.lon_deg > 180))
+    return std::make_pair(std::size_t{3}, std::string("longitude out of range"));
   return f.error();
 }
 
@@ -138,8 +137,7 @@ FieldError to_weather(std::span<const std::string_view> row, WeatherSample& s) {
 }
 
 template <typename Sample, std::size_t N, typename Convert>
-Parsed<std::unique_ptr<Stream>> open_csv(const fs::path& path, const std::string_view (&cols)[N], const char* name,
-                                         Convert convert) {
+Parsed<std::unique_ptr<Stream>> open_csv(const fs::path& path, const std::string_view (&cols)[N], const char* name, Convert convert) {
   auto csv = CsvReader::open(path.string(), cols);
   if (!csv) return csv.error();
   return std::unique_ptr<Stream>(new CsvStream<Sample, Convert>(std::move(csv.value()), name, convert));

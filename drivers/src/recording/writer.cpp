@@ -131,17 +131,11 @@ std::string_view format_row(const WeatherSample& s, LineBuilder& line) {
   return line.finish();
 }
 
-void RecordingWriter::write(const AccelSample& s) {
-  stream(accel_, kAccelFormat).write(format_row(s, line_));
-}
+void RecordingWriter::write(const AccelSample& s) { stream(accel_, kAccelFormat).write(format_row(s, line_)); }
 
-void RecordingWriter::write(const GnssFix& s) {
-  stream(gnss_, kGnssFormat).write(format_row(s, line_));
-}
+void RecordingWriter::write(const GnssFix& s) { stream(gnss_, kGnssFormat).write(format_row(s, line_)); }
 
-void RecordingWriter::write(const WeatherSample& s) {
-  stream(weather_, kWeatherFormat).write(format_row(s, line_));
-}
+void RecordingWriter::write(const WeatherSample& s) { stream(weather_, kWeatherFormat).write(format_row(s, line_)); }
 
 std::optional<ParseError> RecordingWriter::close() {
   for (OutputFile* f : {&can_, &accel_, &gnss_, &weather_}) {

@@ -108,13 +108,17 @@ class JsonParser {
       if (pos_ >= text_.size()) break;
       const char e = text_[pos_++];
       switch (e) {
-        case '"': case '\\': case '/': out.push_back(e); break;
+        case '"':
+        case '\\':
+        case '/': out.push_back(e); break;
         case 'b': out.push_back('\b'); break;
         case 'f': out.push_back('\f'); break;
         case 'n': out.push_back('\n'); break;
         case 'r': out.push_back('\r'); break;
         case 't': out.push_back('\t'); break;
-        case 'u': if (!unicode(out)) return false; break;
+        case 'u':
+          if (!unicode(out)) return false;
+          break;
         default: return fail("", std::string("unknown escape \\") + e + " in a string");
       }
     }
@@ -123,7 +127,8 @@ class JsonParser {
 
   bool unicode(std::string& out) {
     unsigned code = 0;
-    if (pos_ + 4 > text_.size() || std::from_chars(text_.data() + pos_, text_.data() + pos_ + 4, code, 16).ptr != text_.data() + pos_ + 4) {
+    if (pos_ + 4 > text_.size() ||
+        std::from_chars(text_.data() + pos_, text_.data() + pos_ + 4, code, 16).ptr != text_.data() + pos_ + 4) {
       return fail("", "\\u needs four hex digits");
     }
     pos_ += 4;

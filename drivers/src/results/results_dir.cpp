@@ -57,7 +57,8 @@ Parsed<NumberTable> NumberTable::read(const std::string& path, std::span<const s
       continue;
     }
     if (fields.size() != t.columns_.size()) {
-      return ParseError{path, number, "", std::to_string(fields.size()) + " fields where the header names " + std::to_string(t.columns_.size())};
+      return ParseError{path, number, "",
+                        std::to_string(fields.size()) + " fields where the header names " + std::to_string(t.columns_.size())};
     }
     for (std::size_t c = 0; c < fields.size(); ++c) {
       double v = std::nan("");

@@ -42,7 +42,8 @@ Parsed<std::map<std::string, double>> read_truth_energy(const std::string& path)
   if (section == nullptr) return energy;
   const detail::TomlFields f(path);
   try {
-    for (const auto& [key, node] : *section) energy[std::string(key.str())] = f.required_number(*section, key.str(), "fuel_breakdown.");
+    for (const auto& [key, node] : *section)
+      energy[std::string(key.str())] = f.required_number(*section, key.str(), "fuel_breakdown.");
   } catch (const detail::TomlFailure& e) {
     return e.error;
   }

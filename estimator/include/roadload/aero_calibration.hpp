@@ -24,8 +24,7 @@ inline constexpr double kCdaStep_m2 = 0.5;
 // Runs `analyze` (a whole drive through a DriveAnalyzer with the given configuration) the three
 // ways. `base` carries the engine-loss calibration, without which the two drives' flywheel torques
 // carry EEC3's rounding at two engine speeds, and that would be fitted as drag.
-AeroDrive analyse_for_aero(const AnalyzerConfig& base,
-                           const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze);
+AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze);
 
 struct AeroCalibration {
   double cda_m2 = 0, sigma_m2 = 0;

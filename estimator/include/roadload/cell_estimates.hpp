@@ -30,8 +30,8 @@ struct CellTally {
 };
 
 struct CellLimits {
-  double weight_n = 0;       // the truck's weight that CRR is a coefficient of
-  double interval_z = 0;     // of the two-sided interval
+  double weight_n = 0;          // the truck's weight that CRR is a coefficient of
+  double interval_z = 0;        // of the two-sided interval
   double identified_sigma = 0;  // a larger sigma is not identified
 };
 

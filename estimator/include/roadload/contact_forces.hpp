@@ -30,21 +30,21 @@ namespace roadload {
 
 // One axle as Eq. 2.1 needs it, with the vehicle's suspension for the dissipation (Eq. 2.7-2.8).
 struct AxleContact {
-  std::string name;          // the vehicle's axle name: "front", "drive1", ...
-  double load_kg = 0;        // static axle load
-  double unsprung_kg = 0;    // M_w
-  double sprung_kg = 0;      // M_c = load_kg - unsprung_kg
-  double position_m = 0;     // behind the front axle
+  std::string name;               // the vehicle's axle name: "front", "drive1", ...
+  double load_kg = 0;             // static axle load
+  double unsprung_kg = 0;         // M_w
+  double sprung_kg = 0;           // M_c = load_kg - unsprung_kg
+  double position_m = 0;          // behind the front axle
   std::uint8_t axle_sensor = 0;   // accelerometer on the axle (sensor id of accel.csv)
   std::uint8_t frame_sensor = 0;  // accelerometer on the frame above it, or the nearest one
-  std::string frame_of;      // axle whose frame sensor is used: == name when the axle has its own
-  double frame_ahead_m = 0;  // how far that axle is ahead of this one (a tandem's trailing axle on its leader's frame)
+  std::string frame_of;           // axle whose frame sensor is used: == name when the axle has its own
+  double frame_ahead_m = 0;       // how far that axle is ahead of this one (a tandem's trailing axle on its leader's frame)
   AxleSuspension suspension;
 };
 
 struct AxleLayout {
-  std::vector<AxleContact> axles;   // front to rear, at most kMaxContactAxles
-  std::vector<std::string> skipped; // "trailer2: no accelerometer at 'trailer-axle2-left'" (lenient build only)
+  std::vector<AxleContact> axles;    // front to rear, at most kMaxContactAxles
+  std::vector<std::string> skipped;  // "trailer2: no accelerometer at 'trailer-axle2-left'" (lenient build only)
 };
 
 // What the layout builder reads of a [[sensor]] table entry.
@@ -81,9 +81,9 @@ struct ContactConfig {
   // 3.2 s. Until 1/n drops below the filter's weight the mean is the plain average of the samples
   // so far, so a sensor's offset is gone within a second or two instead of 5 time constants.
   double highpass_hz = 0.05;
-  Seconds warmup{5.0};         // samples this soon after a sensor's (re)start are not accumulated
-  Seconds max_pair_age{0.005}; // axle and frame samples farther apart in time are not paired (6 periods at 1200 Hz)
-  Seconds gap_reset{0.5};      // a sensor silent this long restarts its running mean and warm-up
+  Seconds warmup{5.0};            // samples this soon after a sensor's (re)start are not accumulated
+  Seconds max_pair_age{0.005};    // axle and frame samples farther apart in time are not paired (6 periods at 1200 Hz)
+  Seconds gap_reset{0.5};         // a sensor silent this long restarts its running mean and warm-up
   Seconds max_position_age{2.0};  // a set_cell older than this no longer places the truck
   // A borrowed frame sensor is read frame_ahead_m / speed earlier. Eq. 2.1 is the report's quarter
   // car (Fig. 2.1): one sprung share per axle, moved by that axle's road. A tandem's trailing axle
@@ -111,11 +111,11 @@ struct AxleForceStats {
 };
 
 struct ContactCounters {
-  std::uint64_t paired = 0;        // axle samples that became a force (whether or not in a cell)
-  std::uint64_t no_frame = 0;      // no frame sample yet (or the frame sensor is warming up)
-  std::uint64_t stale_frame = 0;   // no frame sample within max_pair_age of the time read
-  std::uint64_t warming_up = 0;    // the axle sensor itself warming up
-  std::uint64_t no_cell = 0;       // paired, but the truck was in no cell (or its position was stale)
+  std::uint64_t paired = 0;       // axle samples that became a force (whether or not in a cell)
+  std::uint64_t no_frame = 0;     // no frame sample yet (or the frame sensor is warming up)
+  std::uint64_t stale_frame = 0;  // no frame sample within max_pair_age of the time read
+  std::uint64_t warming_up = 0;   // the axle sensor itself warming up
+  std::uint64_t no_cell = 0;      // paired, but the truck was in no cell (or its position was stale)
   // Paired with a borrowed frame undelayed: speed unknown, stale or below min_delay_speed_mps, the
   // delay beyond the frame history kept (kFrameHistory samples), or the frame sensor behind the axle.
   std::uint64_t undelayed = 0;
@@ -176,6 +176,7 @@ class ContactForces {
     double deviation = 0;  // latest z - running mean
   };
   static constexpr std::int16_t kNone = -1;
+
  public:
   // Frame samples kept per borrowed frame sensor: 0.85 s at 1200 Hz, a 1.32 m spread down to 1.6 m/s.
   static constexpr std::size_t kFrameHistory = 1024;
@@ -214,7 +215,7 @@ class ContactForces {
   double cos_grade_ = 1.0;
   double speed_mps_ = 0.0;
   std::vector<History> histories_;  // one per borrowed frame sensor, sized at construction
-  std::vector<Acc> cells_;  // cell_count x axles
+  std::vector<Acc> cells_;          // cell_count x axles
   std::array<Acc, kMaxContactAxles> trip_{};
   std::array<ContactCounters, kMaxContactAxles> counters_{};
   std::array<AxleForce, kMaxContactAxles> latest_{};

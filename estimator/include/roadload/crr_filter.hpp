@@ -43,8 +43,8 @@ struct CrrFilterConfig {
   // sized with CdA and the engine's losses known (docs/estimator.md, "Noise").
   double bounded_aero_force_noise_per_sqrt_hz = 0.0173;
   Seconds bounded_force_correlation{5.0};
-  double unusable_force_noise_n = 20000.0; // while braking or shifting: speed follows the measurements
-  double crr_walk_per_sqrt_s = 3e-4;       // CRR changes from pavement to pavement (no cells known)
+  double unusable_force_noise_n = 20000.0;  // while braking or shifting: speed follows the measurements
+  double crr_walk_per_sqrt_s = 3e-4;        // CRR changes from pavement to pavement (no cells known)
   double cda_walk_per_sqrt_s = 1e-4;
   // Prior until EC1 tells the engine's reference torque: EEC3's rounding at the vehicle's
   // (analyzer_config() sets it).
@@ -57,10 +57,10 @@ struct CrrFilterConfig {
   // The grade's error is considered too: a first-order Gauss-Markov process along the road, its
   // sigma the grade profile's at each place, correlated over the profile's slope window.
   double grade_error_correlation_m = 60.0;
-  double gate_nis = 15.13;                 // chi-square(1) at 0.9999: beyond it a speed is an outlier
+  double gate_nis = 15.13;  // chi-square(1) at 0.9999: beyond it a speed is an outlier
   Nanoseconds max_step{100'000'000};
-  Nanoseconds late_window{500'000'000};    // older measurements are counted and dropped
-  double identified_crr_sigma = 0.0008;    // above this the CRR is reported as not identified
+  Nanoseconds late_window{500'000'000};  // older measurements are counted and dropped
+  double identified_crr_sigma = 0.0008;  // above this the CRR is reported as not identified
 };
 
 struct CrrCounters {

@@ -36,7 +36,7 @@ struct AxleLoad {
 
 struct AnalyzerConfig {
   CrrFilterConfig filter;
-  std::vector<AxleLoad> axles;           // analyzer_config() takes them from the vehicle
+  std::vector<AxleLoad> axles;  // analyzer_config() takes them from the vehicle
   // With cells known, CRR is a pavement's: nearly constant within a cell (this walk replaces the
   // filter's), free to jump as each axle rolls onto the next pavement by this much (one sigma,
   // the spread of Table 6.3).
@@ -47,10 +47,10 @@ struct AnalyzerConfig {
   // CCVS1 rounds to 1/256 km/h, 0.00031 m/s if each rounding were independent; a speed moving less
   // than a step between ticks rounds alike, and 0.0002 gives NIS near 1 on the simulated drives.
   double wheel_speed_sigma_mps = 0.0002;
-  double antenna_behind_front_m = 0;    // GNSS antenna behind the front axle
+  double antenna_behind_front_m = 0;  // GNSS antenna behind the front axle
   double cg_behind_front_m = 0;
-  double max_gnss_offset_m = 30.0;      // fixes farther from the route are not on it
-  double interval_z = 1.645;            // 90 % two-sided
+  double max_gnss_offset_m = 30.0;        // fixes farther from the route are not on it
+  double interval_z = 1.645;              // 90 % two-sided
   double survey_elevation_sigma_m = 0.0;  // the route survey's height error (0: taken as exact)
   // The road's roughness, which ripples the speed (road_roughness.hpp), where a cell states none:
   // agencies measure IRI; 2.0 m/km is a fair highway's, and route files give their own.

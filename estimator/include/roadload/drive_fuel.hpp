@@ -13,9 +13,9 @@ namespace roadload {
 class DriveFuel {
  public:
   struct Interval {
-    PowerInterval power;     // its resistances are filled in by finish()
-    std::size_t step = 0;    // the smoother step of the estimate at its end
-    int cell = -1;           // under the centre of gravity at its end; -1 off the cells
+    PowerInterval power;   // its resistances are filled in by finish()
+    std::size_t step = 0;  // the smoother step of the estimate at its end
+    int cell = -1;         // under the centre of gravity at its end; -1 off the cells
     double air_density_kgpm3 = 0, headwind_mps = 0, grade_rad = 0;
   };
 

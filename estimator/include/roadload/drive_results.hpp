@@ -19,11 +19,11 @@ struct LiveEstimate {
   CaptureTime t{};
   bool started = false;
   double speed_mps = 0;
-  double s_front_m = 0;     // along the route
-  int cell = -1;            // index of the cell under the centre of gravity; -1 off the cells
+  double s_front_m = 0;  // along the route
+  int cell = -1;         // index of the cell under the centre of gravity; -1 off the cells
   double crr = 0, crr_lo = 0, crr_hi = 0;
   bool identified = false;
-  bool usable = false;      // the last tick entered the force balance
+  bool usable = false;  // the last tick entered the force balance
 };
 
 struct CellResult {
@@ -32,11 +32,11 @@ struct CellResult {
   std::size_t samples = 0;  // usable filter ticks with every axle in the cell (the centre of gravity if it is shorter than the truck)
   double crr = 0, crr_sigma = 0, crr_lo = 0, crr_hi = 0;
   bool identified = false;
-  std::string reason;       // why not, when not
+  std::string reason;  // why not, when not
   double speed_mps = 0;
-  double roll_force_n = 0;  // CRR x weight
-  double weight_n = 0;      // the truck's weight that CRR is a coefficient of
-  FuelBreakdown fuel;       // over the time the centre of gravity was in the cell
+  double roll_force_n = 0;              // CRR x weight
+  double weight_n = 0;                  // the truck's weight that CRR is a coefficient of
+  FuelBreakdown fuel;                   // over the time the centre of gravity was in the cell
   std::vector<AxleForceStats> contact;  // per axle of the attached ContactForces' layout (Eq. 2.1)
 };
 

@@ -16,21 +16,21 @@ namespace roadload {
 
 enum class Quantity : std::size_t {
   engine_speed_rpm,
-  actual_torque_pct,       // EEC1 SPN 513 + the SPN 4154 fraction
-  friction_torque_pct,     // EEC3 SPN 514
-  parasitic_torque_pct,    // EEC3 SPN 2978
-  reference_torque_nm,     // EC1 SPN 544
-  wheel_speed_mps,         // CCVS1 SPN 84
-  gear_ratio,              // ETC2 SPN 526
-  current_gear,            // ETC2 SPN 523
-  brake_switch,            // CCVS1 SPN 597
-  clutch_switch,           // CCVS1 SPN 598
-  driveline_engaged,       // ETC1 SPN 560
-  shift_in_process,        // ETC1 SPN 574
-  ambient_temp_c,          // AMB SPN 171
-  pressure_pa,             // AMB SPN 108
-  fuel_rate_lph,           // LFE1 SPN 183
-  fan_speed_rpm,           // FD1 SPN 1639
+  actual_torque_pct,     // EEC1 SPN 513 + the SPN 4154 fraction
+  friction_torque_pct,   // EEC3 SPN 514
+  parasitic_torque_pct,  // EEC3 SPN 2978
+  reference_torque_nm,   // EC1 SPN 544
+  wheel_speed_mps,       // CCVS1 SPN 84
+  gear_ratio,            // ETC2 SPN 526
+  current_gear,          // ETC2 SPN 523
+  brake_switch,          // CCVS1 SPN 597
+  clutch_switch,         // CCVS1 SPN 598
+  driveline_engaged,     // ETC1 SPN 560
+  shift_in_process,      // ETC1 SPN 574
+  ambient_temp_c,        // AMB SPN 171
+  pressure_pa,           // AMB SPN 108
+  fuel_rate_lph,         // LFE1 SPN 183
+  fan_speed_rpm,         // FD1 SPN 1639
   count
 };
 inline constexpr std::size_t kQuantityCount = static_cast<std::size_t>(Quantity::count);
@@ -94,12 +94,12 @@ enum class Unusable : std::uint8_t {
   none,
   no_reference_torque,  // EC1 never received: percent torque has no scale
   no_torque,
-  no_gear,              // neither ETC2 ratio nor engine over wheel speed
+  no_gear,  // neither ETC2 ratio nor engine over wheel speed
   braking,
-  declutched,           // shifting or clutch open
-  stale,                // inputs older than the staleness limit
-  no_elevation,         // the route's survey has no elevation here: no grade
-  uncalibrated_rpm,     // an engine-loss calibration is given, but not for this engine speed
+  declutched,        // shifting or clutch open
+  stale,             // inputs older than the staleness limit
+  no_elevation,      // the route's survey has no elevation here: no grade
+  uncalibrated_rpm,  // an engine-loss calibration is given, but not for this engine speed
   count
 };
 inline constexpr std::size_t kUnusableCount = static_cast<std::size_t>(Unusable::count);

@@ -17,23 +17,23 @@
 namespace roadload {
 
 struct EngineLossCalibrationConfig {
-  double steady_band_rpm = 10;     // a hold ends when the speed leaves its first reading by more
-  Seconds settle{3};               // the governor's approach, left out of each hold
-  Seconds tail{0.5};               // and the start of the next approach, before it leaves the band
-  Seconds min_hold{5};             // shorter holds (after settling) give no point
-  Seconds max_gap{1};              // a longer silence ends a hold
-  double max_speed_mps = 0.1;      // standing still
+  double steady_band_rpm = 10;  // a hold ends when the speed leaves its first reading by more
+  Seconds settle{3};            // the governor's approach, left out of each hold
+  Seconds tail{0.5};            // and the start of the next approach, before it leaves the band
+  Seconds min_hold{5};          // shorter holds (after settling) give no point
+  Seconds max_gap{1};           // a longer silence ends a hold
+  double max_speed_mps = 0.1;   // standing still
 };
 
 // One reading of the engine, in N m at the crankshaft.
 struct EngineReading {
   CaptureTime t{};
   double rpm = 0;
-  double indicated_nm = 0;     // EEC1 actual torque
-  double eec3_loss_nm = 0;     // EEC3 friction + parasitic
-  double eec3_friction_nm = 0; // EEC3 friction alone
-  double resolution_nm = 0;    // one step of the indicated torque: 1/8 % or 1 % of the reference
-  bool standing = false;       // still, in neutral or declutched
+  double indicated_nm = 0;      // EEC1 actual torque
+  double eec3_loss_nm = 0;      // EEC3 friction + parasitic
+  double eec3_friction_nm = 0;  // EEC3 friction alone
+  double resolution_nm = 0;     // one step of the indicated torque: 1/8 % or 1 % of the reference
+  bool standing = false;        // still, in neutral or declutched
 };
 
 // One hold: its point, and what EEC3 said of friction and parasitic losses there, for comparison.

@@ -22,8 +22,8 @@ struct PowerInterval {
   double fuel_rate_lph = 0;
   double engine_speed_rpm = 0;
   double indicated_nm = 0, friction_nm = 0, parasitic_nm = 0;  // J1939's engine torques
-  bool engaged = false;         // the flywheel drives the wheels (not shifting, clutch closed)
-  double tractive_n = 0;        // at the wheels, from the flywheel torque
+  bool engaged = false;                                        // the flywheel drives the wheels (not shifting, clutch closed)
+  double tractive_n = 0;                                       // at the wheels, from the flywheel torque
   double speed_from_mps = 0, speed_to_mps = 0;
   double effective_mass_kg = 0;
   double aero_n = 0, rolling_n = 0, grade_n = 0;
@@ -35,8 +35,8 @@ struct PowerInterval {
 
 struct FuelBreakdown {
   std::array<double, kFuelUseCount> energy_j{};
-  double fuel_l = 0;          // measured
-  double unsplit_l = 0;       // of it, burnt while the engine's torques could not be read
+  double fuel_l = 0;     // measured
+  double unsplit_l = 0;  // of it, burnt while the engine's torques could not be read
   double distance_m = 0;
   double time_s = 0;
 

@@ -28,8 +28,8 @@ namespace roadload {
 
 // Needs bin_m > 0 and base_m >= bin_m (three bins to a slope); `roadload grade` checks both.
 struct GradeConfig {
-  double bin_m = 10.0;   // a second at 30 mph: several fixes per pass and bin at 10 Hz
-  double base_m = 30.0;  // slope over +-30 m, as RouteGeometry: shorter bases amplify height noise
+  double bin_m = 10.0;         // a second at 30 mph: several fixes per pass and bin at 10 Hz
+  double base_m = 30.0;        // slope over +-30 m, as RouteGeometry: shorter bases amplify height noise
   std::size_t min_passes = 2;  // one pass has no scatter, hence no standard error
   double max_offset_m = 15.0;  // a few lanes from the surveyed line: farther is another road
   double max_hdop = 5.0;       // beyond this the height is worse than the grade it should give
@@ -47,13 +47,13 @@ struct GnssTrack {
 };
 
 struct GradeBin {
-  double s_m = 0;                   // bin centre along the route
-  double elevation_m = 0;           // ellipsoidal height of the road; NaN without data
-  double elevation_sigma_m = 0;     // standard error; NaN with fewer than two passes
-  double grade_rad = 0;             // NaN with fewer than min_passes passes
-  double grade_sigma_rad = 0;       // standard error of grade_rad
-  std::size_t passes = 0;           // passes in the grade (0 for a survey: not a drive)
-  std::size_t elevation_passes = 0; // passes with fixes in this bin
+  double s_m = 0;                    // bin centre along the route
+  double elevation_m = 0;            // ellipsoidal height of the road; NaN without data
+  double elevation_sigma_m = 0;      // standard error; NaN with fewer than two passes
+  double grade_rad = 0;              // NaN with fewer than min_passes passes
+  double grade_sigma_rad = 0;        // standard error of grade_rad
+  std::size_t passes = 0;            // passes in the grade (0 for a survey: not a drive)
+  std::size_t elevation_passes = 0;  // passes with fixes in this bin
 };
 
 struct GnssFixCounts {
@@ -69,8 +69,7 @@ class GradeProfile {
   // The survey's own grade: central difference over +-base (RouteGeometry's) with the two end
   // heights' independent errors of `survey_sigma_m` each.
   static GradeProfile from_survey(const RouteGeometry& route, double survey_sigma_m, const GradeConfig& cfg = {});
-  static GradeProfile from_gnss(const RouteGeometry& route, std::span<const GnssTrack> tracks,
-                                const GradeConfig& cfg = {});
+  static GradeProfile from_gnss(const RouteGeometry& route, std::span<const GnssTrack> tracks, const GradeConfig& cfg = {});
   // A profile written earlier (`roadload grade`): nothing when the bins are not this route's
   // bins at their own spacing (another route, or edited by hand).
   static std::optional<GradeProfile> from_bins(double route_length_m, std::vector<GradeBin> bins);

@@ -21,8 +21,8 @@ namespace roadload {
 
 struct VibrationSensor {
   std::uint8_t id = 0;
-  std::string name;   // TLF1 ...
-  double rate_hz = 0; // nominal output rate
+  std::string name;    // TLF1 ...
+  double rate_hz = 0;  // nominal output rate
 };
 
 struct VibrationConfig {
@@ -34,11 +34,11 @@ struct VibrationConfig {
 
 // Summed over the axles (the simulator's truth sums them the same way).
 struct DynamicPower {
-  double damper_w = 0;         // Eq. 2.8 on the relative velocity
-  double damper_accel_w = 0;   // Eq. 2.8 on the relative acceleration's periodogram (reads high)
-  double tire_w = 0;           // on the tire's deflection rate, from the contact force
-  double tire_eq27_w = 0;      // Eq. 2.7: the axle's absolute velocity
-  double segments = 0;         // fewest (fractional) segments of any axle: 0 when nothing was measured
+  double damper_w = 0;        // Eq. 2.8 on the relative velocity
+  double damper_accel_w = 0;  // Eq. 2.8 on the relative acceleration's periodogram (reads high)
+  double tire_w = 0;          // on the tire's deflection rate, from the contact force
+  double tire_eq27_w = 0;     // Eq. 2.7: the axle's absolute velocity
+  double segments = 0;        // fewest (fractional) segments of any axle: 0 when nothing was measured
   double total_w() const { return damper_w + tire_w; }
 };
 

@@ -21,8 +21,8 @@ TruckModel truck_model(const Vehicle& v) {
   return m;
 }
 
-Resistances resistances(double mass_kg, double crr, double cda_m2, double air_density_kgpm3, double airspeed_mps,
-                        double grade_rad, double grade_error_rad) {
+Resistances resistances(double mass_kg, double crr, double cda_m2, double air_density_kgpm3, double airspeed_mps, double grade_rad,
+                        double grade_error_rad) {
   const double weight = mass_kg * kGravity_mps2;
   const double half_rho = 0.5 * air_density_kgpm3;
   Resistances r;

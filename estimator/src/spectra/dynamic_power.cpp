@@ -24,16 +24,14 @@ double dashpot_power_w(double damping_nspm, std::span<const double> accel_densit
   return damping_nspm * integrate(accel_density, bin_hz, band, [](double w) { return 1.0 / (w * w); });
 }
 
-double dashpot_velocity_power_w(double damping_nspm, std::span<const double> velocity_density, double bin_hz,
-                                PowerBand band) {
+double dashpot_velocity_power_w(double damping_nspm, std::span<const double> velocity_density, double bin_hz, PowerBand band) {
   return damping_nspm * integrate(velocity_density, bin_hz, band, [](double) { return 1.0; });
 }
 
-double tire_deflection_power_w(double c_tire_nspm, double k_tire_npm, std::span<const double> force_density,
-                               double bin_hz, PowerBand band) {
-  return c_tire_nspm * integrate(force_density, bin_hz, band, [&](double w) {
-           return w * w / (k_tire_npm * k_tire_npm + w * w * c_tire_nspm * c_tire_nspm);
-         });
+double tire_deflection_power_w(double c_tire_nspm, double k_tire_npm, std::span<const double> force_density, double bin_hz,
+                               PowerBand band) {
+  return c_tire_nspm * integrate(force_density, bin_hz, band,
+                                 [&](double w) { return w * w / (k_tire_npm * k_tire_npm + w * w * c_tire_nspm * c_tire_nspm); });
 }
 
 AnnualCost annual_cost(double power_w, const Duty& duty, double diesel_energy_jpl) {

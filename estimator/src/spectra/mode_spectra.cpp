@@ -5,8 +5,8 @@
 
 namespace roadload::spectra {
 
-ModeSpectra::ModeSpectra(std::vector<ModeSensor> sensors, std::vector<int> cell_group, std::size_t group_count,
-                         double grid_hz, ModeConfig config)
+ModeSpectra::ModeSpectra(std::vector<ModeSensor> sensors, std::vector<int> cell_group, std::size_t group_count, double grid_hz,
+                         ModeConfig config)
     : sensors_(std::move(sensors)),
       cell_group_(std::move(cell_group)),
       group_count_(group_count),

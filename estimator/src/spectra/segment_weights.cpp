@@ -10,8 +10,7 @@ SegmentWeights::SegmentWeights(const std::vector<double>& window) : cumulative_(
   for (std::size_t j = 0; j < window.size(); ++j) cumulative_[j + 1] = cumulative_[j] + window[j] * window[j];
 }
 
-SegmentShares SegmentWeights::shares(const PlacementHistory& h, std::size_t axle, CaptureTime t0,
-                                     std::int64_t period_ns) const {
+SegmentShares SegmentWeights::shares(const PlacementHistory& h, std::size_t axle, CaptureTime t0, std::int64_t period_ns) const {
   SegmentShares out;
   const auto n = static_cast<std::int64_t>(cumulative_.size() - 1);
   const double total = cumulative_.back();

@@ -67,9 +67,8 @@ void SuspensionSpectra::take(const SensorGrid& grid, const PlacementHistory& his
     }
     const SegmentShares shares = weights_.shares(history, a, t0, period);
     const auto u = static_cast<std::size_t>(ax.axle_slot), f = static_cast<std::size_t>(ax.frame_slot);
-    const double tau = (ax.frame_ahead_m > 0 && shares.speed_mps >= config_.min_delay_speed_mps)
-                           ? ax.frame_ahead_m / shares.speed_mps
-                           : 0.0;
+    const double tau = (ax.frame_ahead_m > 0 && shares.speed_mps >= config_.min_delay_speed_mps) ? ax.frame_ahead_m / shares.speed_mps
+                                                                                                 : 0.0;
     delay(slot_spectrum_[f], tau, delayed_);
     delay(slot_velocity_[f], tau, delayed_velocity_);
     ++counters_.axle_segments;
@@ -89,10 +88,11 @@ AxlePower SuspensionSpectra::cell_power(std::size_t cell, std::size_t axle) cons
   const AxlePower own = power(cell_[cell * axles_.size() + axle], axle);
   const CellLeak& k = leaks_.leak(cell, axle);
   std::array<AxlePower, CellLeak::kNeighbours> beside;
-  for (std::size_t j = 0; j < k.count; ++j) beside[j] = power(cell_[static_cast<std::size_t>(k.neighbour[j]) * axles_.size() + axle], axle);
+  for (std::size_t j = 0; j < k.count; ++j)
+    beside[j] = power(cell_[static_cast<std::size_t>(k.neighbour[j]) * axles_.size() + axle], axle);
   AxlePower p = own;
-  for (double AxlePower::*field : {&AxlePower::damper_w, &AxlePower::damper_accel_w, &AxlePower::tire_eq27_w,
-                                   &AxlePower::tire_deflection_w}) {
+  for (double AxlePower::*field :
+       {&AxlePower::damper_w, &AxlePower::damper_accel_w, &AxlePower::tire_eq27_w, &AxlePower::tire_deflection_w}) {
     p.*field = unblur(k, own.*field, own.segments, [&](std::size_t j) { return beside[j].*field; });
   }
   return p;
@@ -108,8 +108,7 @@ void SuspensionSpectra::clear_window() {
   }
 }
 
-void SuspensionSpectra::delay(std::span<const std::complex<double>> in, double tau_s,
-                              std::span<std::complex<double>> out) const {
+void SuspensionSpectra::delay(std::span<const std::complex<double>> in, double tau_s, std::span<std::complex<double>> out) const {
   const double step = -2.0 * std::numbers::pi * bin_hz(transform_.config()) * tau_s;
   for (std::size_t k = 0; k < in.size(); ++k) out[k] = in[k] * std::polar(1.0, step * static_cast<double>(k));
 }

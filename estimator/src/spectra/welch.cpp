@@ -48,12 +48,9 @@ void SpectralSum::add(std::span<const std::complex<double>> x) {
   segments_ += 1;
 }
 
-void SpectralSum::add(std::span<const std::complex<double>> x, std::span<const std::complex<double>> y) {
-  add_scaled(x, y, 1.0);
-}
+void SpectralSum::add(std::span<const std::complex<double>> x, std::span<const std::complex<double>> y) { add_scaled(x, y, 1.0); }
 
-void SpectralSum::add_scaled(std::span<const std::complex<double>> x, std::span<const std::complex<double>> y,
-                             double weight) {
+void SpectralSum::add_scaled(std::span<const std::complex<double>> x, std::span<const std::complex<double>> y, double weight) {
   for (std::size_t k = 0; k < sum_.size(); ++k) sum_[k] += weight * std::conj(x[k]) * y[k];
   segments_ += weight;
 }

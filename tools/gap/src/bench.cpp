@@ -45,8 +45,7 @@ const char* unobservable(sim::Effect e) {
     case sim::Effect::fan_engagement:
       return "random episodes: the library's realisation does not match the drive's cell by cell, and no feature "
              "summarises the episodes independently of when they happen";
-    default:
-      return nullptr;
+    default: return nullptr;
   }
 }
 
@@ -108,8 +107,8 @@ std::vector<BenchCase> draw_cases(const BenchPlan& plan, const BenchDay& day) {
   return cases;
 }
 
-CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelLibrary>& libraries,
-                     const j1939::Database& db, const GapOptions& options) {
+CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelLibrary>& libraries, const j1939::Database& db,
+                     const GapOptions& options) {
   const std::vector<RealRun> runs = drive(c, day, db, options.jobs);
   const std::vector<sim::Scenario> resims = resimulations(runs);
   const ModelLibrary* lib = nullptr;

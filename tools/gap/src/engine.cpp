@@ -74,22 +74,20 @@ void say(const GapOptions& o, const std::string& line) {
 
 void add_candidate(sim::Scenario& s, sim::Effect e, double magnitude) {
   switch (e) {
-    case sim::Effect::mass_error:
-      s.load_scale /= 1.0 + magnitude;
-      return;
+    case sim::Effect::mass_error: s.load_scale /= 1.0 + magnitude; return;
     case sim::Effect::air_density_error:
       // The simulator's station reads warm by d and 150 Pa per degree low (docs/simulator.md).
       s.weather.air_temp_c -= magnitude;
       s.weather.pressure_pa += 150.0 * magnitude;
       return;
-    default:
-      s.effects.set(e, magnitude);
+    default: s.effects.set(e, magnitude);
   }
 }
 
 std::vector<RecordedRun> simulate_all(const std::vector<SimTask>& tasks, const j1939::Database& db, unsigned jobs) {
   std::vector<RecordedRun> out(tasks.size());
-  parallel_for(tasks.size(), jobs, [&](std::size_t i) { out[i] = simulate_run(tasks[i].scenario, tasks[i].seed, db, *tasks[i].layout); });
+  parallel_for(tasks.size(), jobs,
+               [&](std::size_t i) { out[i] = simulate_run(tasks[i].scenario, tasks[i].seed, db, *tasks[i].layout); });
   return out;
 }
 
@@ -146,7 +144,8 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
     add_all([&](sim::Scenario& s) { add_candidate(s, info.id, sp.m1); }, kBaselineSeed);
     add_all([&](sim::Scenario& s) { add_candidate(s, info.id, sp.m2); }, kBaselineSeed);
   }
-  say(options, "library: " + std::to_string(tasks.size()) + " simulations (baseline, the noise drives' re-simulations, 2 per effect)");
+  say(options,
+      "library: " + std::to_string(tasks.size()) + " simulations (baseline, the noise drives' re-simulations, 2 per effect)");
   const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs);
   auto group = [&](std::size_t g) {
     return std::vector<RecordedRun>(sims.begin() + static_cast<std::ptrdiff_t>(g * n_runs),
@@ -241,8 +240,7 @@ Eigen::VectorXd with_chosen(const ModelLibrary& lib, const std::vector<sim::Scen
 void held_out(GapResult& g, const Eigen::VectorXd& after_z);
 }  // namespace
 
-GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db,
-                  const GapOptions& options) {
+GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options) {
   const std::vector<sim::Scenario> resims = resimulations(runs);
   std::vector<SimTask> tasks;
   for (std::size_t r = 0; r < runs.size(); ++r) tasks.push_back({resims[r], kBaselineSeed, &lib.layouts[r]});
@@ -301,7 +299,8 @@ std::vector<Candidate> candidates(const ModelLibrary& lib, const Eigen::VectorXd
       d1 = (yaw - model).cwiseQuotient(lib.sigma);
       d2 = d1 * ((resp.m2 - resp.base) / (resp.m1 - resp.base));
     }
-    Candidate c = Candidate::from_two(std::string(info.name), std::string(info.unit), resp.base, sp.lo, sp.hi, resp.m1, d1, resp.m2, d2);
+    Candidate c = Candidate::from_two(std::string(info.name), std::string(info.unit), resp.base, sp.lo, sp.hi, resp.m1, d1, resp.m2,
+                                      d2);
     c.realistic_lo = info.min;
     c.realistic_hi = info.max;
     out.push_back(std::move(c));

@@ -183,7 +183,8 @@ void FeatureExtractor::push(const CanFrame& frame) {
       s.acc[static_cast<std::size_t>(bin)].torque.add(s.feed.get(Quantity::actual_torque_pct).value / 100.0 * ref.value, second);
     }
   } else if (m->pgn == s.lfe1 && bin >= 0) {
-    if (fresh(Quantity::fuel_rate_lph)) s.acc[static_cast<std::size_t>(bin)].fuel.add(s.feed.get(Quantity::fuel_rate_lph).value, second);
+    if (fresh(Quantity::fuel_rate_lph))
+      s.acc[static_cast<std::size_t>(bin)].fuel.add(s.feed.get(Quantity::fuel_rate_lph).value, second);
   } else if (m->pgn == s.fd1 && bin >= 0 && fresh(Quantity::fan_speed_rpm)) {
     s.fan_sum[static_cast<std::size_t>(bin % 2)] += s.feed.get(Quantity::fan_speed_rpm).value;
     s.fan_n[static_cast<std::size_t>(bin % 2)] += 1;
@@ -287,8 +288,7 @@ std::vector<sim::WindPoint> running_means(std::vector<sim::WindPoint> w, double 
 
 std::string band_name(bool concrete, std::size_t band) {
   char text[64];
-  std::snprintf(text, sizeof text, "%s %g-%g Hz", concrete ? "concrete" : "bituminous", kBandEdgesHz[band],
-                kBandEdgesHz[band + 1]);
+  std::snprintf(text, sizeof text, "%s %g-%g Hz", concrete ? "concrete" : "bituminous", kBandEdgesHz[band], kBandEdgesHz[band + 1]);
   return text;
 }
 

@@ -28,7 +28,8 @@ Parsed<sim::Scenario> nearest_builtin(const RunConditions& c, const std::string&
       best = std::move(s.value());
     }
   }
-  if (!best) return ParseError{recording, 0, recording::kGnssFile, "the drive lies on no built-in route: name the model with --model"};
+  if (!best)
+    return ParseError{recording, 0, recording::kGnssFile, "the drive lies on no built-in route: name the model with --model"};
   return *best;
 }
 
@@ -66,9 +67,8 @@ std::string describe(const RealRun& run) {
   char line[512];
   std::snprintf(line, sizeof line,
                 "run %s: model %s (route %s), %.0f s at %.2f m/s, %.1f C, %.0f Pa, wind %.1f m/s from %.0f deg, mass %.0f kg",
-                run.label.c_str(), run.model.name.c_str(), run.model.route.name.c_str(), c.duration_s, c.mean_speed_mps,
-                c.air_temp_c, c.pressure_pa, c.wind_speed_mps, c.wind_from_deg,
-                mass != run.recorded.meta.vehicle.end() ? mass->second : 0.0);
+                run.label.c_str(), run.model.name.c_str(), run.model.route.name.c_str(), c.duration_s, c.mean_speed_mps, c.air_temp_c,
+                c.pressure_pa, c.wind_speed_mps, c.wind_from_deg, mass != run.recorded.meta.vehicle.end() ? mass->second : 0.0);
   return line;
 }
 

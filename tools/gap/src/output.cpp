@@ -102,8 +102,9 @@ std::string result_json(const GapResult& g, const std::vector<std::string>& run_
       << ", \"sigma\": " << json_number(w.significance) << ", \"worst\": " << results::json_quote(w.worst_where)
       << ", \"worst_z\": " << json_number(w.worst_z) << "}";
   }
-  j << "\n  ],\n  \"residual_before\": " << json_number(g.residual_before) << ",\n  \"residual_after\": "
-    << json_number(g.residual_after) << ",\n  \"held_out_features\": " << g.held_out << ",\n  \"channels\": [";
+  j << "\n  ],\n  \"residual_before\": " << json_number(g.residual_before)
+    << ",\n  \"residual_after\": " << json_number(g.residual_after) << ",\n  \"held_out_features\": " << g.held_out
+    << ",\n  \"channels\": [";
   for (std::size_t i = 0; i < g.channels.size(); ++i) {
     const ChannelResidual& c = g.channels[i];
     j << (i ? "," : "") << "\n    {\"channel\": " << results::json_quote(c.channel) << ", \"features\": " << c.features

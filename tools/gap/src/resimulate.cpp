@@ -1,10 +1,10 @@
 #include "roadload/gap/resimulate.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 #include <array>
+#include <cmath>
 #include <deque>
+#include <limits>
 #include <variant>
 
 #include "roadload/merge.hpp"
@@ -71,7 +71,8 @@ RunLayout layout_for(const sim::RouteDef& route) {
 Parsed<RecordedRun> read_run(const std::string& path, const j1939::Database& db, const RunLayout& layout, const Vehicle& base) {
   auto reader = recording::RecordingReader::open(path);
   if (!reader) return reader.error();
-  if (!reader.value().has_metadata()) return ParseError{path, 0, recording::kMetaFile, "missing: the re-simulation needs the vehicle"};
+  if (!reader.value().has_metadata())
+    return ParseError{path, 0, recording::kMetaFile, "missing: the re-simulation needs the vehicle"};
   RecordedRun run{reader.value().metadata(), {}};
   FeatureExtractor x(db, layout, run.meta, base);
   while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { x.push(s); }, *r);
@@ -108,8 +109,7 @@ sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, c
   return s;
 }
 
-RecordedRun simulate_run(const sim::Scenario& scenario, std::uint64_t seed, const j1939::Database& db,
-                              const RunLayout& layout) {
+RecordedRun simulate_run(const sim::Scenario& scenario, std::uint64_t seed, const j1939::Database& db, const RunLayout& layout) {
   sim::Simulation simulation(scenario, seed, db);
   RecordedRun run{simulation.metadata(), {}};
   FeatureExtractor x(db, layout, run.meta, scenario.vehicle);

@@ -54,14 +54,30 @@ std::vector<std::string> axle_names(const NumberTable& cells) {
 }
 
 Figure crr_per_cell(const NumberTable& cells, const results::Truth* truth) {
-  Chart c{"crr-per-cell", {"pavement cell", false, false}, {"coefficient of rolling resistance", false, false}, cell_ids(cells), false, {}, {}};
-  c.series.push_back({"force balance, 90 % interval", Series::Style::points, {}, column(cells, "crr"), column(cells, "crr_lo"), column(cells, "crr_hi")});
+  Chart c{"crr-per-cell",
+          {"pavement cell", false, false},
+          {"coefficient of rolling resistance", false, false},
+          cell_ids(cells),
+          false,
+          {},
+          {}};
+  c.series.push_back({"force balance, 90 % interval",
+                      Series::Style::points,
+                      {},
+                      column(cells, "crr"),
+                      column(cells, "crr_lo"),
+                      column(cells, "crr_hi")});
   const bool tires = cells.column("crr_tire").has_value();
   if (tires) {
-    c.series.push_back({"the tires' own, 90 % interval", Series::Style::points, {}, column(cells, "crr_tire"),
-                        column(cells, "crr_tire_lo"), column(cells, "crr_tire_hi")});
+    c.series.push_back({"the tires' own, 90 % interval",
+                        Series::Style::points,
+                        {},
+                        column(cells, "crr_tire"),
+                        column(cells, "crr_tire_lo"),
+                        column(cells, "crr_tire_hi")});
   }
-  if (truth) c.series.push_back({"simulated truth (the tires')", Series::Style::points, {}, by_cell(c.categories, truth->crr), {}, {}});
+  if (truth)
+    c.series.push_back({"simulated truth (the tires')", Series::Style::points, {}, by_cell(c.categories, truth->crr), {}, {}});
   return {std::move(c), tires ? "CRR per cell with its 90 % interval, in route order (seed report Figure 6.2, Table 6.3): the force "
                                 "balance's, all that resists rolling, and the tires' own, less what the dampers and tires dissipate "
                                 "of the road's roughness (the accelerometers' dynamic rolling resistance)."
@@ -71,9 +87,11 @@ Figure crr_per_cell(const NumberTable& cells, const results::Truth* truth) {
 Figure rolling_fuel_per_cell(const NumberTable& cells) {
   Chart c{"rolling-fuel-per-cell", {"pavement cell", false, false}, {"diesel (L)", false, true}, cell_ids(cells), false, {}, {}};
   c.series.push_back({"rolling resistance", Series::Style::bars, {}, column(cells, "rolling_l"), {}, {}});
-  if (cells.column("dynamic_l")) c.series.push_back({"of it dynamic (dampers and tires)", Series::Style::bars, {}, column(cells, "dynamic_l"), {}, {}});
-  return {std::move(c), "Fuel spent on rolling resistance in each cell, and the part the accelerometers attribute to the dampers "
-                        "and tires (seed report Figure 6.3)."};
+  if (cells.column("dynamic_l"))
+    c.series.push_back({"of it dynamic (dampers and tires)", Series::Style::bars, {}, column(cells, "dynamic_l"), {}, {}});
+  return {std::move(c),
+          "Fuel spent on rolling resistance in each cell, and the part the accelerometers attribute to the dampers "
+          "and tires (seed report Figure 6.3)."};
 }
 
 Figure fuel_breakdown_per_cell(const NumberTable& cells) {
@@ -81,8 +99,9 @@ Figure fuel_breakdown_per_cell(const NumberTable& cells) {
   for (std::size_t i = 0; i < kFuelUseCount; ++i) {
     c.series.push_back({to_string(use(i)), Series::Style::bars, {}, column(cells, std::string(to_string(use(i))) + "_l"), {}, {}});
   }
-  return {std::move(c), "Where each cell's fuel went, by force (engine and driveline losses, accessories, aero, rolling, grade, "
-                        "acceleration, braking)."};
+  return {std::move(c),
+          "Where each cell's fuel went, by force (engine and driveline losses, accessories, aero, rolling, grade, "
+          "acceleration, braking)."};
 }
 
 Figure trip_fuel_breakdown(const results::JsonValue& trip, const results::Truth* truth) {
@@ -107,7 +126,13 @@ Figure trip_fuel_breakdown(const results::JsonValue& trip, const results::Truth*
 std::optional<Figure> contact_forces(const NumberTable& cells) {
   const std::vector<std::string> axles = axle_names(cells);
   if (axles.empty()) return std::nullopt;
-  Chart c{"contact-forces", {"pavement cell", false, false}, {"contact force (kN), mean \u00b1 1 sd", false, false}, cell_ids(cells), false, {}, {}};
+  Chart c{"contact-forces",
+          {"pavement cell", false, false},
+          {"contact force (kN), mean \u00b1 1 sd", false, false},
+          cell_ids(cells),
+          false,
+          {},
+          {}};
   for (const std::string& a : axles) {
     Series s{a, Series::Style::points, {}, column(cells, "fz_" + a + "_mean_n"), {}, {}};
     const std::vector<double> sd = column(cells, "fz_" + a + "_std_n");
@@ -118,8 +143,9 @@ std::optional<Figure> contact_forces(const NumberTable& cells) {
     }
     c.series.push_back(std::move(s));
   }
-  return Figure{std::move(c), "Tire contact force per axle from the accelerometers (Eq. 2.1), mean and standard deviation in each cell "
-                              "(seed report Figure 6.1)."};
+  return Figure{std::move(c),
+                "Tire contact force per axle from the accelerometers (Eq. 2.1), mean and standard deviation in each cell "
+                "(seed report Figure 6.1)."};
 }
 
 std::optional<Figure> dynamic_power_per_cell(const NumberTable& cells, const results::Truth* truth) {
@@ -131,14 +157,20 @@ std::optional<Figure> dynamic_power_per_cell(const NumberTable& cells, const res
     c.series.push_back({"dampers, truth", Series::Style::points, {}, by_cell(c.categories, truth->damper_w), {}, {}});
     c.series.push_back({"tires, truth", Series::Style::points, {}, by_cell(c.categories, truth->tire_w), {}, {}});
   }
-  return Figure{std::move(c), "Power the dampers and tires dissipate in each cell: the dynamic rolling resistance (Eq. 2.7-2.8; "
-                              "seed report Figure 6.9)."};
+  return Figure{std::move(c),
+                "Power the dampers and tires dissipate in each cell: the dynamic rolling resistance (Eq. 2.7-2.8; "
+                "seed report Figure 6.9)."};
 }
 
 Figure spectrum(const results::Spectrum& s, const results::JsonValue& trip) {
   const bool spatial = s.x_name == "cycles_per_m";
-  Chart c{"psd-" + s.group, {spatial ? "wavenumber (cycles/m)" : "frequency (Hz)", true, false},
-          {spatial ? "PSD ((m/s\u00b2)\u00b2 per cycle/m)" : "PSD ((m/s\u00b2)\u00b2/Hz)", true, false}, {}, false, {}, {}};
+  Chart c{"psd-" + s.group,
+          {spatial ? "wavenumber (cycles/m)" : "frequency (Hz)", true, false},
+          {spatial ? "PSD ((m/s\u00b2)\u00b2 per cycle/m)" : "PSD ((m/s\u00b2)\u00b2/Hz)", true, false},
+          {},
+          false,
+          {},
+          {}};
   for (std::size_t k = 0; k < s.sensors.size(); ++k) {
     c.series.push_back({s.sensors[k], Series::Style::line, s.x, s.psd[k], {}, {}});
   }
@@ -165,7 +197,8 @@ Figure spectrum(const results::Spectrum& s, const results::JsonValue& trip) {
     const results::JsonValue* found = group->find("joint_line") ? group->find("joint_line")->find("found") : nullptr;
     if (found && found->boolean() && joint_hz > 0) {
       const double panel = group->number_at("joint_line.panel_m").value_or(kNan);
-      for (int k = 1; k <= 3; ++k) c.markers.push_back({k * joint_hz, k == 1 ? "joints, " + format_number(panel, 3) + " m panels" : "", true});
+      for (int k = 1; k <= 3; ++k)
+        c.markers.push_back({k * joint_hz, k == 1 ? "joints, " + format_number(panel, 3) + " m panels" : "", true});
     }
     caption += " on " + s.group + ", with the vibration modes found and the joint line where one was detected";
   } else {

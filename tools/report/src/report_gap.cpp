@@ -21,7 +21,8 @@ std::string diagnosis(const JsonValue& g) {
   } else if (const JsonValue* effects = g.find("effects")) {
     for (const JsonValue& e : effects->items()) {
       rows.push_back({"effect", text(e.find("name")) + " = " + format_number(number(e, "magnitude"), 4) + " " + text(e.find("unit")) +
-                                    ", 90 % interval " + format_number(number(e, "lo"), 3) + " to " + format_number(number(e, "hi"), 3)});
+                                    ", 90 % interval " + format_number(number(e, "lo"), 3) + " to " +
+                                    format_number(number(e, "hi"), 3)});
     }
   }
   rows.push_back({"held-out residual (RMS z) before", format_number(number(g, "residual_before"), 3)});
@@ -34,9 +35,11 @@ std::string diagnosis(const JsonValue& g) {
     std::vector<std::vector<std::string>> w;
     for (const JsonValue& item : where->items()) {
       w.push_back({text(item.find("run")), text(item.find("channel")), format_number(number(item, "features"), 4),
-                   format_number(number(item, "sigma"), 3), text(item.find("worst")) + " (z " + format_number(number(item, "worst_z"), 2) + ")"});
+                   format_number(number(item, "sigma"), 3),
+                   text(item.find("worst")) + " (z " + format_number(number(item, "worst_z"), 2) + ")"});
     }
-    h += "<p>Where the gap lies, most significant first (sigma: excess chi-square over the noise floor in standard deviations).</p>\n";
+    h +=
+        "<p>Where the gap lies, most significant first (sigma: excess chi-square over the noise floor in standard deviations).</p>\n";
     h += table_html({"drive", "channel", "features", "sigma", "worst place"}, w);
   }
   if (const JsonValue* channels = g.find("channels")) {
@@ -49,8 +52,9 @@ std::string diagnosis(const JsonValue& g) {
       after.y.push_back(number(ch, "after"));
     }
     c.series = {std::move(before), std::move(after)};
-    h += figure_html({std::move(c), "The residual between the drive and its re-simulation on held-out cells, per channel, before and "
-                                    "after the chosen effect is added (1: as close as the noise floor allows)."});
+    h += figure_html({std::move(c),
+                      "The residual between the drive and its re-simulation on held-out cells, per channel, before and "
+                      "after the chosen effect is added (1: as close as the noise floor allows)."});
   }
   return h;
 }
@@ -64,8 +68,8 @@ std::string report_tables(const JsonValue& t) {
   Series after{"with the effect", Series::Style::bars, {}, {}, {}, {}};
   if (const JsonValue* r = t.find("rows")) {
     for (const JsonValue& row : r->items()) {
-      rows.push_back({text(row.find("pavement")), format_number(number(row, "report_w"), 4), format_number(number(row, "before_w"), 4),
-                      format_number(number(row, "after_w"), 4)});
+      rows.push_back({text(row.find("pavement")), format_number(number(row, "report_w"), 4),
+                      format_number(number(row, "before_w"), 4), format_number(number(row, "after_w"), 4)});
       c.categories.push_back(text(row.find("pavement")));
       report.y.push_back(number(row, "report_w"));
       before.y.push_back(number(row, "before_w"));
@@ -77,7 +81,8 @@ std::string report_tables(const JsonValue& t) {
   c.series = {std::move(report), std::move(before), std::move(after)};
   const std::string effect = text(t.find("effect"));
   std::string h = "<p>The seed report's Tables 6.5 and 6.6 against a simulation that knows only each pavement's IRI, and with " +
-                  (effect.empty() ? std::string("no candidate (none reaches the report's Mainline ratio)") : "<b>" + escape_html(effect) + "</b>") +
+                  (effect.empty() ? std::string("no candidate (none reaches the report's Mainline ratio)")
+                                  : "<b>" + escape_html(effect) + "</b>") +
                   " fitted to the Mainline and judged on the highways.</p>\n";
   h += figure_html({std::move(c), "Suspension power by pavement: report, IRI-only simulation, and with the fitted effect."});
   h += table_html({"pavement", "report (W)", "IRI only (W)", "with the effect (W)"}, rows);
@@ -85,8 +90,9 @@ std::string report_tables(const JsonValue& t) {
   if (const JsonValue* cs = t.find("candidates")) {
     for (const JsonValue& cand : cs->items()) {
       const JsonValue* reached = cand.find("reaches_mainline_ratio");
-      cands.push_back({text(cand.find("effect")), reached && reached->boolean() ? "yes" : "no", format_number(number(cand, "magnitude"), 3),
-                       format_number(number(cand, "highway_ratio"), 3), format_number(100 * number(cand, "holdout_error"), 2) + " %"});
+      cands.push_back({text(cand.find("effect")), reached && reached->boolean() ? "yes" : "no",
+                       format_number(number(cand, "magnitude"), 3), format_number(number(cand, "highway_ratio"), 3),
+                       format_number(100 * number(cand, "holdout_error"), 2) + " %"});
     }
   }
   h += table_html({"candidate", "reaches the Mainline ratio", "magnitude", "TH 10 / TH 66 (held out)", "error"}, cands);

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <map>
 
+#include "roadload/fuel_breakdown.hpp"
 #include "roadload/report/html_blocks.hpp"
 #include "roadload/report/report_figures.hpp"
 #include "roadload/report/report_gap.hpp"
-#include "roadload/fuel_breakdown.hpp"
 
 namespace roadload::report {
 namespace {
@@ -22,7 +22,6 @@ constexpr const char* kStyle =
     "h3{font-size:1.05em}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.summary td{text-align:left}"
     ".warn{color:#a00}nav a{margin-right:1em}";
 
-
 double at(const NumberTable& t, std::size_t row, const std::string& column) {
   const auto c = t.column(column);
   return c ? t.at(row, *c) : std::nan("");
@@ -33,8 +32,8 @@ double at(const NumberTable& t, std::size_t row, const std::string& column) {
 std::string cell_table(const NumberTable& cells, const results::Truth* truth) {
   const bool tires = cells.column("crr_tire").has_value();
   const std::string judged = tires ? "crr_tire" : "crr";
-  std::vector<std::string> head = {"cell", "from (m)", "to (m)", "samples", "CRR", "90 % low", "90 % high", "speed (m/s)",
-                                   "rolling force (N)", "rolling fuel (L)"};
+  std::vector<std::string> head = {"cell",     "from (m)",  "to (m)",      "samples",           "CRR",
+                                   "90 % low", "90 % high", "speed (m/s)", "rolling force (N)", "rolling fuel (L)"};
   if (tires) head.insert(head.begin() + 7, {"tires' CRR", "90 % low", "90 % high"});
   const std::size_t truth_at = tires ? 10 : 7;
   if (truth) head.insert(head.begin() + static_cast<std::ptrdiff_t>(truth_at), {"truth", "inside"});
@@ -43,10 +42,15 @@ std::string cell_table(const NumberTable& cells, const results::Truth* truth) {
   const std::vector<std::string> ids = cell_ids(cells);
   const std::size_t reason = *cells.column("reason");
   for (std::size_t r = 0; r < cells.rows(); ++r) {
-    std::vector<std::string> row = {ids[r], format_number(at(cells, r, "start_m"), 6), format_number(at(cells, r, "end_m"), 6),
-                                    format_number(at(cells, r, "samples"), 8), format_number(at(cells, r, "crr"), 4),
-                                    format_number(at(cells, r, "crr_lo"), 4), format_number(at(cells, r, "crr_hi"), 4),
-                                    format_number(at(cells, r, "speed_mps"), 3), format_number(at(cells, r, "roll_force_n"), 4),
+    std::vector<std::string> row = {ids[r],
+                                    format_number(at(cells, r, "start_m"), 6),
+                                    format_number(at(cells, r, "end_m"), 6),
+                                    format_number(at(cells, r, "samples"), 8),
+                                    format_number(at(cells, r, "crr"), 4),
+                                    format_number(at(cells, r, "crr_lo"), 4),
+                                    format_number(at(cells, r, "crr_hi"), 4),
+                                    format_number(at(cells, r, "speed_mps"), 3),
+                                    format_number(at(cells, r, "roll_force_n"), 4),
                                     format_number(at(cells, r, "rolling_l"), 3)};
     if (tires) {
       row.insert(row.begin() + 7, {format_number(at(cells, r, "crr_tire"), 4), format_number(at(cells, r, "crr_tire_lo"), 4),
@@ -57,7 +61,8 @@ std::string cell_table(const NumberTable& cells, const results::Truth* truth) {
       const double t = it == truth->crr.end() ? std::nan("") : it->second;
       const bool inside = t >= at(cells, r, judged + "_lo") && t <= at(cells, r, judged + "_hi");
       const bool judgeable = std::isfinite(t) && std::isfinite(at(cells, r, judged));
-      row.insert(row.begin() + static_cast<std::ptrdiff_t>(truth_at), {format_number(t, 4), judgeable ? (inside ? "yes" : "no") : ""});
+      row.insert(row.begin() + static_cast<std::ptrdiff_t>(truth_at),
+                 {format_number(t, 4), judgeable ? (inside ? "yes" : "no") : ""});
     }
     row.push_back(cells.text(r, reason));
     rows.push_back(std::move(row));
@@ -68,7 +73,8 @@ std::string cell_table(const NumberTable& cells, const results::Truth* truth) {
 std::string trip_fuel_table(const JsonValue& trip) {
   std::vector<std::vector<std::string>> rows;
   double total = 0;
-  for (std::size_t i = 0; i < kFuelUseCount; ++i) total += trip.number_at(std::string("fuel.") + to_string(static_cast<FuelUse>(i)) + "_l").value_or(0);
+  for (std::size_t i = 0; i < kFuelUseCount; ++i)
+    total += trip.number_at(std::string("fuel.") + to_string(static_cast<FuelUse>(i)) + "_l").value_or(0);
   for (std::size_t i = 0; i < kFuelUseCount; ++i) {
     const std::string name = to_string(static_cast<FuelUse>(i));
     const double l = trip.number_at("fuel." + name + "_l").value_or(std::nan(""));
@@ -86,10 +92,11 @@ std::string dynamic_table(const JsonValue& trip) {
   for (const JsonValue& g : groups->items()) {
     const JsonValue* found = g.find("joint_line") ? g.find("joint_line")->find("found") : nullptr;
     const double inventory_m = g.number_at("joint_line.inventory_panel_m").value_or(0);  // 0: no panels (bituminous)
-    rows.push_back({g.find("name") ? g.find("name")->string() : "?", format_number(g.number_at("damper_power_w").value_or(NAN), 4),
-                    format_number(g.number_at("tire_power_w").value_or(NAN), 4), format_number(g.number_at("speed_mps").value_or(NAN), 3),
-                    found && found->boolean() ? format_number(g.number_at("joint_line.panel_m").value_or(NAN), 3) + " m" : "none found",
-                    format_number(inventory_m > 0 ? inventory_m : NAN, 3)});
+    rows.push_back(
+        {g.find("name") ? g.find("name")->string() : "?", format_number(g.number_at("damper_power_w").value_or(NAN), 4),
+         format_number(g.number_at("tire_power_w").value_or(NAN), 4), format_number(g.number_at("speed_mps").value_or(NAN), 3),
+         found && found->boolean() ? format_number(g.number_at("joint_line.panel_m").value_or(NAN), 3) + " m" : "none found",
+         format_number(inventory_m > 0 ? inventory_m : NAN, 3)});
   }
   return table_html({"pavement group", "dampers (W)", "tires (W)", "speed (m/s)", "joint line", "inventory panel (m)"}, rows);
 }
@@ -112,8 +119,9 @@ std::string sync_health(const JsonValue& trip) {
   rows.push_back({"GNSS fixes used", format_number(n("gnss_used"), 8)});
   rows.push_back({"GNSS fixes off the route", format_number(n("gnss_off_route"), 8)});
   rows.push_back({"speed outliers gated", format_number(n("speed_outliers"), 8)});
-  rows.push_back({"mean speed NIS (1 when stamps and model agree)",
-                  format_number(nis, 3) + " \u00b1 " + format_number(band, 2) + (std::abs(nis - 1) > band ? "  \u26a0 outside its 95 % band" : "")});
+  rows.push_back(
+      {"mean speed NIS (1 when stamps and model agree)", format_number(nis, 3) + " \u00b1 " + format_number(band, 2) +
+                                                             (std::abs(nis - 1) > band ? "  \u26a0 outside its 95 % band" : "")});
   rows.push_back({"ticks without a fuel rate", format_number(n("fuel.ticks_without_fuel_rate"), 8)});
   return table_html({"sync and data health", "value"}, rows, "summary");
 }
@@ -127,7 +135,8 @@ std::string summary(const JsonValue& trip, const NumberTable& cells) {
   const std::vector<std::vector<std::string>> rows = {
       {"distance", format_number(n("fuel.distance_m") / 1000, 4) + " km"},
       {"fuel measured", format_number(n("fuel.measured_l"), 4) + " L"},
-      {"trip CRR", format_number(n("crr"), 4) + " \u00b1 " + format_number(n("crr_sigma"), 2) + (identified ? "" : "  (not identifiable from this drive)")},
+      {"trip CRR", format_number(n("crr"), 4) + " \u00b1 " + format_number(n("crr_sigma"), 2) +
+                       (identified ? "" : "  (not identifiable from this drive)")},
       {"CdA", format_number(n("cda_m2"), 4) + " m\u00b2"},
       {"cells with a CRR", std::to_string(estimated) + " of " + std::to_string(cells.rows())},
       {"dynamic rolling resistance", format_number(n("dynamic_rolling.l_per_100km"), 3) + " L/100 km"},
@@ -143,12 +152,14 @@ std::string render_report(const ReportInput& in) {
   std::string body;
   body += "<h1>" + escape_html(in.title) + "</h1>\n<p>Results from <code>" + escape_html(r.dir) + "</code>" +
           (in.truth ? ", beside the simulation's ground truth" : "") + ".</p>\n";
-  body += "<nav><a href=\"#crr\">CRR</a><a href=\"#fuel\">fuel</a><a href=\"#forces\">contact forces</a>"
-          "<a href=\"#dynamic\">dynamic rolling resistance</a><a href=\"#spectra\">spectra</a><a href=\"#health\">sync health</a>";
+  body +=
+      "<nav><a href=\"#crr\">CRR</a><a href=\"#fuel\">fuel</a><a href=\"#forces\">contact forces</a>"
+      "<a href=\"#dynamic\">dynamic rolling resistance</a><a href=\"#spectra\">spectra</a><a href=\"#health\">sync health</a>";
   if (r.gap || r.gap_tables) body += "<a href=\"#gap\">sim-to-real gap</a>";
   body += "</nav>\n";
   body += summary(r.trip, cells);
-  body += "<h2 id=\"crr\">Rolling resistance per cell</h2>\n" + figure_html(crr_per_cell(cells, in.truth)) + cell_table(cells, in.truth);
+  body += "<h2 id=\"crr\">Rolling resistance per cell</h2>\n" + figure_html(crr_per_cell(cells, in.truth)) +
+          cell_table(cells, in.truth);
   body += "<h2 id=\"fuel\">Fuel</h2>\n" + figure_html(rolling_fuel_per_cell(cells)) + figure_html(fuel_breakdown_per_cell(cells));
   body += figure_html(trip_fuel_breakdown(r.trip, in.truth)) + trip_fuel_table(r.trip);
   body += "<h2 id=\"forces\">Contact forces</h2>\n";
@@ -168,8 +179,8 @@ std::string render_report(const ReportInput& in) {
   if (r.spectra.empty()) body += "<p class=\"warn\">No spectra in the results.</p>\n";
   body += "<h2 id=\"health\">Sync health</h2>\n" + sync_health(r.trip);
   body += gap_section(r.gap ? &*r.gap : nullptr, r.gap_tables ? &*r.gap_tables : nullptr);
-  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + escape_html(in.title) + "</title><style>" + kStyle +
-         "</style></head><body>\n" + body + "</body></html>\n";
+  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + escape_html(in.title) + "</title><style>" +
+         kStyle + "</style></head><body>\n" + body + "</body></html>\n";
 }
 
 }  // namespace roadload::report

@@ -130,7 +130,8 @@ class Canvas {
   void axes() {
     out_ += "<g stroke=\"#ddd\">";
     for (double t : ticks(y_.lo, y_.hi, y_.log)) {
-      out_ += "<line x1=\"" + num(kLeft) + "\" x2=\"" + num(kWidth - kRight) + "\" y1=\"" + num(y_(t)) + "\" y2=\"" + num(y_(t)) + "\"/>";
+      out_ += "<line x1=\"" + num(kLeft) + "\" x2=\"" + num(kWidth - kRight) + "\" y1=\"" + num(y_(t)) + "\" y2=\"" + num(y_(t)) +
+              "\"/>";
     }
     out_ += "</g><g fill=\"#333\">";
     for (double t : ticks(y_.lo, y_.hi, y_.log)) out_ += text(kLeft - 4, y_(t) + 4, tick_label(t), "end");
@@ -150,7 +151,8 @@ class Canvas {
     out_ += "</g><rect x=\"" + num(kLeft) + "\" y=\"" + num(kTop) + "\" width=\"" + num(kWidth - kRight - kLeft) + "\" height=\"" +
             num(bottom_ - kTop) + "\" fill=\"none\" stroke=\"#333\"/>";
     if (!y_.log && y_.lo < 0 && y_.hi > 0) {
-      out_ += "<line x1=\"" + num(kLeft) + "\" x2=\"" + num(kWidth - kRight) + "\" y1=\"" + num(y_(0)) + "\" y2=\"" + num(y_(0)) + "\" stroke=\"#333\"/>";
+      out_ += "<line x1=\"" + num(kLeft) + "\" x2=\"" + num(kWidth - kRight) + "\" y1=\"" + num(y_(0)) + "\" y2=\"" + num(y_(0)) +
+              "\" stroke=\"#333\"/>";
     }
   }
 
@@ -208,8 +210,8 @@ class Canvas {
       const double x = c_.stacked ? centre(i) - width / 2 : centre(i) - band() * 0.4 + width * static_cast<double>(index);
       const double y0 = y_(base), y1 = y_(base + sr.y[i]);
       out_ += "<rect class=\"datum\" stroke=\"none\" x=\"" + num(x) + "\" y=\"" + num(std::min(y0, y1)) + "\" width=\"" + num(width) +
-              "\" height=\"" + num(std::max(std::abs(y1 - y0), 0.5)) + "\"><title>" + escape_html(c_.categories[i] + " " + sr.name + ": " + format_number(sr.y[i], 4)) +
-              "</title></rect>";
+              "\" height=\"" + num(std::max(std::abs(y1 - y0), 0.5)) + "\"><title>" +
+              escape_html(c_.categories[i] + " " + sr.name + ": " + format_number(sr.y[i], 4)) + "</title></rect>";
     }
   }
 
@@ -222,7 +224,8 @@ class Canvas {
       double x = 0;
       if (categorical()) {
         if (i >= c_.categories.size()) break;
-        x = centre(i) + band() * 0.5 * (static_cast<double>(index) + 0.5 - static_cast<double>(npoints) / 2) / static_cast<double>(npoints);
+        x = centre(i) +
+            band() * 0.5 * (static_cast<double>(index) + 0.5 - static_cast<double>(npoints) / 2) / static_cast<double>(npoints);
       } else {
         if (i >= sr.x.size() || !std::isfinite(sr.x[i])) continue;
         x = x_(sr.x[i]);
@@ -233,8 +236,9 @@ class Canvas {
       }
       const std::string label = (categorical() ? c_.categories[i] + " " : "") + sr.name + ": " + format_number(sr.y[i], 4);
       const std::string shape = index % 2 == 0
-          ? "<circle class=\"datum\" cx=\"" + num(x) + "\" cy=\"" + num(y_(sr.y[i])) + "\" r=\"3.5\">"
-          : "<rect class=\"datum\" x=\"" + num(x - 3.5) + "\" y=\"" + num(y_(sr.y[i]) - 3.5) + "\" width=\"7\" height=\"7\">";
+                                    ? "<circle class=\"datum\" cx=\"" + num(x) + "\" cy=\"" + num(y_(sr.y[i])) + "\" r=\"3.5\">"
+                                    : "<rect class=\"datum\" x=\"" + num(x - 3.5) + "\" y=\"" + num(y_(sr.y[i]) - 3.5) +
+                                          "\" width=\"7\" height=\"7\">";
       out_ += shape + "<title>" + escape_html(label) + "</title>" + (index % 2 == 0 ? "</circle>" : "</rect>");
     }
   }
@@ -245,7 +249,8 @@ class Canvas {
       const double x = x_(m.x);
       out_ += "<line x1=\"" + num(x) + "\" x2=\"" + num(x) + "\" y1=\"" + num(kTop) + "\" y2=\"" + num(bottom_) + "\" stroke=\"" +
               (m.strong ? "#b00" : "#555") + "\"" + (m.strong ? "" : " stroke-dasharray=\"3 3\"") + "/>";
-      out_ += text(x + 3, kTop + 10, m.label, "start", " transform=\"rotate(90 " + num(x + 3) + " " + num(kTop + 10) + ")\" fill=\"#333\"");
+      out_ += text(x + 3, kTop + 10, m.label, "start",
+                   " transform=\"rotate(90 " + num(x + 3) + " " + num(kTop + 10) + ")\" fill=\"#333\"");
     }
   }
 

@@ -49,8 +49,14 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
     if (vibration) {
       const DynamicPower p = vibration->cell_power(row);
       const bool measured = p.segments > 0;
-      const spectra::StretchCost cost = spectra::stretch_cost(p.total_w(), c.fuel.time_s, c.fuel.time_s > 0 ? c.fuel.distance_m / c.fuel.time_s : 0.0, kDieselEnergy_jpl);
-      line.num(measured ? p.damper_w : nan, 2).sep().num(measured ? p.tire_w : nan, 2).sep().num(measured ? p.tire_eq27_w : nan, 2).sep();
+      const spectra::StretchCost cost = spectra::stretch_cost(
+          p.total_w(), c.fuel.time_s, c.fuel.time_s > 0 ? c.fuel.distance_m / c.fuel.time_s : 0.0, kDieselEnergy_jpl);
+      line.num(measured ? p.damper_w : nan, 2)
+          .sep()
+          .num(measured ? p.tire_w : nan, 2)
+          .sep()
+          .num(measured ? p.tire_eq27_w : nan, 2)
+          .sep();
       line.num(measured && driven ? cost.energy_j : nan, 1).sep().num(measured && driven ? cost.diesel_l : nan, 6).sep();
       line.num(measured && driven ? cost.l_per_100km : nan, 4).sep();
       const std::optional<TireCrr> tire = measured ? tire_crr(c, p.total_w()) : std::nullopt;
@@ -64,18 +70,18 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
 
 std::optional<ParseError> write_trip_json(const std::string& path, const TripResult& trip, const std::string& extra) {
   std::ofstream json(path);
-  json << "{\n  \"crr\": " << trip.crr << ",\n  \"crr_sigma\": " << trip.crr_sigma << ",\n  \"crr_identified\": "
-       << (trip.identified ? "true" : "false") << ",\n  \"cda_m2\": " << trip.cda_m2 << ",\n  \"ticks\": " << trip.ticks
-       << ",\n  \"usable_ticks\": " << trip.usable_ticks << ",\n  \"unusable\": {";
+  json << "{\n  \"crr\": " << trip.crr << ",\n  \"crr_sigma\": " << trip.crr_sigma
+       << ",\n  \"crr_identified\": " << (trip.identified ? "true" : "false") << ",\n  \"cda_m2\": " << trip.cda_m2
+       << ",\n  \"ticks\": " << trip.ticks << ",\n  \"usable_ticks\": " << trip.usable_ticks << ",\n  \"unusable\": {";
   for (std::size_t i = 1; i < trip.unusable.size(); ++i) {
     json << (i > 1 ? ", " : "") << "\"" << to_string(static_cast<Unusable>(i)) << "\": " << trip.unusable[i];
   }
   json << "},\n  \"gnss_used\": " << trip.gnss_used << ",\n  \"gnss_off_route\": " << trip.gnss_off_route
-       << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << trip.mean_nis << ",\n  \"mean_nis_95\": " << 1.96 * trip.mean_nis_se
-       << ",\n  \"torque_bias_sigma_nm\": " << trip.torque_bias_sigma_nm << ",\n  \"fuel\": {\n    \"measured_l\": "
-       << trip.fuel.fuel_l << ",\n    \"unsplit_l\": " << trip.fuel.unsplit_l << ",\n    \"diesel_energy_mj_per_l\": " << kDieselEnergy_jpl / 1e6
-       << ",\n    \"closure\": " << trip.fuel.closure() << ",\n    \"distance_m\": " << trip.fuel.distance_m
-       << ",\n    \"ticks_without_fuel_rate\": " << trip.no_fuel_rate;
+       << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << trip.mean_nis
+       << ",\n  \"mean_nis_95\": " << 1.96 * trip.mean_nis_se << ",\n  \"torque_bias_sigma_nm\": " << trip.torque_bias_sigma_nm
+       << ",\n  \"fuel\": {\n    \"measured_l\": " << trip.fuel.fuel_l << ",\n    \"unsplit_l\": " << trip.fuel.unsplit_l
+       << ",\n    \"diesel_energy_mj_per_l\": " << kDieselEnergy_jpl / 1e6 << ",\n    \"closure\": " << trip.fuel.closure()
+       << ",\n    \"distance_m\": " << trip.fuel.distance_m << ",\n    \"ticks_without_fuel_rate\": " << trip.no_fuel_rate;
   for (std::size_t i = 0; i < kUses; ++i) json << ",\n    \"" << to_string(use(i)) << "_l\": " << trip.fuel.liters(use(i));
   json << "\n  }";
   if (!extra.empty()) json << ",\n" << extra;

@@ -31,7 +31,7 @@ inline constexpr std::uint8_t kResetCode = 0x52;
 inline constexpr std::uint8_t kStatusDataRdy = 1 << 0, kStatusFifoFull = 1 << 1, kStatusFifoOvr = 1 << 2;
 inline constexpr std::uint8_t kStatusNvmBusy = 1 << 4;
 inline constexpr std::uint8_t kPowerStandby = 1 << 0, kPowerDrdyOff = 1 << 2;
-inline constexpr std::uint8_t kRangeMask = 0x03;     // 1: ±2 g, 2: ±4 g, 3: ±8 g
+inline constexpr std::uint8_t kRangeMask = 0x03;      // 1: ±2 g, 2: ±4 g, 3: ±8 g
 inline constexpr std::uint8_t kFilterOdrMask = 0x0F;  // 0: 4000 Hz ... 10: 3.906 Hz, halving
 inline constexpr std::uint8_t kFifoEntriesMask = 0x7F;
 inline constexpr std::uint8_t kEntryX = 1 << 0, kEntryEmpty = 1 << 1;

@@ -74,8 +74,8 @@ class Adxl355Source final : public io::Source<AccelSample> {
     std::int64_t last_sample;  // local index of the newest sample held
   };
 
-  Adxl355Source(std::unique_ptr<SpiBus> owned_bus, std::unique_ptr<DataReadyLine> owned_line, SpiBus& bus,
-                DataReadyLine& line, const Adxl355SourceConfig& config);
+  Adxl355Source(std::unique_ptr<SpiBus> owned_bus, std::unique_ptr<DataReadyLine> owned_line, SpiBus& bus, DataReadyLine& line,
+                const Adxl355SourceConfig& config);
   static Parsed<std::unique_ptr<Adxl355Source>> finish_open(std::unique_ptr<Adxl355Source> source);
 
   void take_edge(std::int64_t edge_ns);
@@ -109,8 +109,8 @@ class Adxl355Source final : public io::Source<AccelSample> {
 
   std::array<FifoSample, adxl355::kFifoEntriesMax> burst_{};
   std::array<Queued, kQueue> queue_{};
-  std::size_t q_begin_ = 0, q_timed_ = 0, q_end_ = 0;  // [begin, timed) ready, [timed, end) held
-  unsigned fifo_samples_ = 0;                          // in the FIFO at the last read
+  std::size_t q_begin_ = 0, q_timed_ = 0, q_end_ = 0;                         // [begin, timed) ready, [timed, end) held
+  unsigned fifo_samples_ = 0;                                                 // in the FIFO at the last read
   std::int64_t full_read_ns_ = std::numeric_limits<std::int64_t>::min() / 2;  // last read of a full FIFO
 
   // The part's grid: sample n was taken at anchor_t_ + (n - anchor_index_) * period_ns_.
@@ -143,7 +143,6 @@ class Adxl355Source final : public io::Source<AccelSample> {
 
 // The daemon's accelerometer: the part on `spidev_path`, its data-ready pin on `line` of `gpiochip`.
 Parsed<std::unique_ptr<io::Source<AccelSample>>> open_adxl355(const std::string& spidev_path, const std::string& gpiochip,
-                                                             unsigned line, std::uint8_t sensor_index, int range_g,
-                                                             double odr_hz);
+                                                              unsigned line, std::uint8_t sensor_index, int range_g, double odr_hz);
 
 }  // namespace roadload::accel

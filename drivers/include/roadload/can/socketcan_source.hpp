@@ -27,9 +27,9 @@ namespace roadload::can {
 
 struct SocketCanConfig {
   std::string interface = "can0";
-  std::uint8_t iface_index = 0;    // CanFrame::iface of this bus's frames
-  bool j1939_only = true;          // 29-bit data frames (and error frames) only
-  int receive_buffer_bytes = 1 << 21;  // room for a second of a full bus at 10x its rate
+  std::uint8_t iface_index = 0;          // CanFrame::iface of this bus's frames
+  bool j1939_only = true;                // 29-bit data frames (and error frames) only
+  int receive_buffer_bytes = 1 << 21;    // room for a second of a full bus at 10x its rate
   std::int64_t coalesce_ns = 1'000'000;  // wait after a drained queue: at most 64 frames per read anyway
 };
 

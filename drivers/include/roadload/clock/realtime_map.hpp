@@ -36,8 +36,8 @@ struct RealtimeMapConfig {
 
 struct RealtimeMapCounters {
   std::uint64_t readings = 0;
-  std::uint64_t steps = 0;        // wall-clock steps seen
-  std::uint64_t unplaced = 0;     // stamps no kept offset could place
+  std::uint64_t steps = 0;     // wall-clock steps seen
+  std::uint64_t unplaced = 0;  // stamps no kept offset could place
 };
 
 class RealtimeMap {

@@ -18,9 +18,9 @@ namespace roadload::clock {
 
 struct SampleClockConfig {
   double nominal_rate_hz = 4000;
-  Seconds output_delay{0};          // the part's group delay from sampling to data-ready
-  std::size_t window_edges = 64;    // edges in the fit (at most kMaxEdges)
-  double max_rate_error = 0.10;     // a fitted rate further than this from nominal is not believed
+  Seconds output_delay{0};        // the part's group delay from sampling to data-ready
+  std::size_t window_edges = 64;  // edges in the fit (at most kMaxEdges)
+  double max_rate_error = 0.10;   // a fitted rate further than this from nominal is not believed
 };
 
 class SampleClock {

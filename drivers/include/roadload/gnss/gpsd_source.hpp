@@ -28,12 +28,12 @@ struct gps_data_t;
 namespace roadload::gnss {
 
 struct GpsdCounters {
-  std::uint64_t no_fix = 0;        // TPV reports without a 2D or 3D fix (cold start, tunnel)
-  std::uint64_t repeats = 0;       // TPVs with the time of the fix delivered last (gpsd's first cycles)
-  std::uint64_t toff = 0;          // TOFF reports (gpsd's own receipt stamp of a fix) taken as fix times
-  std::uint64_t pps = 0;           // PPS edges the UTC map took
-  std::uint64_t pps_refused = 0;   // PPS edges the UTC map refused: labelled with the wrong second
-  std::uint64_t unplaced = 0;      // PPS or TOFF stamps not placeable on the capture clock (wall clock stepped)
+  std::uint64_t no_fix = 0;       // TPV reports without a 2D or 3D fix (cold start, tunnel)
+  std::uint64_t repeats = 0;      // TPVs with the time of the fix delivered last (gpsd's first cycles)
+  std::uint64_t toff = 0;         // TOFF reports (gpsd's own receipt stamp of a fix) taken as fix times
+  std::uint64_t pps = 0;          // PPS edges the UTC map took
+  std::uint64_t pps_refused = 0;  // PPS edges the UTC map refused: labelled with the wrong second
+  std::uint64_t unplaced = 0;     // PPS or TOFF stamps not placeable on the capture clock (wall clock stepped)
 };
 
 class GpsdSource final : public io::Source<GnssFix> {

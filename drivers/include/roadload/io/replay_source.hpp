@@ -23,19 +23,20 @@ namespace roadload::io {
 template <typename Sample>
 class ReplaySource final : public Source<Sample> {
  public:
-  static constexpr unsigned kMask = std::is_same_v<Sample, AccelSample> ? recording::kAccelStream
+  static constexpr unsigned kMask = std::is_same_v<Sample, AccelSample>     ? recording::kAccelStream
                                     : std::is_same_v<Sample, GnssFix>       ? recording::kGnssStream
                                     : std::is_same_v<Sample, WeatherSample> ? recording::kWeatherStream
-                                                                          : recording::kCanStream;
+                                                                            : recording::kCanStream;
 
-  static Parsed<std::unique_ptr<ReplaySource>> open(const std::string& folder, const ReplayTiming& timing,
-                                                    WaitClock& clock, const char* name, const ReplayFaults& faults = {}) {
+  static Parsed<std::unique_ptr<ReplaySource>> open(const std::string& folder, const ReplayTiming& timing, WaitClock& clock,
+                                                    const char* name, const ReplayFaults& faults = {}) {
     auto reader = recording::RecordingReader::open(folder, kMask);
     if (!reader) return reader.error();
     auto src = std::unique_ptr<ReplaySource>(new ReplaySource(std::move(reader.value()), timing, clock, name));
     // Fault times count from the replay's origin (its first CAN frame) on the recording's timeline.
     if constexpr (std::is_same_v<Sample, GnssFix>) {
-      for (const FaultWindow& w : faults.gnss_outages) src->withheld_.push_back({timing.recorded_origin + w.at, timing.recorded_origin + w.at + w.length});
+      for (const FaultWindow& w : faults.gnss_outages)
+        src->withheld_.push_back({timing.recorded_origin + w.at, timing.recorded_origin + w.at + w.length});
     }
     if constexpr (std::is_same_v<Sample, AccelSample>) {
       for (const Nanoseconds at : faults.accel_overflows) src->overflows_.push_back(timing.recorded_origin + at);

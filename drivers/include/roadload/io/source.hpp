@@ -27,10 +27,10 @@ const char* to_string(SourceState s);
 // the status line (bus state, fitted rate, fix mode), NUL-terminated, rewritten as things change.
 struct SourceStatus {
   SourceState state = SourceState::waiting;
-  std::uint64_t items = 0;    // samples or frames delivered
-  std::uint64_t dropped = 0;  // lost before delivery and known to be lost (kernel queue, FIFO overflow)
-  std::uint64_t errors = 0;   // device or bus errors (error frames, bad transfers, malformed input)
-  std::uint64_t restarts = 0; // times the source went down and came back
+  std::uint64_t items = 0;             // samples or frames delivered
+  std::uint64_t dropped = 0;           // lost before delivery and known to be lost (kernel queue, FIFO overflow)
+  std::uint64_t errors = 0;            // device or bus errors (error frames, bad transfers, malformed input)
+  std::uint64_t restarts = 0;          // times the source went down and came back
   std::uint64_t clock_steps = 0;       // wall-clock steps seen under kernel stamps (CAN)
   std::uint64_t userspace_stamps = 0;  // items whose kernel stamp was unusable, stamped at read
   StampSource stamps = StampSource::kernel;

@@ -26,7 +26,7 @@ class InterfaceTable {
 };
 
 struct LineError {
-  const char* field;    // "timestamp", "interface", "identifier", "data", ...
+  const char* field;  // "timestamp", "interface", "identifier", "data", ...
   const char* message;
 };
 
@@ -34,8 +34,7 @@ enum class LineResult : std::uint8_t { frame, ignored };
 
 // Parses one line. Lines that do not start with '(' are `ignored`, as canplayer ignores them.
 // On malformed input returns the error and leaves `out` unspecified.
-std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTable& ifaces, CanFrame& out,
-                                            LineResult& result);
+std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTable& ifaces, CanFrame& out, LineResult& result);
 
 // Formats a frame as candump -L does (microsecond stamps, so canplayer replays it).
 // Returns the number of characters written; `buf` must hold kMaxLineChars.

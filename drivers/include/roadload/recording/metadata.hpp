@@ -21,21 +21,20 @@ inline constexpr const char* kGnssFile = "gnss.csv";
 inline constexpr const char* kWeatherFile = "weather.csv";
 inline constexpr const char* kMetaFile = "meta.toml";
 
-
 struct SensorInfo {
-  std::int64_t id = 0;       // the `sensor` column of accel.csv
-  std::string name;          // e.g. TLF1, as the report labels its accelerometers
-  std::string kind;          // "accelerometer", "gnss", "weather", "anemometer"
-  std::string position;      // e.g. "tractor-front-axle-left"
-  std::string part;          // e.g. "ADXL355"
+  std::int64_t id = 0;   // the `sensor` column of accel.csv
+  std::string name;      // e.g. TLF1, as the report labels its accelerometers
+  std::string kind;      // "accelerometer", "gnss", "weather", "anemometer"
+  std::string position;  // e.g. "tractor-front-axle-left"
+  std::string part;      // e.g. "ADXL355"
   double rate_hz = 0.0;
 };
 
 struct Metadata {
   std::int64_t version = kFormatVersion;
-  std::string created_by;                // program and version that wrote it
-  std::string clock_source;              // where capture stamps came from: "kernel", "simulated", ...
-  std::optional<std::int64_t> utc_offset_ns;  // UTC = capture + offset, when a GNSS fix gave one
+  std::string created_by;                           // program and version that wrote it
+  std::string clock_source;                         // where capture stamps came from: "kernel", "simulated", ...
+  std::optional<std::int64_t> utc_offset_ns;        // UTC = capture + offset, when a GNSS fix gave one
   std::map<std::string, std::string> vehicle_text;  // vin, name, ...
   std::map<std::string, double> vehicle;            // mass_kg, ... (names carry units)
   std::vector<std::string> can_interfaces;

@@ -36,8 +36,8 @@ class ErrorLog {
 
 struct StreamCounts {
   std::uint64_t records = 0;
-  std::uint64_t ignored_lines = 0;   // lines canplayer would skip too (comments, blank)
-  std::uint64_t backwards = 0;       // stamps earlier than the stream's previous one
+  std::uint64_t ignored_lines = 0;  // lines canplayer would skip too (comments, blank)
+  std::uint64_t backwards = 0;      // stamps earlier than the stream's previous one
 };
 
 class Stream {

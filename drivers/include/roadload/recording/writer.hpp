@@ -60,10 +60,8 @@ struct CsvStreamFormat {
   std::string_view header;  // with its newline
 };
 inline constexpr CsvStreamFormat kAccelFormat{kAccelFile, "t_ns,sensor,x_mps2,y_mps2,z_mps2\n"};
-inline constexpr CsvStreamFormat kGnssFormat{kGnssFile,
-                                             "t_ns,utc_ns,lat_deg,lon_deg,alt_m,speed_mps,course_deg,mode,hdop\n"};
-inline constexpr CsvStreamFormat kWeatherFormat{
-    kWeatherFile, "t_ns,station,air_temp_c,pressure_pa,wind_speed_mps,wind_from_deg\n"};
+inline constexpr CsvStreamFormat kGnssFormat{kGnssFile, "t_ns,utc_ns,lat_deg,lon_deg,alt_m,speed_mps,course_deg,mode,hdop\n"};
+inline constexpr CsvStreamFormat kWeatherFormat{kWeatherFile, "t_ns,station,air_temp_c,pressure_pa,wind_speed_mps,wind_from_deg\n"};
 // Each returns the row with its newline; the view lives until `line` is next cleared.
 std::string_view format_row(const AccelSample& s, LineBuilder& line);
 std::string_view format_row(const GnssFix& s, LineBuilder& line);

@@ -51,7 +51,7 @@ struct ResultsDir {
   std::string dir;
   NumberTable cells;
   JsonValue trip;
-  std::vector<Spectrum> spectra;  // psd.csv then psd-<group>.csv, by name
+  std::vector<Spectrum> spectra;             // psd.csv then psd-<group>.csv, by name
   std::optional<JsonValue> gap, gap_tables;  // gap.json and gap-tables.json when there (roadload gap)
 };
 

@@ -19,10 +19,10 @@ struct CanFrame {
   CaptureTime t;
   std::uint32_t id = 0;  // without EFF/RTR/ERR flag bits
   CanFrameKind kind = CanFrameKind::extended;
-  bool id29 = false;  // FD and remote frames may carry an 11- or 29-bit id
-  std::uint8_t fd_flags = 0;    // BRS/ESI as candump writes them
-  std::uint8_t iface = 0;       // index into the recording's interface table
-  std::uint8_t len = 0;         // payload bytes
+  bool id29 = false;          // FD and remote frames may carry an 11- or 29-bit id
+  std::uint8_t fd_flags = 0;  // BRS/ESI as candump writes them
+  std::uint8_t iface = 0;     // index into the recording's interface table
+  std::uint8_t len = 0;       // payload bytes
   std::array<std::uint8_t, 64> data{};
 
   std::span<const std::uint8_t> payload() const { return {data.data(), len}; }

@@ -10,14 +10,14 @@
 namespace roadload {
 
 struct PavementKey {
-  std::string_view surface;     // "concrete", "bituminous", or empty when unknown
-  double joint_spacing_m = 0;   // 0 where the inventory gives none
+  std::string_view surface;    // "concrete", "bituminous", or empty when unknown
+  double joint_spacing_m = 0;  // 0 where the inventory gives none
 };
 
 struct PavementGroups {
   std::vector<std::string> names;
-  std::vector<double> panel_m;   // per group; 0 where the inventory gives none
-  std::vector<int> cell_group;   // per cell
+  std::vector<double> panel_m;  // per group; 0 where the inventory gives none
+  std::vector<int> cell_group;  // per cell
 };
 
 PavementGroups group_pavements(std::span<const PavementKey> cells);

@@ -22,19 +22,19 @@ struct AxleSuspension {
 };
 
 struct VehicleAxle {
-  std::string name;           // "front", "drive1", ...: meta.toml's vehicle.<name>_load_kg
-  std::string unit;           // "tractor", "trailer": a frame accelerometer serves its own unit only
-  double position_m = 0;      // behind the front axle
-  double load_kg = 0;         // static, on a level road
-  double unsprung_kg = 0;     // axle, wheels, tires and half the suspension: Eq. 2.1's M_w
+  std::string name;               // "front", "drive1", ...: meta.toml's vehicle.<name>_load_kg
+  std::string unit;               // "tractor", "trailer": a frame accelerometer serves its own unit only
+  double position_m = 0;          // behind the front axle
+  double load_kg = 0;             // static, on a level road
+  double unsprung_kg = 0;         // axle, wheels, tires and half the suspension: Eq. 2.1's M_w
   double report_unsprung_kg = 0;  // tires and wheels only, as seed report Table 6.1 counts them
   int tires = 0;
-  double tire_radius_m = 0;   // dynamic rolling radius
+  double tire_radius_m = 0;       // dynamic rolling radius
   double wheel_inertia_kgm2 = 0;  // all the axle's wheel ends
   bool driven = false;
   AxleSuspension suspension;
-  std::string axle_mount;     // accelerometer position on the axle, without "-left"/"-right"
-  std::string frame_mount;    // on the frame above it
+  std::string axle_mount;   // accelerometer position on the axle, without "-left"/"-right"
+  std::string frame_mount;  // on the frame above it
 };
 
 // An accelerometer the truck carries: where it sits and what it can read.
@@ -50,7 +50,7 @@ struct AccelerometerMount {
 struct EngineDescription {
   double reference_torque_nm = 0;  // EC1 SPN 544; the estimator's fallback when EC1 is not heard
   double idle_rpm = 0;
-  double inertia_kgm2 = 0;         // EC1 SPN 1794
+  double inertia_kgm2 = 0;  // EC1 SPN 1794
   // Full-load indicated torque as a fraction of the reference at EC1's six map points.
   std::vector<double> full_load_rpm, full_load_fraction;
   // Motoring friction, a + b n + c n^2 in % of the reference, n in thousands of rpm.
@@ -60,8 +60,8 @@ struct EngineDescription {
 struct DrivelineDescription {
   std::vector<double> gear_ratios;  // first gear first
   double final_drive = 0;
-  double efficiency = 0;            // one figure for every gear and load
-  double inertia_kgm2 = 0;          // gearbox, shafts and axle gears referred to the engine
+  double efficiency = 0;    // one figure for every gear and load
+  double inertia_kgm2 = 0;  // gearbox, shafts and axle gears referred to the engine
   Seconds shift_time{0};
 };
 
@@ -78,7 +78,7 @@ struct AccessoryDescription {
   double alternator_w = 0, steering_w = 0, compressor_w = 0;
   double fan_engaged_w = 0;  // at fan_ref_rpm; scales with the fan's speed cubed
   double fan_ref_rpm = 0;
-  double fan_idle_w = 0;     // disengaged viscous drag, at fan_ref_rpm
+  double fan_idle_w = 0;  // disengaged viscous drag, at fan_ref_rpm
 };
 
 // The axles' static loads summed, and their centre behind the front axle (0 without load): for
@@ -101,7 +101,7 @@ struct Vehicle {
   std::string name;
   std::string description;
   std::string vin;
-  std::string source;  // the file it was read from
+  std::string source;              // the file it was read from
   std::vector<VehicleAxle> axles;  // front to rear
   std::vector<AccelerometerMount> accelerometers;
   EngineDescription engine;
@@ -113,9 +113,9 @@ struct Vehicle {
   double gnss_antenna_behind_front_m = 0;
   double gnss_antenna_height_m = 0;
 
-  double mass_kg() const;               // the axles' static loads
-  double cg_behind_front_m() const;     // from the axle loads
-  double length_m() const;              // front axle to the last
+  double mass_kg() const;            // the axles' static loads
+  double cg_behind_front_m() const;  // from the axle loads
+  double length_m() const;           // front axle to the last
   // The first driven axle: its tires' radius turns wheel speed into engine speed.
   const VehicleAxle* drive_axle() const;
   const VehicleAxle* axle(std::string_view axle_name) const;

@@ -20,9 +20,7 @@ constexpr double kPeriodGain = 0.05;
 constexpr Nanoseconds kWindow{1'000'000};
 constexpr Nanoseconds kPause{1'000'000'000};
 
-bool bursty(Pgn pgn) {
-  return pgn == kPgnTpCm || pgn == kPgnTpDt || pgn == kPgnEtpCm || pgn == kPgnEtpDt || pgn == kPgnRequest;
-}
+bool bursty(Pgn pgn) { return pgn == kPgnTpCm || pgn == kPgnTpDt || pgn == kPgnEtpCm || pgn == kPgnEtpDt || pgn == kPgnRequest; }
 
 }  // namespace
 

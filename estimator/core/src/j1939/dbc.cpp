@@ -155,8 +155,7 @@ class Cursor {
     while (pos_ < text_.size()) {
       ++pos_;  // the newline
       ++line_;
-      if (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\t' || text_[pos_] == '\r' ||
-                                  text_[pos_] == '\n')) {
+      if (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\t' || text_[pos_] == '\r' || text_[pos_] == '\n')) {
         if (text_[pos_] != '\n') skip_line();
         continue;
       }
@@ -165,12 +164,8 @@ class Cursor {
   }
 
  private:
-  static bool is_ident_char(char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-  }
-  static bool is_number_char(char c) {
-    return (c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-';
-  }
+  static bool is_ident_char(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'; }
+  static bool is_number_char(char c) { return (c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-'; }
   std::string found() const {
     if (pos_ >= text_.size()) return ", found end of file";
     const std::size_t end = text_.find_first_of(" \t\r\n", pos_);
@@ -220,10 +215,9 @@ class DbcReader {
       signal();
     } else if (kw == "BA_") {
       attribute();
-    } else if (kw == "CM_" || kw == "BA_DEF_" || kw == "BA_DEF_DEF_" || kw == "BA_DEF_REL_" ||
-               kw == "BA_DEF_DEF_REL_" || kw == "BA_REL_" || kw == "VAL_" || kw == "VAL_TABLE_" ||
-               kw == "SIG_VALTYPE_" || kw == "BO_TX_BU_" || kw == "EV_" || kw == "ENVVAR_DATA_" ||
-               kw == "SIG_GROUP_" || kw == "SGTYPE_" || kw == "SIG_TYPE_REF_" || kw == "CAT_DEF_" ||
+    } else if (kw == "CM_" || kw == "BA_DEF_" || kw == "BA_DEF_DEF_" || kw == "BA_DEF_REL_" || kw == "BA_DEF_DEF_REL_" ||
+               kw == "BA_REL_" || kw == "VAL_" || kw == "VAL_TABLE_" || kw == "SIG_VALTYPE_" || kw == "BO_TX_BU_" || kw == "EV_" ||
+               kw == "ENVVAR_DATA_" || kw == "SIG_GROUP_" || kw == "SGTYPE_" || kw == "SIG_TYPE_REF_" || kw == "CAT_DEF_" ||
                kw == "CAT_" || kw == "FILTER" || kw == "SG_MUL_VAL_") {
       in_.skip_statement(kw);
     } else {

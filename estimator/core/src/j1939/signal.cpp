@@ -5,9 +5,7 @@
 namespace roadload::j1939 {
 namespace {
 
-constexpr std::uint64_t all_ones(unsigned bits) {
-  return bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
-}
+constexpr std::uint64_t all_ones(unsigned bits) { return bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1; }
 
 std::uint64_t extract_le(std::span<const std::uint8_t> p, unsigned start, unsigned length) {
   const unsigned first = start / 8;

@@ -68,18 +68,11 @@ std::optional<TpMessage> TpReassembler::push(const CanFrame& frame) {
   const std::uint32_t page_pf = (frame.id >> 16) & 0x3FFu;
   if (page_pf - kEtpDtPf > kTpCmPf - kEtpDtPf) return std::nullopt;
   switch (page_pf) {
-    case kTpCmPf:
-      on_control(frame, false);
-      break;
-    case kEtpCmPf:
-      on_control(frame, true);
-      break;
-    case kTpDtPf:
-      return on_data(frame, false);
-    case kEtpDtPf:
-      return on_data(frame, true);
-    default:
-      break;
+    case kTpCmPf: on_control(frame, false); break;
+    case kEtpCmPf: on_control(frame, true); break;
+    case kTpDtPf: return on_data(frame, false);
+    case kEtpDtPf: return on_data(frame, true);
+    default: break;
   }
   return std::nullopt;
 }
@@ -100,9 +93,8 @@ void TpReassembler::expire(CaptureTime now) {
 }
 
 std::size_t TpReassembler::open_sessions() const {
-  return static_cast<std::size_t>(std::count_if(sessions_.begin(), sessions_.end(), [](const Session& s) {
-    return s.state == Session::State::receiving;
-  }));
+  return static_cast<std::size_t>(
+      std::count_if(sessions_.begin(), sessions_.end(), [](const Session& s) { return s.state == Session::State::receiving; }));
 }
 
 void TpReassembler::on_control(const CanFrame& frame, bool etp) {
@@ -128,8 +120,7 @@ void TpReassembler::announce(const CanFrame& frame, bool etp) {
   const bool bam = !etp && frame.data[0] == kBam;
   const std::uint32_t size = etp ? le(frame, 1, 4) : le(frame, 1, 2);
   // ETP exists only for what TP cannot carry; a TP announcement must agree with itself.
-  const bool size_ok = etp ? size > kTpMaxBytes
-                           : size >= kTpMinBytes && size <= kTpMaxBytes && frame.data[3] == packets_for(size);
+  const bool size_ok = etp ? size > kTpMaxBytes : size >= kTpMinBytes && size <= kTpMaxBytes && frame.data[3] == packets_for(size);
   // A BAM goes to everyone, an RTS to one node: otherwise the session key would be ambiguous.
   if (!size_ok || bam != (destination(frame) == kGlobalAddress)) {
     ++counters_.malformed;
@@ -166,9 +157,7 @@ void TpReassembler::open(const CanFrame& frame, Session::Mode mode, std::uint32_
   s->dpo_packets = 0;
   std::fill_n(received_.data() + s->bits_at, words_for(s->packets), std::uint64_t{0});
   touch(*s, frame.t);
-  ++(mode == Session::Mode::bam ? counters_.bam_started
-     : etp                      ? counters_.etp_started
-                                : counters_.rts_started);
+  ++(mode == Session::Mode::bam ? counters_.bam_started : etp ? counters_.etp_started : counters_.rts_started);
 }
 
 void TpReassembler::follow_up(const CanFrame& frame, bool etp) {

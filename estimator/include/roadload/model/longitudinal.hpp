@@ -16,10 +16,10 @@ struct TruckModel {
   // Every wheel end's J / r^2 referred to the drive tires, whose speed CCVS1 reports; the steer
   // tires' larger radius is within a percent of the wheels' share, itself 3 % of the mass.
   double wheel_inertia_mass_kg = 0;
-  double tire_radius_m = 0;               // the drive axle's, dynamic
+  double tire_radius_m = 0;  // the drive axle's, dynamic
   double final_drive = 0;
   double driveline_efficiency = 0;
-  double engine_inertia_kgm2 = 0;         // EC1 SPN 1794 when the truck sends it
+  double engine_inertia_kgm2 = 0;  // EC1 SPN 1794 when the truck sends it
   double driveline_inertia_kgm2 = 0;
   double cda_prior_m2 = 0;
   double cda_sigma_m2 = 0;
@@ -40,8 +40,8 @@ TruckModel truck_model(const Vehicle& vehicle);
 struct Resistances {
   double aero_n = 0, rolling_n = 0, grade_n = 0;
 };
-Resistances resistances(double mass_kg, double crr, double cda_m2, double air_density_kgpm3, double airspeed_mps,
-                        double grade_rad, double grade_error_rad = 0.0);
+Resistances resistances(double mass_kg, double crr, double cda_m2, double air_density_kgpm3, double airspeed_mps, double grade_rad,
+                        double grade_error_rad = 0.0);
 
 // Torque at the flywheel from EEC1/EEC3 percentages (J1939: actual torque is indicated; friction
 // and the parasitic loads the ECU knows are subtracted).
@@ -63,15 +63,15 @@ struct ForceInputs {
   CaptureTime t;
   double tractive_n = 0;
   double air_density_kgpm3 = 1.2;
-  double headwind_mps = 0;       // wind component blowing against the direction of travel
+  double headwind_mps = 0;  // wind component blowing against the direction of travel
   double grade_rad = 0;
-  double grade_sigma_rad = 0;    // the grade profile's uncertainty here
+  double grade_sigma_rad = 0;  // the grade profile's uncertainty here
   double effective_mass_kg = 0;
   double wheel_force_per_flywheel_nm = 0;  // d(tractive force)/d(flywheel torque) in this gear, N per N m
-  double crr_jump_variance = 0;  // CRR change allowed over this interval: axles crossing into a new cell
-  double ripple_sigma_mps = 0;   // the road's roughness in the speed here (road_roughness.hpp)
-  double ripple_correlation_m = 1.0;  // and the distance it stays correlated over
-  bool usable = false;           // false while braking, shifting or declutched
+  double crr_jump_variance = 0;            // CRR change allowed over this interval: axles crossing into a new cell
+  double ripple_sigma_mps = 0;             // the road's roughness in the speed here (road_roughness.hpp)
+  double ripple_correlation_m = 1.0;       // and the distance it stays correlated over
+  bool usable = false;                     // false while braking, shifting or declutched
 };
 
 }  // namespace roadload::model

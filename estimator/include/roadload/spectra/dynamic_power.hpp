@@ -25,8 +25,7 @@ struct PowerBand {
 // d * sum_k S_k / (2 pi f_k)^2 * bin_hz over lo_hz <= f_k <= hi_hz; bin k is at k * bin_hz.
 double dashpot_power_w(double damping_nspm, std::span<const double> accel_density, double bin_hz, PowerBand band = {});
 // The same from the velocity's density (m/s)^2/Hz: d x sum_k S_k x bin_hz over the band.
-double dashpot_velocity_power_w(double damping_nspm, std::span<const double> velocity_density, double bin_hz,
-                                PowerBand band = {});
+double dashpot_velocity_power_w(double damping_nspm, std::span<const double> velocity_density, double bin_hz, PowerBand band = {});
 
 // A tire's dissipation on its deflection rate rather than on the axle's absolute velocity (Eq. 2.7).
 // The dynamic tire force F = M_w a_w + M_c a_c (Eq. 2.1) drives the tire's spring and dashpot in
@@ -34,13 +33,13 @@ double dashpot_velocity_power_w(double damping_nspm, std::span<const double> vel
 //     P = c_t * integral of S_F(f) w^2 / (k_t^2 + w^2 c_t^2) df,   w = 2 pi f,
 // with S_F the dynamic force's density in N^2/Hz. Road input is in F already; what is left out is
 // the tire's own mass and its enveloping of short bumps.
-double tire_deflection_power_w(double c_tire_nspm, double k_tire_npm, std::span<const double> force_density,
-                               double bin_hz, PowerBand band = {});
+double tire_deflection_power_w(double c_tire_nspm, double k_tire_npm, std::span<const double> force_density, double bin_hz,
+                               PowerBand band = {});
 
 // What a power costs over a year of driving, Table 6.6: hours per year, energy, diesel and litres
 // per 100 km. The report's figures imply 36.4 MJ per litre (its 51,530 MJ are 1,416 L).
 struct Duty {
-  double hours_per_year = 2207;        // 120,000 miles a year at 54.4 mph (report, Sect. 6.3)
+  double hours_per_year = 2207;  // 120,000 miles a year at 54.4 mph (report, Sect. 6.3)
   double km_per_year = 120000 * 1.609344;
 };
 struct AnnualCost {

@@ -31,9 +31,9 @@ struct ModeConfig {
 };
 
 struct ModeSensor {
-  std::string name;         // TLF1 ...
-  int slot = -1;            // SensorGrid slot
-  std::size_t axle = 0;     // whose cell the sensor is over (placement index)
+  std::string name;      // TLF1 ...
+  int slot = -1;         // SensorGrid slot
+  std::size_t axle = 0;  // whose cell the sensor is over (placement index)
 };
 
 class ModeSpectra {
@@ -61,15 +61,13 @@ class ModeSpectra {
  private:
   // One sensor resampled along the road.
   struct DistanceStream {
-    bool primed = false;          // the previous grid value and distance are known
+    bool primed = false;  // the previous grid value and distance are known
     double prev_value = 0, prev_s = 0, next_s = 0;
-    std::size_t total = 0;        // distance samples since the last restart
-    std::vector<double> values;   // ring of distance_nperseg
+    std::size_t total = 0;       // distance samples since the last restart
+    std::vector<double> values;  // ring of distance_nperseg
     std::vector<int> cells;
   };
-  std::size_t index(std::size_t sensor, int group) const {
-    return static_cast<std::size_t>(group + 1) * sensors_.size() + sensor;
-  }
+  std::size_t index(std::size_t sensor, int group) const { return static_cast<std::size_t>(group + 1) * sensors_.size() + sensor; }
   void take_time(const SensorGrid& grid, const PlacementHistory& history, std::int64_t end);
   void advance_distance(std::size_t sensor, const SensorGrid& grid, std::int64_t n, double s_m, const Placement* p);
   void take_distance(std::size_t sensor);
@@ -90,7 +88,7 @@ class ModeSpectra {
   std::vector<std::complex<double>> spectrum_, distance_spectrum_;
   std::vector<double> group_weight_;
   SegmentSchedule schedule_;
-  bool started_ = false;                 // the distance streams begin at the first grid value
+  bool started_ = false;                  // the distance streams begin at the first grid value
   std::int64_t next_distance_index_ = 0;  // the grid instant all distance streams read next
 };
 

@@ -25,12 +25,12 @@
 namespace roadload::spectra {
 
 struct Peak {
-  double freq = 0;        // in the density's own unit (Hz, or cycles/m)
+  double freq = 0;  // in the density's own unit (Hz, or cycles/m)
   double density = 0;
   double prominence = 0;
-  double width = 0;       // at half prominence
+  double width = 0;  // at half prominence
   std::string_view label;
-  int joint_harmonic = 0; // h when the peak is the joint line's h-th harmonic, else 0
+  int joint_harmonic = 0;  // h when the peak is the joint line's h-th harmonic, else 0
 };
 
 struct PeakConfig {
@@ -57,9 +57,9 @@ struct JointConfig {
 struct JointLine {
   bool found = false;
   double panel_m = 0;
-  double spatial_cpm = 0;    // 1 / panel_m
-  double significance = 0;   // of the best candidate, found or not
-  int harmonics = 0;         // used in the refinement
+  double spatial_cpm = 0;   // 1 / panel_m
+  double significance = 0;  // of the best candidate, found or not
+  int harmonics = 0;        // used in the refinement
 };
 
 // `channels`: spatial densities on bins of bin_cpm from 0, all of one length.

@@ -16,8 +16,8 @@ inline constexpr std::size_t kMaxPlacedAxles = 8;
 
 struct Placement {
   CaptureTime t{};
-  double speed_mps = 0;                    // NaN when unknown
-  double s_m = 0;                          // front axle along the route; NaN when unknown
+  double speed_mps = 0;                     // NaN when unknown
+  double s_m = 0;                           // front axle along the route; NaN when unknown
   std::array<int, kMaxPlacedAxles> cell{};  // -1: in no cell
 };
 

@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "roadload/spectra/cell_leak.hpp"
 #include "roadload/spectra/dynamic_power.hpp"
 #include "roadload/spectra/placement_history.hpp"
-#include "roadload/spectra/cell_leak.hpp"
 #include "roadload/spectra/segment_weights.hpp"
 #include "roadload/spectra/sensor_grid.hpp"
 #include "roadload/spectra/welch.hpp"
@@ -33,9 +33,9 @@ struct SuspensionAxle {
   int axle_slot = -1, frame_slot = -1;  // SensorGrid slots of the axle and frame accelerometers
   double frame_ahead_m = 0;             // a borrowed frame sensor's lead along the truck; 0 if its own
   double unsprung_kg = 0, sprung_kg = 0;
-  double damper_nspm = 0;          // the vehicle's (AxleSuspension), per axle
-  double tire_damping_nspm = 0;    // all tires of the axle
-  double tire_stiffness_npm = 0;   // all tires of the axle
+  double damper_nspm = 0;         // the vehicle's (AxleSuspension), per axle
+  double tire_damping_nspm = 0;   // all tires of the axle
+  double tire_stiffness_npm = 0;  // all tires of the axle
 };
 
 struct SuspensionConfig {
@@ -61,16 +61,15 @@ struct AxlePower {
 enum class AxleDensity { axle, frame, relative, force, axle_velocity, relative_velocity };
 
 struct SuspensionCounters {
-  std::uint64_t segments = 0;        // segment instants taken
-  std::uint64_t axle_segments = 0;   // axle x segment pairs averaged
-  std::uint64_t missing = 0;         // axle x segment pairs with a sensor's grid values missing
+  std::uint64_t segments = 0;       // segment instants taken
+  std::uint64_t axle_segments = 0;  // axle x segment pairs averaged
+  std::uint64_t missing = 0;        // axle x segment pairs with a sensor's grid values missing
 };
 
 class SuspensionSpectra {
  public:
   // `grid`: the rate and the velocity integrator whose response the densities divide out.
-  SuspensionSpectra(std::vector<SuspensionAxle> axles, std::size_t cell_count, const SensorGrid& grid,
-                    SuspensionConfig config = {});
+  SuspensionSpectra(std::vector<SuspensionAxle> axles, std::size_t cell_count, const SensorGrid& grid, SuspensionConfig config = {});
 
   void update(const SensorGrid& grid, const PlacementHistory& history);
 

@@ -69,9 +69,7 @@ class Channel {
   // Every item stamped at or before this is in the rings: a thread the scheduler starved, or a
   // device read late, holds this back, and the estimator waits for it rather than take its items
   // out of order. After the end of a replay, the end of time.
-  CaptureTime delivered_through() const {
-    return capture_time_from_ns(delivered_through_ns_.load(std::memory_order_acquire));
-  }
+  CaptureTime delivered_through() const { return capture_time_from_ns(delivered_through_ns_.load(std::memory_order_acquire)); }
 
  private:
   static constexpr std::size_t kBatch = 256;

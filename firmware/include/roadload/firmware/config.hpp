@@ -13,18 +13,18 @@ namespace roadload::firmware {
 
 struct CanBusConfig {
   std::string interface = "can0";
-  bool j1939_only = true;            // 29-bit data frames and error frames
-  double bitrate_bps = 500'000;      // for the bus load in the status
+  bool j1939_only = true;        // 29-bit data frames and error frames
+  double bitrate_bps = 500'000;  // for the bus load in the status
   std::int64_t receive_buffer_kib = 2048;
 };
 
 struct AccelConfig {
-  std::uint8_t id = 0;       // accel.csv `sensor`
-  std::string name;          // e.g. TLF1
-  std::string position;      // e.g. tractor-front-axle-left
-  std::string spidev;        // /dev/spidev0.0
-  std::string gpiochip;      // gpiochip0
-  std::uint32_t line = 0;    // data-ready line offset on the chip
+  std::uint8_t id = 0;     // accel.csv `sensor`
+  std::string name;        // e.g. TLF1
+  std::string position;    // e.g. tractor-front-axle-left
+  std::string spidev;      // /dev/spidev0.0
+  std::string gpiochip;    // gpiochip0
+  std::uint32_t line = 0;  // data-ready line offset on the chip
   double range_g = 2;
   double odr_hz = 4000;
 };
@@ -41,7 +41,7 @@ struct RecordingConfig {
   Seconds fsync_interval{1.0};
   Seconds segment_max{3600};
   double segment_max_mib = 512;
-  double quota_mib = 8192;   // the oldest segments go first once the data dir holds more
+  double quota_mib = 8192;  // the oldest segments go first once the data dir holds more
 };
 
 struct StatusConfig {
@@ -52,16 +52,16 @@ struct StatusConfig {
 
 // Sensor streams from a recording instead of devices (`roadload replay` plays its CAN onto vcan).
 struct ReplayConfig {
-  std::string recording;   // empty: devices
-  double rate = 1.0;       // 0: as fast as read
-  bool can = false;        // CAN from the recording too, instead of the buses (benches, no vcan)
-  std::string origin_file; // written by `roadload replay --origin`: the timeline of the CAN it plays
+  std::string recording;    // empty: devices
+  double rate = 1.0;        // 0: as fast as read
+  bool can = false;         // CAN from the recording too, instead of the buses (benches, no vcan)
+  std::string origin_file;  // written by `roadload replay --origin`: the timeline of the CAN it plays
 };
 
 struct EstimatorConfig {
-  std::string vehicle;     // vehicle file or built-in name (config/vehicles); empty: the default vehicle
-  std::string route;       // route file or built-in name; empty: no cells
-  std::string results_dir; // cells.csv and trip.json written here at exit; empty: none
+  std::string vehicle;      // vehicle file or built-in name (config/vehicles); empty: the default vehicle
+  std::string route;        // route file or built-in name; empty: no cells
+  std::string results_dir;  // cells.csv and trip.json written here at exit; empty: none
   // The truck's calibration (`roadload calibrate`): its engine-loss table, and its CdA with the
   // standard error; empty or 0: EEC3's whole percent and the vehicle file's prior.
   std::string engine_losses;

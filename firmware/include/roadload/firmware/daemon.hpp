@@ -59,9 +59,9 @@ struct CanBusInfo {
 struct DaemonSetup {
   std::optional<RecorderConfig> recording;  // none: record nothing
   recording::Metadata metadata;
-  std::vector<std::string> interfaces;      // CanFrame::iface -> name
-  std::vector<CanBusInfo> buses;            // per CAN channel, in order
-  const j1939::Database* db = nullptr;      // none: no estimator
+  std::vector<std::string> interfaces;  // CanFrame::iface -> name
+  std::vector<CanBusInfo> buses;        // per CAN channel, in order
+  const j1939::Database* db = nullptr;  // none: no estimator
   RouteGeometry route;
   std::vector<CellSpan> cells;
   AnalyzerConfig analyzer;

@@ -29,14 +29,14 @@ struct RecorderConfig {
 };
 
 struct RecorderStatus {
-  std::string segment;                // current segment folder name, empty when none is open
-  std::uint64_t lines = 0;            // lines accepted since start
-  std::uint64_t lines_lost = 0;       // refused after write errors
-  std::uint64_t segments = 0;         // started since start
-  std::uint64_t segments_deleted = 0; // for the quota
+  std::string segment;                 // current segment folder name, empty when none is open
+  std::uint64_t lines = 0;             // lines accepted since start
+  std::uint64_t lines_lost = 0;        // refused after write errors
+  std::uint64_t segments = 0;          // started since start
+  std::uint64_t segments_deleted = 0;  // for the quota
   std::uint64_t bytes_in_dir = 0;
-  int error = 0;                      // errno of the last failure, 0 once writing works again
-  std::string error_text;             // what failed, with the path
+  int error = 0;           // errno of the last failure, 0 once writing works again
+  std::string error_text;  // what failed, with the path
 };
 
 class Recorder {

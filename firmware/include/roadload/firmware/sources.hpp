@@ -18,7 +18,7 @@ struct BuiltSources {
   std::vector<CanBusInfo> buses;
   recording::Metadata replayed;  // the replayed recording's metadata, when replaying
   bool replaying = false;
-  io::ReplayTiming timing;       // when replaying: recorded time -> capture time
+  io::ReplayTiming timing;  // when replaying: recorded time -> capture time
 };
 
 Parsed<BuiltSources> build_sources(const DaemonConfig& c, io::WaitClock& clock, std::vector<std::string>& notes);

@@ -8,9 +8,9 @@
 
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/firmware/recorder.hpp"
+#include "roadload/io/source.hpp"
 #include "roadload/j1939/cadence.hpp"
 #include "roadload/j1939/transport.hpp"
-#include "roadload/io/source.hpp"
 
 namespace roadload::firmware {
 
@@ -21,12 +21,12 @@ struct SourceReport {
   std::string name;
   SourceKind kind = SourceKind::can;
   io::SourceStatus status;
-  double rate_per_s = 0;      // items over the last interval
-  double bus_load = 0;        // CAN: fraction of the bit rate, unstuffed bits as canbusload counts them
-  std::uint64_t ring_dropped = 0;  // lost because a consumer fell behind
-  std::uint64_t dropped_recent = 0;  // source + ring drops in the last interval
-  std::uint64_t errors_recent = 0;   // device or bus errors in the last interval
-  std::uint64_t restarts_recent = 0; // recoveries in the last interval (a bus-off shorter than it)
+  double rate_per_s = 0;              // items over the last interval
+  double bus_load = 0;                // CAN: fraction of the bit rate, unstuffed bits as canbusload counts them
+  std::uint64_t ring_dropped = 0;     // lost because a consumer fell behind
+  std::uint64_t dropped_recent = 0;   // source + ring drops in the last interval
+  std::uint64_t errors_recent = 0;    // device or bus errors in the last interval
+  std::uint64_t restarts_recent = 0;  // recoveries in the last interval (a bus-off shorter than it)
 };
 
 // What the decoded J1939 traffic says about frames lost or mangled before the gateway.
@@ -45,11 +45,11 @@ struct SyncReport {
 };
 
 struct StatusReport {
-  std::int64_t utc_ns = 0;       // wall clock when written, for people; the data use the capture clock
+  std::int64_t utc_ns = 0;  // wall clock when written, for people; the data use the capture clock
   double uptime_s = 0;
   LiveEstimate estimate;
-  std::string cell;              // name of estimate.cell, empty off the cells
-  double dynamic_power_w = -1;   // suspension + tires, last window; negative when not available
+  std::string cell;             // name of estimate.cell, empty off the cells
+  double dynamic_power_w = -1;  // suspension + tires, last window; negative when not available
   std::vector<SourceReport> sources;
   RecorderStatus recording;
   bool recording_enabled = true;

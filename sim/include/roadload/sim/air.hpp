@@ -11,7 +11,6 @@ struct Environment {
   double wind_from_deg = 0.0;
 };
 
-
 // Dry-air ideal gas. Humidity (0.5-1 % lighter at 30 C) is left to the air-density effect.
 double air_density_kgpm3(double pressure_pa, double temp_c);
 

@@ -12,25 +12,25 @@
 namespace roadload::sim {
 
 enum class Effect : std::size_t {
-  wind_gusts,            // turbulence standard deviation, m/s
-  yaw_drag,              // Cd(psi) = Cd0 (1 + a psi^2): a in 1/deg^2
-  tire_warmup,           // cold excess of CRR at the start of driving, fraction
-  temperature_crr,       // K_T in CRR (1 - K_T (T - 14.3 C)), 1/degC
-  speed_crr,             // k_v in CRR (1 + k_v (v - 13.41 m/s)), per m/s
-  driveline_losses,      // gear- and load-dependent losses, scale of the churning torque
-  torque_bias,           // reported engine torque = (1 + b) true, b as a fraction
-  gnss_elevation_bias,   // slowly varying GNSS height bias, amplitude in m
-  can_accel_offset,      // accelerometer stamps late against CAN, seconds
-  mass_error,            // metadata mass = (1 + e) true mass, e as a fraction
-  fan_engagement,        // fraction of the time the cooling fan is engaged
-  joint_faulting,        // step at each concrete joint, m
-  suspension_friction,   // Coulomb friction of the front leaf spring, N (air axles 13 % of it)
-  slab_curl,             // parabolic curl of each concrete slab, m at its edges
-  tire_pressure,         // inflation deviation, fraction (negative = under-inflated)
-  drafting,              // peak drag reduction behind traffic, fraction
-  air_density_error,     // weather station reads warm by this many degC (and low pressure)
-  brake_drag,            // a dragging brake, N at the wheels
-  cruise_hunting,        // cruise-control limit cycle amplitude, m/s
+  wind_gusts,           // turbulence standard deviation, m/s
+  yaw_drag,             // Cd(psi) = Cd0 (1 + a psi^2): a in 1/deg^2
+  tire_warmup,          // cold excess of CRR at the start of driving, fraction
+  temperature_crr,      // K_T in CRR (1 - K_T (T - 14.3 C)), 1/degC
+  speed_crr,            // k_v in CRR (1 + k_v (v - 13.41 m/s)), per m/s
+  driveline_losses,     // gear- and load-dependent losses, scale of the churning torque
+  torque_bias,          // reported engine torque = (1 + b) true, b as a fraction
+  gnss_elevation_bias,  // slowly varying GNSS height bias, amplitude in m
+  can_accel_offset,     // accelerometer stamps late against CAN, seconds
+  mass_error,           // metadata mass = (1 + e) true mass, e as a fraction
+  fan_engagement,       // fraction of the time the cooling fan is engaged
+  joint_faulting,       // step at each concrete joint, m
+  suspension_friction,  // Coulomb friction of the front leaf spring, N (air axles 13 % of it)
+  slab_curl,            // parabolic curl of each concrete slab, m at its edges
+  tire_pressure,        // inflation deviation, fraction (negative = under-inflated)
+  drafting,             // peak drag reduction behind traffic, fraction
+  air_density_error,    // weather station reads warm by this many degC (and low pressure)
+  brake_drag,           // a dragging brake, N at the wheels
+  cruise_hunting,       // cruise-control limit cycle amplitude, m/s
   count
 };
 
@@ -38,10 +38,10 @@ inline constexpr std::size_t kEffectCount = static_cast<std::size_t>(Effect::cou
 
 struct EffectInfo {
   Effect id;
-  std::string_view name;        // as given to --effect NAME=MAGNITUDE
+  std::string_view name;  // as given to --effect NAME=MAGNITUDE
   std::string_view unit;
-  double typical;               // the magnitude used when the name is given without one
-  double min, max;              // realistic range, for blind tests
+  double typical;   // the magnitude used when the name is given without one
+  double min, max;  // realistic range, for blind tests
   std::string_view summary;
 };
 
@@ -52,8 +52,14 @@ std::optional<Effect> find_effect(std::string_view name);
 // Which effects are on and how strong. Off effects have magnitude 0 and cost nothing.
 class EffectSet {
  public:
-  void set(Effect e, double magnitude) { magnitude_[static_cast<std::size_t>(e)] = magnitude; on_[static_cast<std::size_t>(e)] = true; }
-  void clear(Effect e) { magnitude_[static_cast<std::size_t>(e)] = 0.0; on_[static_cast<std::size_t>(e)] = false; }
+  void set(Effect e, double magnitude) {
+    magnitude_[static_cast<std::size_t>(e)] = magnitude;
+    on_[static_cast<std::size_t>(e)] = true;
+  }
+  void clear(Effect e) {
+    magnitude_[static_cast<std::size_t>(e)] = 0.0;
+    on_[static_cast<std::size_t>(e)] = false;
+  }
   bool on(Effect e) const { return on_[static_cast<std::size_t>(e)]; }
   double magnitude(Effect e) const { return magnitude_[static_cast<std::size_t>(e)]; }
   bool any() const;

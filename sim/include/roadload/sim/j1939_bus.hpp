@@ -20,12 +20,12 @@ namespace roadload::sim {
 // with an error (torque bias, ambient sensor) are already reported values here.
 struct BusView {
   double engine_rpm = 0;
-  double actual_torque_pct = 0;       // indicated, of the reference torque
+  double actual_torque_pct = 0;  // indicated, of the reference torque
   double demand_torque_pct = 0;
   double friction_torque_pct = 0;
-  double parasitic_torque_pct = 0;    // what the ECU knows of accessories
+  double parasitic_torque_pct = 0;  // what the ECU knows of accessories
   double load_pct = 0;
-  bool engine_controlled = false;     // torque mode: cruise control in charge
+  bool engine_controlled = false;  // torque mode: cruise control in charge
   double wheel_speed_kmh = 0;
   double front_axle_speed_kmh = 0;
   bool cruise_active = false;
@@ -33,7 +33,7 @@ struct BusView {
   bool brake_switch = false;
   bool clutch_switch = false;
   double fuel_lph = 0;
-  int gear = 0;                       // 0 neutral
+  int gear = 0;  // 0 neutral
   int selected_gear = 0;
   double gear_ratio = 0;
   bool driveline_engaged = false;
@@ -44,7 +44,7 @@ struct BusView {
   double intake_c = 0;
   double total_distance_m = 0;
   double trip_distance_m = 0;
-  double lat_deg = 0, lon_deg = 0;    // the truck's own (coarse) GPS
+  double lat_deg = 0, lon_deg = 0;  // the truck's own (coarse) GPS
   bool fan_on = false;
   double fan_rpm = 0;
   double coolant_c = 0;
@@ -61,9 +61,9 @@ using SignalGetter = std::function<std::optional<double>(const BusView&)>;
 struct BusOptions {
   std::string iface = "can0";
   double bitrate_bps = 250000;
-  double ecu_drift_ppm = 100;       // each ECU's oscillator, uniform +- this
-  Seconds task_jitter{0.0002};      // ECU send task jitter, uniform 0..this late
-  Seconds rx_latency{0.00008};      // controller to kernel stamp
+  double ecu_drift_ppm = 100;   // each ECU's oscillator, uniform +- this
+  Seconds task_jitter{0.0002};  // ECU send task jitter, uniform 0..this late
+  Seconds rx_latency{0.00008};  // controller to kernel stamp
   Seconds rx_jitter{0.00002};
 };
 
@@ -86,12 +86,12 @@ class J1939Bus {
     std::uint8_t sa = 0;
     std::uint8_t priority = 6;
     double period_s = 0;
-    double rate = 1;            // ECU seconds per true second (its drift)
-    double next_ecu_s = 0;      // next transmission on the ECU's clock
+    double rate = 1;        // ECU seconds per true second (its drift)
+    double next_ecu_s = 0;  // next transmission on the ECU's clock
     // A message longer than 8 bytes goes out as TP.CM BAM and then TP.DT packets 50 ms apart.
     std::vector<std::uint8_t> bam_data;
-    int bam_packet = 0;         // next TP.DT sequence number; 0 when no BAM is running
-    double bam_next_s = 0;      // true time
+    int bam_packet = 0;                        // next TP.DT sequence number; 0 when no BAM is running
+    double bam_next_s = 0;                     // true time
     std::vector<const SignalGetter*> getters;  // per signal of def; null: left as all ones
   };
   std::vector<std::uint8_t> compose(const Schedule& s, const BusView& view) const;

@@ -17,12 +17,12 @@ namespace roadload::sim {
 
 struct TruckState {
   double t_s = 0;
-  double x_m = 0;          // front axle along the route
+  double x_m = 0;  // front axle along the route
   double speed_mps = 0;
-  double accel_mps2 = 0;   // dv/dt over the last step
+  double accel_mps2 = 0;  // dv/dt over the last step
   double heading_deg = 0;
-  double grade_rad = 0;    // at the centre of gravity
-  int gear = 0;            // 0: neutral or shifting
+  double grade_rad = 0;  // at the centre of gravity
+  int gear = 0;          // 0: neutral or shifting
   bool clutch_engaged = false;
   double engine_rpm = 0;
   double indicated_torque_nm = 0;  // what J1939 calls actual engine torque
@@ -31,7 +31,7 @@ struct TruckState {
   double accessory_torque_nm = 0;  // alternator, steering, compressor, idling fan
   double fan_torque_nm = 0;        // engaged fan beyond its idle drag
   bool fan_on = false;
-  double demand_torque_nm = 0;     // what the cruise control asked for, indicated
+  double demand_torque_nm = 0;  // what the cruise control asked for, indicated
   double fuel_kgps = 0;
   double fuel_lph = 0;
   bool service_brake = false;
@@ -40,8 +40,8 @@ struct TruckState {
   double yaw_rad = 0;
   // Forces at the wheels, positive when resisting motion (tractive positive when driving).
   double tractive_n = 0, roll_n = 0, aero_n = 0, grade_n = 0, profile_n = 0, brake_n = 0;
-  double driveline_loss_n = 0;     // gearbox and axle losses, as a force at the wheels
-  double crr_mean = 0;             // roll_n / sum of vertical tire forces
+  double driveline_loss_n = 0;  // gearbox and axle losses, as a force at the wheels
+  double crr_mean = 0;          // roll_n / sum of vertical tire forces
   std::array<double, kMaxAxles> crr{};
   std::array<AxleOutputs, kMaxAxles> axles{};
 };
@@ -64,8 +64,8 @@ struct PlantOptions {
 
 class TruckPlant {
  public:
-  TruckPlant(const TruckParams& truck, const Route& route, const RoadProfile& profile, const EffectSet& effects,
-             std::uint64_t seed, PlantOptions options = {});
+  TruckPlant(const TruckParams& truck, const Route& route, const RoadProfile& profile, const EffectSet& effects, std::uint64_t seed,
+             PlantOptions options = {});
 
   // Places the truck at steady cruise: gear by the driver's rule, controller preloaded.
   void start(double x_m, double speed_mps, const Environment& env);

@@ -15,8 +15,8 @@ double fuel_rate_lph(const FuelSpec& f, double fuel_kgps);
 
 // Mechanical loss of the gearbox and axle between clutch and wheels, as torque at the wheels.
 struct DrivelineLoss {
-  double efficiency = 1.0;      // proportional (mesh) part
-  double spin_wheel_nm = 0.0;   // load-independent churning and bearing drag, at the wheels
+  double efficiency = 1.0;     // proportional (mesh) part
+  double spin_wheel_nm = 0.0;  // load-independent churning and bearing drag, at the wheels
 };
 
 // The driveline-efficiency effect switches from the single efficiency to gear- and load-dependent

@@ -22,12 +22,12 @@ double iri_from_gd_m_per_km(double gd_n0_m3);
 
 // Transverse joints of a jointed concrete pavement. Any magnitude 0 switches that term off.
 struct JointSpec {
-  double spacing_m = 0;      // nominal slab length; 0: no joints
-  double faulting_m = 0;     // step at each joint, leave slab lower than approach slab
-  double curl_m = 0;         // slab-edge lift above the slab centre (negative: edges down)
+  double spacing_m = 0;   // nominal slab length; 0: no joints
+  double faulting_m = 0;  // step at each joint, leave slab lower than approach slab
+  double curl_m = 0;      // slab-edge lift above the slab centre (negative: edges down)
   double gap_width_m = 0.01;
   double gap_depth_m = 0.001;
-  double jitter_m = 0.1;     // each joint moves uniformly within +-jitter_m of its nominal place
+  double jitter_m = 0.1;  // each joint moves uniformly within +-jitter_m of its nominal place
 };
 
 struct ProfileSegment {
@@ -39,7 +39,7 @@ struct ProfileSegment {
 
 struct ProfileOptions {
   double dx_m = 0.05;
-  double footprint_m = 0.20;  // tire contact length for the enveloped profile; 0: enveloped = raw
+  double footprint_m = 0.20;          // tire contact length for the enveloped profile; 0: enveloped = raw
   double n_low_cycles_per_m = 0.005;  // below this the random profile stops growing as n^-2
 };
 
@@ -49,11 +49,10 @@ class RoadProfile {
   // value. Segments are given in order and may leave gaps, where the random roughness continues
   // with the previous segment's G_d (the first segment's before it). The profile starts at height 0.
   // Joints: each concrete segment starts a new slab at its start_m; jittered joints stay inside it.
-  static RoadProfile generate(std::span<const ProfileSegment> segments, double start_m, double end_m,
-                              std::uint64_t seed, const ProfileOptions& options = {});
+  static RoadProfile generate(std::span<const ProfileSegment> segments, double start_m, double end_m, std::uint64_t seed,
+                              const ProfileOptions& options = {});
   // A given profile (measured, or synthetic for tests), heights at start_m + i * dx_m.
-  static RoadProfile from_samples(std::vector<double> heights_m, double start_m, double dx_m,
-                                  double footprint_m = 0.20);
+  static RoadProfile from_samples(std::vector<double> heights_m, double start_m, double dx_m, double footprint_m = 0.20);
 
   double height_m(double x_m) const;            // raw profile, linear interpolation
   double enveloped_height_m(double x_m) const;  // after the tire-footprint moving average
@@ -64,8 +63,7 @@ class RoadProfile {
   std::span<const double> joint_positions_m() const { return joints_m_; }
 
  private:
-  RoadProfile(std::vector<double> raw, std::vector<double> joints_m, double start_m, double dx_m,
-              double footprint_m);
+  RoadProfile(std::vector<double> raw, std::vector<double> joints_m, double start_m, double dx_m, double footprint_m);
 
   std::vector<double> raw_;
   std::vector<double> enveloped_;

@@ -17,18 +17,18 @@ struct Cell {
   std::string id;
   double start_m = 0;
   double end_m = 0;
-  std::string surface;   // "concrete" or "bituminous"
-  double crr = 0;        // the tire-pavement CRR at 14.3 C, 30 mph, warm tires: the truth
-  double gd_n0_m3 = 0;   // ISO 8608 roughness
+  std::string surface;         // "concrete" or "bituminous"
+  double crr = 0;              // the tire-pavement CRR at 14.3 C, 30 mph, warm tires: the truth
+  double gd_n0_m3 = 0;         // ISO 8608 roughness
   double joint_spacing_m = 0;  // concrete panels; 0 for none
 };
 
 struct RouteDef {
   std::string name;
-  std::string source;        // where the geometry and cells come from
-  std::string source_file;   // the file it was read from, for errors
+  std::string source;       // where the geometry and cells come from
+  std::string source_file;  // the file it was read from, for errors
   std::vector<RoutePoint> points;
-  std::vector<Cell> cells;   // in order, not overlapping
+  std::vector<Cell> cells;  // in order, not overlapping
   double default_crr = 0.0055;
   double default_gd_n0_m3 = 8e-6;
 };
@@ -59,8 +59,8 @@ class Route {
  private:
   Route() = default;
   std::shared_ptr<const RouteDef> def_;
-  std::vector<double> cumulative_m_;   // distance at each point
-  std::vector<double> azimuth_deg_;    // azimuth leaving each point
+  std::vector<double> cumulative_m_;  // distance at each point
+  std::vector<double> azimuth_deg_;   // azimuth leaving each point
   // Smoothed elevation every kElevationStep_m from elev_origin_m.
   std::vector<double> elevation_;
   double elev_origin_m_ = 0;

@@ -19,24 +19,24 @@ namespace roadload::sim {
 // How each sensor's stamps relate to the true time of what they measured (the capture clock is
 // the gateway's monotonic clock, the simulator's virtual time).
 struct ClockSpec {
-  Seconds can_rx_latency{80e-6};    // end of frame to kernel stamp
-  Seconds can_rx_jitter{20e-6};     // uniform 0..this on top
-  double ecu_drift_ppm = 100;       // each ECU's oscillator, uniform +-this
-  Seconds accel_offset{0};          // accelerometer stamps late against the capture clock
-  double accel_drift_ppm = 0;       // and drifting against it
-  Seconds gnss_latency{0.05};       // fix epoch to arrival at the logger
-  Seconds weather_offset{0};        // weather mast clock against the capture clock
+  Seconds can_rx_latency{80e-6};  // end of frame to kernel stamp
+  Seconds can_rx_jitter{20e-6};   // uniform 0..this on top
+  double ecu_drift_ppm = 100;     // each ECU's oscillator, uniform +-this
+  Seconds accel_offset{0};        // accelerometer stamps late against the capture clock
+  double accel_drift_ppm = 0;     // and drifting against it
+  Seconds gnss_latency{0.05};     // fix epoch to arrival at the logger
+  Seconds weather_offset{0};      // weather mast clock against the capture clock
 };
 
 struct Scenario {
   std::string name;
   std::string description;
-  std::string source;           // the file it came from
+  std::string source;  // the file it came from
   RouteDef route;
-  Vehicle vehicle;              // the truck driven (`vehicle = NAME`, else the default vehicle)
-  double speed_mps = 0;         // cruise set speed
-  double start_m = 0;           // front axle at the start
-  double end_m = 0;             // the run ends when the front axle passes here
+  Vehicle vehicle;                  // the truck driven (`vehicle = NAME`, else the default vehicle)
+  double speed_mps = 0;             // cruise set speed
+  double start_m = 0;               // front axle at the start
+  double end_m = 0;                 // the run ends when the front axle passes here
   std::optional<Seconds> duration;  // or after this long, whichever first
   std::int64_t start_utc_ns = 0;
   std::uint64_t road_seed = 1;  // the road is the same whatever the run's seed
@@ -48,13 +48,13 @@ struct Scenario {
   std::size_t accelerometers = 8;
   double gnss_rate_hz = 10;
   double physics_rate_hz = 2400;
-  double load_scale = 1.0;      // every axle's load (its sprung part) times this: a heavier or lighter cargo
+  double load_scale = 1.0;  // every axle's load (its sprung part) times this: a heavier or lighter cargo
   // This truck's engine against its type's: friction and the accessories' power times these (one
   // engine of a fleet; EEC3 rounds each truck's losses differently).
   double engine_friction_scale = 1.0;
   double accessory_scale = 1.0;
-  double cda_scale = 1.0;       // and its drag area against the type's (body, mirrors, trailer gap)
-  bool coast = false;           // neutral coast-down instead of cruise
+  double cda_scale = 1.0;  // and its drag area against the type's (body, mirrors, trailer gap)
+  bool coast = false;      // neutral coast-down instead of cruise
   // Rev-hold (an engine-loss calibration): standing in neutral, the governor holds the engine at
   // each of these speeds in turn for `hold`; coast is set, the speed is 0.
   std::vector<double> hold_rpm;

@@ -18,8 +18,8 @@ namespace roadload::sim {
 struct Kinematics {
   double t_s = 0;
   double accel_long_mps2 = 0;
-  double gravity_along_mps2 = 0;  // g sin(grade): what a level-mounted x axis feels of gravity
-  double gravity_normal_mps2 = 0; // g cos(grade)
+  double gravity_along_mps2 = 0;   // g sin(grade): what a level-mounted x axis feels of gravity
+  double gravity_normal_mps2 = 0;  // g cos(grade)
   std::array<double, kMaxAxles> sprung_mps2{};
   std::array<double, kMaxAxles> unsprung_mps2{};
 };

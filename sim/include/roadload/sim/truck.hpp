@@ -17,11 +17,11 @@ using DrivelineSpec = DrivelineDescription;
 using AccessorySpec = AccessoryDescription;
 
 struct AxleSpec {
-  std::string name;          // "front", "drive1", ...
-  double position_m = 0;     // behind the front axle
-  double load_kg = 0;        // static axle load
-  AxleParams vertical;       // sprung share, unsprung, springs and dampers
-  double tire_radius_m = 0;  // dynamic rolling radius
+  std::string name;               // "front", "drive1", ...
+  double position_m = 0;          // behind the front axle
+  double load_kg = 0;             // static axle load
+  AxleParams vertical;            // sprung share, unsprung, springs and dampers
+  double tire_radius_m = 0;       // dynamic rolling radius
   double wheel_inertia_kgm2 = 0;  // all wheel ends of the axle
   bool driven = false;
 };

@@ -25,10 +25,10 @@ struct CellTruth {
   double tire_power_w = 0;
   double friction_power_w = 0;
   double speed_mps = 0;
-  double time_s = 0;          // centre of gravity in the cell
-  double roll_force_n = 0;    // mean
+  double time_s = 0;        // centre of gravity in the cell
+  double roll_force_n = 0;  // mean
   double fuel_l = 0;
-  bool complete = false;      // the whole truck crossed the whole cell
+  bool complete = false;  // the whole truck crossed the whole cell
 };
 
 // The energy ledger in the rows of a fuel breakdown (seed report Figures 2.2, 6.4), in J:

@@ -14,8 +14,7 @@ namespace roadload::sim {
 inline constexpr std::size_t kMaxAxles = 8;
 
 struct AxleParams {
-  double sprung_kg = 0, unsprung_kg = 0, k_susp_npm = 0, c_susp_nspm = 0, k_tire_npm = 0, c_tire_nspm = 0,
-         coulomb_n = 0;
+  double sprung_kg = 0, unsprung_kg = 0, k_susp_npm = 0, c_susp_nspm = 0, k_tire_npm = 0, c_tire_nspm = 0, coulomb_n = 0;
 };
 
 struct AxleOutputs {             // at the end of the last step
@@ -58,7 +57,7 @@ class VerticalModel {
  private:
   std::array<AxleParams, kMaxAxles> params_{};
   std::array<std::array<double, 4>, kMaxAxles> state_{};  // z_s, v_s, z_u, v_u
-  std::array<double, kMaxAxles> road_z_m_{};  // at the end of the last step
+  std::array<double, kMaxAxles> road_z_m_{};              // at the end of the last step
   std::array<AxleOutputs, kMaxAxles> out_{};
   std::array<AxleEnergy, kMaxAxles> energy_{};
   std::size_t count_ = 0;

@@ -22,7 +22,7 @@ struct WeatherSpec {
   double pressure_pa = 98100.0;
   double wind_speed_mps = 0.0;
   double wind_from_deg = 0.0;
-  double wander_mps = 0.3;        // slow variation of the mean wind, standard deviation
+  double wander_mps = 0.3;  // slow variation of the mean wind, standard deviation
   double temp_drift_c_per_h = 0.0;
   std::vector<WindPoint> wind_trace;  // in time order; when given it is the mean wind (no wander)
 };

@@ -34,8 +34,6 @@ class MessageAssembler {
   TpReassembler tp_;
 };
 
-constexpr bool is_transport_pgn(Pgn pgn) {
-  return pgn == kPgnTpCm || pgn == kPgnTpDt || pgn == kPgnEtpCm || pgn == kPgnEtpDt;
-}
+constexpr bool is_transport_pgn(Pgn pgn) { return pgn == kPgnTpCm || pgn == kPgnTpDt || pgn == kPgnEtpCm || pgn == kPgnEtpDt; }
 
 }  // namespace roadload::j1939

@@ -43,10 +43,10 @@ class CadenceMonitor {
     std::uint8_t iface = 0;
     std::uint32_t key = 0;  // the id without its priority bits
     CaptureTime last{};
-    double period_s = 0;    // 0 while learning
+    double period_s = 0;  // 0 while learning
     double last_dt_s = 0;
     std::array<double, kLearnIntervals> learning{};
-    std::size_t learned = 0;   // intervals in `learning`
+    std::size_t learned = 0;     // intervals in `learning`
     std::size_t off_period = 0;  // off-period intervals in a row, in one direction
     int off_direction = 0;       // +1 longer, -1 shorter
     Pending pending = Pending::none;

@@ -13,7 +13,7 @@ namespace roadload::j1939 {
 struct MessageDef {
   Pgn pgn = 0;
   std::string name;
-  std::uint32_t length = 8;  // bytes; above 8 the message travels by the transport protocol
+  std::uint32_t length = 8;         // bytes; above 8 the message travels by the transport protocol
   std::uint32_t cycle_time_ms = 0;  // GenMsgCycleTime when the DBC gives it
   std::vector<SignalDef> signals;
 };

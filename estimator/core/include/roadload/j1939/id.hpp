@@ -36,9 +36,8 @@ constexpr Id parse_id(std::uint32_t can_id) {
 }
 
 constexpr std::uint32_t to_can_id(const Id& id) {
-  return (std::uint32_t{id.priority & 7u} << 26) | (std::uint32_t{id.edp} << 25) |
-         (std::uint32_t{id.dp} << 24) | (std::uint32_t{id.pf} << 16) |
-         (std::uint32_t{id.ps} << 8) | id.sa;
+  return (std::uint32_t{id.priority & 7u} << 26) | (std::uint32_t{id.edp} << 25) | (std::uint32_t{id.dp} << 24) |
+         (std::uint32_t{id.pf} << 16) | (std::uint32_t{id.ps} << 8) | id.sa;
 }
 
 // For a PDU1 PGN the destination goes into PS; for PDU2 it is ignored (the PGN fixes PS).

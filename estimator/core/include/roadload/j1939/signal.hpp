@@ -15,9 +15,9 @@ enum class ByteOrder : std::uint8_t {
 
 struct SignalDef {
   std::string name;
-  std::uint32_t spn = 0;       // 0 when the DBC names none
+  std::uint32_t spn = 0;        // 0 when the DBC names none
   std::uint16_t start_bit = 0;  // DBC numbering: LSB for little endian, MSB (sawtooth) for big endian
-  std::uint8_t length = 1;     // bits, 1..64
+  std::uint8_t length = 1;      // bits, 1..64
   ByteOrder order = ByteOrder::little_endian;
   bool is_signed = false;
   double factor = 1.0;
@@ -45,9 +45,7 @@ struct SignalReading {
   double value = 0.0;  // physical value; only meaningful when state == valid
   std::uint64_t raw = 0;
 
-  std::optional<double> get() const {
-    return state == SignalState::valid ? std::optional<double>(value) : std::nullopt;
-  }
+  std::optional<double> get() const { return state == SignalState::valid ? std::optional<double>(value) : std::nullopt; }
 };
 
 std::uint64_t extract_raw(const SignalDef& s, std::span<const std::uint8_t> payload);

@@ -37,9 +37,9 @@ struct TpConfig {
   // J1939-21 T1 (750 ms) bounds the gap between BAM packets; T2/T3 (1250 ms) bound a connection.
   Nanoseconds bam_timeout = Nanoseconds{750'000'000};
   Nanoseconds connection_timeout = Nanoseconds{1'250'000'000};
-  std::size_t max_sessions = 32;         // TP sessions open at once, across all buses
-  std::size_t max_etp_sessions = 2;      // ETP sessions open at once
-  std::size_t max_etp_bytes = 64 * 1024; // larger ETP messages are counted in too_large and dropped
+  std::size_t max_sessions = 32;          // TP sessions open at once, across all buses
+  std::size_t max_etp_sessions = 2;       // ETP sessions open at once
+  std::size_t max_etp_bytes = 64 * 1024;  // larger ETP messages are counted in too_large and dropped
 };
 
 struct TpMessage {
@@ -49,7 +49,7 @@ struct TpMessage {
   std::uint8_t da = kGlobalAddress;
   std::uint8_t priority = 6;
   std::uint8_t iface = 0;
-  bool extended = false;  // carried by ETP
+  bool extended = false;               // carried by ETP
   std::span<const std::uint8_t> data;  // valid until the next push()
 };
 
@@ -58,14 +58,14 @@ struct TpCounters {
   std::uint64_t rts_started = 0;
   std::uint64_t etp_started = 0;
   std::uint64_t completed = 0;
-  std::uint64_t aborted = 0;            // abort seen on the bus
+  std::uint64_t aborted = 0;  // abort seen on the bus
   std::uint64_t timed_out = 0;
-  std::uint64_t superseded = 0;         // a new announcement replaced an unfinished session
+  std::uint64_t superseded = 0;  // a new announcement replaced an unfinished session
   std::uint64_t duplicate_packets = 0;
   std::uint64_t out_of_order_packets = 0;
-  std::uint64_t orphan_packets = 0;     // TP.DT with no open session
-  std::uint64_t bad_sequence = 0;       // sequence number 0 or beyond the announced count
-  std::uint64_t malformed = 0;          // control frame too short or inconsistent
+  std::uint64_t orphan_packets = 0;  // TP.DT with no open session
+  std::uint64_t bad_sequence = 0;    // sequence number 0 or beyond the announced count
+  std::uint64_t malformed = 0;       // control frame too short or inconsistent
   std::uint64_t too_large = 0;
   std::uint64_t no_free_session = 0;
 };

@@ -41,14 +41,14 @@ std::vector<BenchCase> draw_cases(const BenchPlan& plan, const BenchDay& day);
 struct CaseOutcome {
   BenchCase truth;
   GapResult result;
-  bool named_right = false;   // null: nothing named; otherwise the first named effect was on
-  bool false_alarm = false;   // null run with an effect named
-  bool visible = false;       // the effect raised the held-out chi-square 4 sd above the noise drives'
-  double shrink = 0;          // share of that excess chi-square the named effect removed
+  bool named_right = false;  // null: nothing named; otherwise the first named effect was on
+  bool false_alarm = false;  // null run with an effect named
+  bool visible = false;      // the effect raised the held-out chi-square 4 sd above the noise drives'
+  double shrink = 0;         // share of that excess chi-square the named effect removed
 };
 
-CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelLibrary>& libraries,
-                     const j1939::Database& db, const GapOptions& options);
+CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelLibrary>& libraries, const j1939::Database& db,
+                     const GapOptions& options);
 
 std::string describe_effects(const std::vector<std::pair<sim::Effect, double>>& effects);
 

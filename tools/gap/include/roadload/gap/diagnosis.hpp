@@ -45,36 +45,36 @@ struct Problem {
 };
 
 struct Fit {
-  std::vector<std::size_t> effects;  // indices into Problem::candidates
+  std::vector<std::size_t> effects;       // indices into Problem::candidates
   std::vector<double> magnitude, lo, hi;  // fitted on both halves; 90 % interval
   std::vector<double> magnitude_half0;    // fitted on half 0 alone: what the held-out check uses
-  double gain = 0;  // chi-square removed on held-out data, both folds, minus the complexity penalty,
-                    // times the plausibility of the magnitudes
-  double plausibility = 1;  // exp(-(d / tolerance)^2), d: distance outside the realistic range in its widths
+  double gain = 0;                        // chi-square removed on held-out data, both folds, minus the complexity penalty,
+                                          // times the plausibility of the magnitudes
+  double plausibility = 1;                // exp(-(d / tolerance)^2), d: distance outside the realistic range in its widths
 };
 
 struct WhereItem {
   std::string run, channel, where;
   std::size_t features = 0;
-  double excess = 0;  // sum z^2 minus its noise expectation
+  double excess = 0;        // sum z^2 minus its noise expectation
   double significance = 0;  // excess / sqrt(2 n): standard deviations above noise
-  double worst_z = 0;  // the largest |z| inside, and where
+  double worst_z = 0;       // the largest |z| inside, and where
   std::string worst_where;
 };
 
 struct DecisionRule {
-  double null_gain = 100.0;  // held-out chi-square a candidate must remove to be named
-  double pair_gain = 50.0;   // and a second effect beyond the first
-  double pair_share = 0.01;  // and at least this share of the first's gain: less is the first's model error
-  double penalty = 2.0;      // per fitted magnitude, AIC-like
-  std::size_t pair_pool = 6; // the best singles tried in pairs
+  double null_gain = 100.0;       // held-out chi-square a candidate must remove to be named
+  double pair_gain = 50.0;        // and a second effect beyond the first
+  double pair_share = 0.01;       // and at least this share of the first's gain: less is the first's model error
+  double penalty = 2.0;           // per fitted magnitude, AIC-like
+  std::size_t pair_pool = 6;      // the best singles tried in pairs
   double range_tolerance = 0.25;  // of the realistic range's width, outside it
 };
 
 struct Diagnosis {
   std::vector<Fit> singles;  // every candidate, best first
   std::optional<Fit> best_pair;
-  std::optional<Fit> chosen;  // none: no candidate explains the gap significantly
+  std::optional<Fit> chosen;     // none: no candidate explains the gap significantly
   std::vector<WhereItem> where;  // most significant first
   std::size_t features = 0;
   double chi2 = 0;  // of the residual before any effect

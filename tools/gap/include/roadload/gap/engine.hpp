@@ -21,9 +21,9 @@ namespace roadload::gap {
 enum class Holdout { cells, runs };
 
 struct GapOptions {
-  std::size_t noise_runs = 8;   // seeds of the unchanged model that calibrate the noise floor
+  std::size_t noise_runs = 8;  // seeds of the unchanged model that calibrate the noise floor
   Holdout holdout = Holdout::cells;
-  unsigned jobs = 2;            // simulations at once
+  unsigned jobs = 2;  // simulations at once
   DecisionRule rule;
   std::function<void(const std::string&)> progress;  // one line per step, for long runs
 };
@@ -40,10 +40,10 @@ struct ModelLibrary {
   std::vector<std::string> labels;
   std::vector<sim::Scenario> scenarios;  // the re-simulations the library was built on
   std::vector<RunLayout> layouts;
-  std::vector<FeatureKey> keys;          // all runs' features, concatenated
+  std::vector<FeatureKey> keys;            // all runs' features, concatenated
   std::vector<std::uint8_t> feature_half;  // each feature's own half (keys' may be its run's: --holdout runs)
-  Eigen::VectorXd baseline;              // the re-simulation's features
-  Eigen::VectorXd sigma;                 // noise floor per feature
+  Eigen::VectorXd baseline;                // the re-simulation's features
+  Eigen::VectorXd sigma;                   // noise floor per feature
   struct Response {
     sim::Effect effect;
     double base, m1, m2;
@@ -87,8 +87,7 @@ struct GapResult {
   std::size_t held_out = 0;                        // valid held-out features
 };
 
-GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db,
-                  const GapOptions& options);
+GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options);
 
 // Simulates each (scenario, seed) into features on `jobs` threads; results in task order.
 struct SimTask {

@@ -18,8 +18,8 @@
 #include "roadload/recording/metadata.hpp"
 #include "roadload/route_geometry.hpp"
 #include "roadload/samples.hpp"
-#include "roadload/vehicle.hpp"
 #include "roadload/sim/wind.hpp"
+#include "roadload/vehicle.hpp"
 
 namespace roadload::gap {
 
@@ -39,7 +39,7 @@ struct Feature {
   std::string channel;  // torque_nm, fuel_lph, speed_mps, gnss_alt_m, torque_sd_nm, speed_sd_mps, fan_rpm, psd_db:<sensor>
   std::string where;    // a cell id, "road", or "<pavement> <lo>-<hi> Hz"
   std::uint8_t half = 0;
-  double value = 0;     // NaN when the run never saw it
+  double value = 0;  // NaN when the run never saw it
 };
 
 // What the recording says the conditions were, for the re-simulation.

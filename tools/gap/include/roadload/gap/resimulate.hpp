@@ -29,7 +29,6 @@ Parsed<RecordedRun> read_run(const std::string& path, const j1939::Database& db,
 sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, const recording::Metadata& meta);
 
 // Simulates in memory, straight into features; the metadata is what its recording would hold.
-RecordedRun simulate_run(const sim::Scenario& scenario, std::uint64_t seed, const j1939::Database& db,
-                              const RunLayout& layout);
+RecordedRun simulate_run(const sim::Scenario& scenario, std::uint64_t seed, const j1939::Database& db, const RunLayout& layout);
 
 }  // namespace roadload::gap

@@ -24,10 +24,10 @@ struct PavementPower {
 struct TableCandidate {
   sim::Effect effect;
   std::vector<std::pair<double, double>> mainline_ratio;  // (magnitude, concrete / bituminous) simulated
-  bool reached = false;    // some magnitude in range gives the report's Mainline ratio
-  double magnitude = 0;    // that magnitude, or the one coming closest
-  double highway_ratio = 0;  // TH 10 / TH 66 at it: held out
-  double holdout_error = 0;  // |highway ratio - the report's| / the report's
+  bool reached = false;                                   // some magnitude in range gives the report's Mainline ratio
+  double magnitude = 0;                                   // that magnitude, or the one coming closest
+  double highway_ratio = 0;                               // TH 10 / TH 66 at it: held out
+  double holdout_error = 0;                               // |highway ratio - the report's| / the report's
 };
 
 struct TablesResult {

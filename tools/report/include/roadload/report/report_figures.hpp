@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "roadload/report/svg_chart.hpp"
 #include "roadload/results/results_dir.hpp"
 #include "roadload/results/truth_files.hpp"
-#include "roadload/report/svg_chart.hpp"
 
 namespace roadload::report {
 
