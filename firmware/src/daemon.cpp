@@ -14,6 +14,8 @@ namespace {
 constexpr Nanoseconds kIdleSleep{10'000'000};
 constexpr std::size_t kWriteBatch = 4096;
 constexpr Nanoseconds kPowerWindow{5'000'000'000};
+// How long a GNSS fix or a weather sample waits for CAN to catch up with it (its ring holds 25 s).
+constexpr Nanoseconds kMaxPlaceWait{10'000'000'000};
 
 template <typename Ring, typename Fn>
 std::size_t drain(Ring& ring, std::size_t max, Fn&& fn) {
@@ -158,12 +160,26 @@ void Daemon::write_loop() {
   }
 }
 
-// The oldest item across every estimator ring, if it is at or before `horizon`.
-bool Daemon::estimate_next(CaptureTime horizon) {
+// GNSS fixes place the truck by the odometer that CAN's wheel speeds advance, and the weather sets
+// the air those ticks meet: both wait for every bus to be delivered through their stamps, longer
+// than the other streams wait for one another. A fix taken ahead of the ticks before it, when a
+// starved CAN thread falls behind, would put the truck ahead of where it is.
+CaptureTime Daemon::can_horizon(CaptureTime now) {
+  CaptureTime through = CaptureTime::max();
+  for (const auto& c : sources_.can) through = std::min(through, c->delivered_through());
+  if (through == CaptureTime::max()) return through;
+  return std::max(now - kMaxPlaceWait, through);
+}
+
+// The oldest item across every estimator ring, if it is at or before `horizon` (GNSS and weather:
+// also at or before `place_horizon`).
+bool Daemon::estimate_next(CaptureTime horizon, CaptureTime place_horizon) {
+  const std::size_t placing = sources_.can.size() + sources_.accel.size();
   const auto best = oldest_head(sources_.count(), [&](std::size_t i) {
+    const CaptureTime limit = i >= placing ? std::min(horizon, place_horizon) : horizon;
     return sources_.visit(i, [&](auto& c) -> std::optional<CaptureTime> {
       const auto* head = c.to_estimator().peek();
-      if (head == nullptr || head->t > horizon) return std::nullopt;
+      if (head == nullptr || head->t > limit) return std::nullopt;
       return head->t;
     });
   });
@@ -186,8 +202,9 @@ void Daemon::estimate_loop() {
     const bool stopping = stop_workers_.load();
     const CaptureTime now = clock_.now();
     const CaptureTime horizon = stopping ? CaptureTime::max() : merge_horizon(now);
+    const CaptureTime place_horizon = stopping ? CaptureTime::max() : can_horizon(now);
     std::size_t n = 0;
-    while (n < kWriteBatch && estimate_next(horizon)) ++n;
+    while (n < kWriteBatch && estimate_next(horizon, place_horizon)) ++n;
     // The dynamic power over the last few seconds: spectra need several segments to mean much.
     double window_w = -2;
     if (vibration_ && now - window_start >= kPowerWindow) {
