@@ -2,6 +2,7 @@
 // fixed-interval smoother), written as RESULTS/cells.csv and RESULTS/trip.json.
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -15,14 +16,18 @@
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/engine_loss_file.hpp"
 #include "roadload/grade_file.hpp"
+#include "roadload/grade_profile.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
+#include "roadload/track_route.hpp"
 
 namespace roadload::cli {
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
 constexpr const char* kHelp =
-    "usage: roadload analyze <recording> --route ROUTE --out RESULTS [options]\n\n"
+    "usage: roadload analyze <recording> --out RESULTS [--route ROUTE] [options]\n\n"
     "Estimates the coefficient of rolling resistance (CRR) along the drive and per pavement cell:\n"
     "the J1939 force balance (EEC1, EEC3, EC1, ETC2, CCVS1) in an EKF over speed, CRR, CdA, a\n"
     "torque bias and the speed's ripple from the road's roughness (the route's IRI per cell), with\n"
@@ -33,7 +38,9 @@ constexpr const char* kHelp =
     "per axle (report Eq. 2.1) and the power the dampers and tires dissipate (dynamic rolling\n"
     "resistance, Eq. 2.7-2.8; the vehicle file's dampers and tire damping). Per pavement group\n"
     "(surface and panel length): PSDs, vibration modes and the concrete joint line.\n\n"
-    "  --route R       route file or built-in route name (config/routes): geometry, grade, cells, IRI\n"
+    "  --route R       route file or built-in route name (config/routes): geometry, grade, cells, IRI;\n"
+    "                  without it the drive's own GNSS traces the road (cells of 250 m, grade from that\n"
+    "                  one pass with its error: wide intervals), and without GNSS nothing is placed\n"
     "  --out DIR       write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval; fuel breakdown per cell\n"
     "                  in litres; damper_power_w,tire_power_w,...), DIR/trip.json, and the PSDs:\n"
     "                  DIR/psd.csv (trip) and DIR/psd-<group>.csv (freq_hz, one column per accelerometer,\n"
@@ -103,7 +110,6 @@ std::variant<AnalyzeOptions, int> parse(Args args) {
   }
   if (opt.failed()) return kExitUsage;
   if (o.recording.empty()) return opt.fail("a recording is required");
-  if (o.route.empty()) return opt.fail("--route is required");
   if (o.out.empty()) return opt.fail("--out is required");
   return o;
 }
@@ -118,14 +124,14 @@ std::optional<int> failed_input(const Parsed<T>& p) {
 
 // The analyzer's settings: the recording's vehicle, then what the options say of the truck.
 std::variant<AnalyzerConfig, int> configure(const AnalyzeOptions& o, const Vehicle& vehicle, const recording::Metadata& meta,
-                                            const RouteFile& route) {
+                                            double default_iri_m_per_km) {
   AnalyzerConfig cfg = recording::analyzer_config_for(vehicle, meta, o.mass);
   cfg.estimate_cda = o.estimate_cda;
   if (o.cda_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_m2;
   if (o.cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *o.cda_sigma_m2;
   if (o.cda_torque_correlation) cfg.filter.truck.cda_torque_bias_correlation = *o.cda_torque_correlation;
   cfg.survey_elevation_sigma_m = o.survey_sigma;
-  cfg.roughness_iri_m_per_km = route.default_iri_m_per_km;
+  cfg.roughness_iri_m_per_km = default_iri_m_per_km;
   if (!o.losses_file.empty()) {
     auto losses = load_engine_loss_file(o.losses_file);
     if (auto rc = failed_input(losses)) return *rc;
@@ -173,37 +179,95 @@ int write_results(const AnalyzeOptions& o, const std::vector<CellResult>& cells,
   return kExitOk;
 }
 
-int analyze(const AnalyzeOptions& o) {
-  j1939::Database db;
-  if (auto rc = load_definitions("analyze", o.dbcs, db)) return *rc;
+// The road the drive is analysed on: the route given, or the one the drive's own GNSS traces.
+struct Road {
+  RouteGeometry geometry;
+  std::vector<CellDef> cells;  // a route file's, with their pavements; none for a traced road
+  std::vector<CellSpan> spans;
+  std::optional<GradeProfile> grade;  // a traced road's, from the same fixes
+  double default_iri_m_per_km = AnalyzerConfig{}.roughness_iri_m_per_km;
+  std::string unplaced;  // why the drive has no road, when it has none
+};
+
+// Without a route the drive's own GNSS traces one, its grade from that one pass (so wide, honest
+// intervals); without GNSS either, the drive has no road: nothing can place it or give its grade.
+Road traced_road(const AnalyzeOptions& o, const Vehicle& vehicle) {
+  Road road;
+  std::vector<GnssFix> fixes;
+  if (auto gnss = recording::RecordingReader::open(o.recording, recording::kGnssStream)) {
+    while (const recording::Record* r = gnss.value().next()) {
+      if (const auto* f = std::get_if<GnssFix>(r)) fixes.push_back(*f);
+    }
+  }
+  const std::optional<TrackRoute> track = route_from_track(fixes, vehicle.gnss_antenna_height_m);
+  const std::optional<RouteGeometry> geometry = track ? RouteGeometry::build(track->points) : std::nullopt;
+  if (!geometry) {
+    road.geometry = *RouteGeometry::build(std::vector<GeoPoint>{{0, 0, kNaN}, {0.001, 0, kNaN}});
+    road.unplaced = "no route was given and the recording's GNSS traces no road (" + std::to_string(fixes.size()) +
+                    " fixes): the drive cannot be placed, nor its grade known";
+    return road;
+  }
+  road.geometry = *geometry;
+  road.spans = fixed_length_cells(road.geometry.length_m(), TrackRouteConfig{}.cell_length_m);
+  GradeConfig one_pass;
+  one_pass.min_passes = 1;
+  one_pass.pass_slope_sigma = kGnssPassSlopeSigma;
+  const GnssTrack tracks[] = {{fixes, vehicle.gnss_antenna_height_m}};
+  road.grade = GradeProfile::from_gnss(road.geometry, tracks, one_pass);
+  return road;
+}
+
+// The route given, read before the recording so that a bad one is named at once.
+std::optional<std::variant<Road, int>> given_road(const AnalyzeOptions& o) {
+  if (o.route.empty()) return std::nullopt;
   auto loaded = load_route("analyze", o.route);
   if (const int* rc = std::get_if<int>(&loaded)) return *rc;
   LoadedRoute& route = std::get<LoadedRoute>(loaded);
+  Road road;
+  road.geometry = std::move(route.geometry);
+  road.spans = cell_spans(route.file.cells);
+  road.cells = std::move(route.file.cells);
+  road.default_iri_m_per_km = route.file.default_iri_m_per_km;
+  return road;
+}
+
+int analyze(const AnalyzeOptions& o) {
+  j1939::Database db;
+  if (auto rc = load_definitions("analyze", o.dbcs, db)) return *rc;
+  auto found = given_road(o);
+  if (found && std::holds_alternative<int>(*found)) return std::get<int>(*found);
   auto reader = recording::RecordingReader::open(o.recording);
   if (!reader) {
     std::fprintf(stderr, "roadload analyze: %s\n", reader.error().to_string().c_str());
-    return kExitNoInput;
+    return reader.error().line > 0 ? kExitDataErr : kExitNoInput;
   }
   const recording::Metadata& meta = reader.value().metadata();
   auto vehicle = recording_vehicle("analyze", meta);
   if (const int* rc = std::get_if<int>(&vehicle)) return *rc;
-  auto cfg = configure(o, std::get<Vehicle>(vehicle), meta, route.file);
+  if (!found) found = traced_road(o, std::get<Vehicle>(vehicle));
+  Road& road = std::get<Road>(*found);
+  auto cfg = configure(o, std::get<Vehicle>(vehicle), meta, road.default_iri_m_per_km);
   if (const int* rc = std::get_if<int>(&cfg)) return *rc;
-  const double route_length_m = route.geometry.length_m();
-  DriveAnalyzer analyzer(db, std::move(route.geometry), cell_spans(route.file.cells), std::get<AnalyzerConfig>(cfg));
+  const double route_length_m = road.geometry.length_m();
+  DriveAnalyzer analyzer(db, road.geometry, road.spans, std::get<AnalyzerConfig>(cfg));
+  if (road.grade) analyzer.set_grade(std::move(*road.grade));
   if (!o.grade_file.empty()) {
     auto grade = load_grade_file(o.grade_file, route_length_m);
     if (auto rc = failed_input(grade)) return *rc;
     analyzer.set_grade(std::move(grade.value()));
   }
-  const PavementGroups groups = pavement_groups(route.file.cells);
+  const PavementGroups groups = pavement_groups(road.cells);
   Accelerometers acc;
   attach(acc, analyzer, o, std::get<Vehicle>(vehicle), meta, groups);
   while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { analyzer.push(s); }, *r);
   for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
   analyzer.finish();
   const std::vector<CellResult> results = analyzer.cells();
-  const TripResult trip = analyzer.trip();
+  TripResult trip = analyzer.trip();
+  if (!road.unplaced.empty()) {
+    trip.not_identified.insert(trip.not_identified.begin(), road.unplaced);
+    trip.identified = false;
+  }
   std::optional<VibrationSummary> spectra;
   if (acc.vibration) spectra = summarize(*acc.vibration, groups, trip.fuel.time_s, trip.fuel.distance_m);
   if (const int rc = write_results(o, results, trip, acc, groups, spectra); rc != kExitOk) return rc;
@@ -217,8 +281,8 @@ int analyze(const AnalyzeOptions& o) {
   if (!o.quiet) print_cells(results, truth ? &*truth : nullptr);
   print_trip(trip, results, truth ? &*truth : nullptr, va);
   if (spectra) print_vibration(*spectra);
-  if (spectra && truth) print_vibration_truth(*acc.vibration, route.file.cells, *truth);
-  return kExitOk;
+  if (spectra && truth) print_vibration_truth(*acc.vibration, road.cells, *truth);
+  return reader.value().errors().count() > 0 ? kExitDataErr : kExitOk;
 }
 
 }  // namespace

@@ -72,6 +72,7 @@ void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, co
   std::fprintf(stderr, "analyze: trip CRR %.5f +- %.5f (%s), CdA %.2f m^2, %zu of %zu ticks usable, mean NIS %.2f +- %.2f\n",
                trip.crr, trip.crr_sigma, trip.identified ? "identified" : "NOT identified", trip.cda_m2, trip.usable_ticks,
                trip.ticks, trip.mean_nis, 1.96 * trip.mean_nis_se);
+  for (const std::string& why : trip.not_identified) std::fprintf(stderr, "analyze: not identified: %s\n", why.c_str());
   const FuelBreakdown& f = trip.fuel;
   std::fprintf(stderr,
                "analyze: fuel %.3f L measured (LFE1), %.3f L of it while the engine's torques were unknown; "

@@ -6,6 +6,7 @@
 
 #include "roadload/fuel_breakdown.hpp"
 #include "roadload/recording/writer.hpp"
+#include "roadload/results/json.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -92,29 +93,35 @@ std::optional<ParseError> write_psd_files(const std::string& dir, const Vibratio
 std::string vibration_json(const VibrationSummary& s) {
   std::ostringstream j;
   const auto power = [&](const DynamicPower& p) {
-    j << "\"damper_power_w\": " << p.damper_w << ", \"tire_power_w\": " << p.tire_w << ", \"tire_eq27_power_w\": " << p.tire_eq27_w
-      << ", \"damper_accel_periodogram_w\": " << p.damper_accel_w;
+    j << "\"damper_power_w\": " << results::json_number(p.damper_w) << ", \"tire_power_w\": " << results::json_number(p.tire_w)
+      << ", \"tire_eq27_power_w\": " << results::json_number(p.tire_eq27_w)
+      << ", \"damper_accel_periodogram_w\": " << results::json_number(p.damper_accel_w);
   };
   j << "  \"dynamic_rolling\": {\n    ";
   power(s.trip);
-  j << ",\n    \"energy_j\": " << s.trip_cost.energy_j << ", \"liters\": " << s.trip_cost.diesel_l
-    << ", \"l_per_100km\": " << s.trip_cost.l_per_100km << ",\n    \"annual\": {\"hours_per_year\": " << s.annual.hours_per_year
-    << ", \"energy_mj_per_year\": " << s.annual.energy_mj_per_year << ", \"diesel_l_per_year\": " << s.annual.diesel_l_per_year
-    << ", \"l_per_100km\": " << s.annual.l_per_100km << "},\n    \"groups\": [";
+  j << ",\n    \"energy_j\": " << results::json_number(s.trip_cost.energy_j)
+    << ", \"liters\": " << results::json_number(s.trip_cost.diesel_l)
+    << ", \"l_per_100km\": " << results::json_number(s.trip_cost.l_per_100km)
+    << ",\n    \"annual\": {\"hours_per_year\": " << results::json_number(s.annual.hours_per_year)
+    << ", \"energy_mj_per_year\": " << results::json_number(s.annual.energy_mj_per_year)
+    << ", \"diesel_l_per_year\": " << results::json_number(s.annual.diesel_l_per_year)
+    << ", \"l_per_100km\": " << results::json_number(s.annual.l_per_100km) << "},\n    \"groups\": [";
   for (std::size_t g = 0; g < s.groups.size(); ++g) {
     const GroupSpectra& gs = s.groups[g];
-    j << (g ? ",\n" : "\n") << "      {\"name\": \"" << gs.name << "\", ";
+    j << (g ? ",\n" : "\n") << "      {\"name\": " << results::json_quote(gs.name) << ", ";
     power(gs.power);
     j << ", \"speed_mps\": " << (std::isfinite(gs.speed_mps) ? gs.speed_mps : 0.0)
-      << ",\n       \"joint_line\": {\"found\": " << (gs.joint.found ? "true" : "false") << ", \"panel_m\": " << gs.joint.panel_m
-      << ", \"freq_hz\": " << gs.joint_hz << ", \"significance\": " << gs.joint.significance
-      << ", \"inventory_panel_m\": " << gs.expected_panel_m << "},\n       \"modes\": [";
+      << ",\n       \"joint_line\": {\"found\": " << (gs.joint.found ? "true" : "false")
+      << ", \"panel_m\": " << results::json_number(gs.joint.panel_m) << ", \"freq_hz\": " << results::json_number(gs.joint_hz)
+      << ", \"significance\": " << results::json_number(gs.joint.significance)
+      << ", \"inventory_panel_m\": " << results::json_number(gs.expected_panel_m) << "},\n       \"modes\": [";
     for (std::size_t i = 0; i < gs.peaks.size(); ++i) {
       j << (i ? ", " : "") << "[";
       for (std::size_t p = 0; p < gs.peaks[i].size(); ++p) {
         const spectra::Peak& pk = gs.peaks[i][p];
-        j << (p ? ", " : "") << "{\"freq_hz\": " << pk.freq << ", \"prominence\": " << pk.prominence << ", \"width_hz\": " << pk.width
-          << ", \"label\": \"" << pk.label << "\", \"joint_harmonic\": " << pk.joint_harmonic << "}";
+        j << (p ? ", " : "") << "{\"freq_hz\": " << results::json_number(pk.freq)
+          << ", \"prominence\": " << results::json_number(pk.prominence) << ", \"width_hz\": " << results::json_number(pk.width)
+          << ", \"label\": " << results::json_quote(pk.label) << ", \"joint_harmonic\": " << pk.joint_harmonic << "}";
       }
       j << "]";
     }

@@ -1,6 +1,7 @@
 #include "options.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 
 #include "roadload/definitions.hpp"
@@ -62,8 +63,9 @@ std::optional<double> OptionParser::real(std::string_view name, double min, doub
   if (!v) return std::nullopt;
   double d = 0;
   const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), d);
-  if (ec != std::errc() || end != v->data() + v->size() || d < min || d > max) {
-    fail(std::string(name) + ": '" + std::string(*v) + "' is not a number in " + std::to_string(min) + ".." + std::to_string(max));
+  if (ec != std::errc() || end != v->data() + v->size() || !std::isfinite(d) || d < min || d > max) {
+    fail(std::string(name) + ": '" + std::string(*v) + "' is not a finite number in " + std::to_string(min) + ".." +
+         std::to_string(max));
     return std::nullopt;
   }
   return d;

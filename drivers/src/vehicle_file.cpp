@@ -114,8 +114,9 @@ struct NumberField {
 template <typename T, std::size_t N>
 void read_numbers(const TomlFields& f, const toml::table& t, const std::string& where, const NumberField<T> (&fields)[N], T& out) {
   for (const auto& [key, node] : t) {
-    const auto known = std::find_if(std::begin(fields), std::end(fields), [&](const auto& n) { return key.str() == n.key; });
-    if (known == std::end(fields)) f.fail(&node, where + std::string(key.str()), "unknown key");
+    const std::string_view name = key.str();  // a structured binding cannot be captured before C++20's clang 16
+    const auto known = std::find_if(std::begin(fields), std::end(fields), [name](const auto& n) { return name == n.key; });
+    if (known == std::end(fields)) f.fail(&node, where + std::string(name), "unknown key");
   }
   for (const NumberField<T>& n : fields) out.*n.member = f.required_in(t, n.key, where, n.lo, n.hi);
 }

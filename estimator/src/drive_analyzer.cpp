@@ -155,10 +155,21 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
     fuel_.add({power, smoother_.size(), cell, in.air_density_kgpm3, in.headwind_mps, in.grade_rad});
     if (in.usable) usable_steps_.push_back(smoother_.size());
   }
-  live_ = {t, true, wheel_speed_mps, s_front, cell, now.crr, 0, 0, filter_.crr_identified(), in.usable};
+  live_ = {t, true, wheel_speed_mps, s_front, cell, now.crr, 0, 0, false, in.usable};
   live_.crr_lo = live_.crr - config_.interval_z * now.sigma;
   live_.crr_hi = live_.crr + config_.interval_z * now.sigma;
   count(in, why, upd);
+  live_.identified = live_identified();
+}
+
+// The checks a live estimate can have, without allocating: its sigma and range, the outliers so far
+// and the GNSS fixes that placed it.
+bool DriveAnalyzer::live_identified() const {
+  const IdentificationLimits& l = config_.identification;
+  const CrrCounters& c = filter_.counters();
+  const double updates = static_cast<double>(c.updates + c.outliers);
+  return filter_.crr_identified() && filter_.crr() >= l.min_crr && filter_.crr() <= l.max_crr &&
+         static_cast<double>(c.outliers) <= l.max_outlier_share * updates && position_.fixes_used() >= l.min_fixes_on_route;
 }
 
 void DriveAnalyzer::count(const model::ForceInputs& in, Unusable why, const ekf::UpdateResult& update) {
@@ -168,7 +179,7 @@ void DriveAnalyzer::count(const model::ForceInputs& in, Unusable why, const ekf:
   } else {
     ++trip_.unusable[static_cast<std::size_t>(why)];
   }
-  if (!config_.keep_history || !update.accepted) return;
+  if (!update.accepted) return;
   nis_.add(update.nis);
   nis_batch_.add(update.nis);
   if (nis_batch_.n == kNisBatch) {
@@ -280,14 +291,30 @@ void DriveAnalyzer::finish() {
   trip_.cda_m2 = filter_.cda_m2();
   trip_.torque_bias_nm = filter_.torque_bias_nm();
   trip_.torque_bias_sigma_nm = std::sqrt(filter_.core().p()(CrrState::torque_bias, CrrState::torque_bias));
-  trip_.identified = !usable_steps_.empty() && trip_.crr_sigma <= config_.filter.identified_crr_sigma;
-  trip_.filter = filter_.counters();
-  trip_.mean_nis = nis_.mean;
-  if (nis_batch_means_.n >= 2) trip_.mean_nis_se = nis_batch_means_.std() / std::sqrt(static_cast<double>(nis_batch_means_.n));
+  trip_ = trip_so_far();
+  std::vector<std::string> failures;
+  if (usable_steps_.empty()) failures.emplace_back("no usable force balance");
+  for (auto& f : estimate_failures(trip_.crr, trip_.crr_sigma, config_.filter.identified_crr_sigma, config_.identification)) {
+    failures.push_back(std::move(f));
+  }
+  for (auto& f : drive_failures(trip_, config_.identification)) failures.push_back(std::move(f));
+  trip_.not_identified = std::move(failures);
+  trip_.identified = trip_.not_identified.empty();
 }
 
+TripResult DriveAnalyzer::trip_so_far() const {
+  TripResult t = trip_;
+  t.filter = filter_.counters();
+  t.mean_nis = nis_.mean;
+  if (nis_batch_means_.n >= 2) t.mean_nis_se = nis_batch_means_.std() / std::sqrt(static_cast<double>(nis_batch_means_.n));
+  return t;
+}
+
+// A cell of a drive the model does not fit is not identified either: live, the trip so far stands
+// for the drive.
 CellLimits DriveAnalyzer::cell_limits() const {
-  return {config_.filter.truck.mass_kg * model::kGravity_mps2, config_.interval_z, config_.filter.identified_crr_sigma};
+  return {config_.filter.truck.mass_kg * model::kGravity_mps2, config_.interval_z, config_.filter.identified_crr_sigma,
+          config_.identification, drive_failures(finished_ ? trip_ : trip_so_far(), config_.identification)};
 }
 
 std::vector<CellResult> DriveAnalyzer::cells() const {

@@ -42,9 +42,10 @@ void FuelBreakdown::add(const PowerInterval& p, double energy_jpl) {
   row(FuelUse::rolling) += p.rolling_n * dx;
   row(FuelUse::grade) += p.grade_n * dx;
   row(FuelUse::acceleration) += kinetic_j;
-  const double wheel_j = p.attributable && p.engaged ? p.tractive_n * dx : 0.0;
+  const double at_wheels_j = p.attributable && p.engaged ? p.tractive_n * dx : 0.0;
+  wheel_j += at_wheels_j;
   // Brakes take what the wheel work and the resistances leave of the speed change.
-  const double brake_j = p.braking ? wheel_j - resist_j - kinetic_j : 0.0;
+  const double brake_j = p.braking ? at_wheels_j - resist_j - kinetic_j : 0.0;
   row(FuelUse::braking) += brake_j;
   if (!p.attributable) {
     // The engine's torques are unknown: engine, driveline and accessories are one remainder.
@@ -57,11 +58,13 @@ void FuelBreakdown::add(const PowerInterval& p, double energy_jpl) {
   row(FuelUse::engine) += fuel_l_now * energy_jpl - indicated_j + p.friction_nm * omega * p.dt_s;
   row(FuelUse::accessories) += p.parasitic_nm * omega * p.dt_s;
   // Declutched, the flywheel's work goes into the engine's own speed change at the shift.
-  row(FuelUse::driveline) += flywheel_j - wheel_j;
+  row(FuelUse::driveline) += flywheel_j - at_wheels_j;
 }
 
 double FuelBreakdown::sum_l(double energy_jpl) const { return std::accumulate(energy_j.begin(), energy_j.end(), 0.0) / energy_jpl; }
 
 double FuelBreakdown::closure(double energy_jpl) const { return fuel_l > 0 ? (sum_l(energy_jpl) - fuel_l) / fuel_l : 0.0; }
+
+double FuelBreakdown::unexplained_j(double energy_jpl) const { return (sum_l(energy_jpl) - fuel_l) * energy_jpl; }
 
 }  // namespace roadload

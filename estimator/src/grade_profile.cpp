@@ -209,7 +209,15 @@ void pool_grade_sigma(std::vector<GradeBin>& bins, const std::vector<Scatter>& s
       weighted += dof_j * slope_scatter[j].variance;
       dof += dof_j;
     }
-    if (dof == 0) continue;
+    if (dof == 0) {
+      // One pass: no scatter to measure, the GNSS height's own error instead; without it no grade.
+      if (std::isfinite(cfg.pass_slope_sigma)) {
+        bins[k].grade_sigma_rad = angle_sigma(std::tan(bins[k].grade_rad), cfg.pass_slope_sigma);
+      } else {
+        bins[k].grade_rad = kNaN;
+      }
+      continue;
+    }
     const double slope_sigma = std::sqrt(weighted / dof / static_cast<double>(slope_scatter[k].n));
     bins[k].grade_sigma_rad = angle_sigma(std::tan(bins[k].grade_rad), slope_sigma);
   }

@@ -8,6 +8,8 @@
 
 namespace roadload::firmware {
 
+using results::json_number;
+
 namespace {
 
 std::string utc_text(std::int64_t utc_ns) {
@@ -23,8 +25,6 @@ std::string fmt(const char* f, double v) {
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
 }
-
-std::string json_number(double v, const char* f = "%.6g") { return std::isfinite(v) ? fmt(f, v) : "null"; }
 
 }  // namespace
 

@@ -34,7 +34,11 @@ Parsed<model::EngineLossMap> load_engine_loss_file(const std::string& path) {
       v[i] = *x;
     }
     if (v[0] < 100 || v[0] > 5000) return csv.value().field_error(0, "outside 100-5000 rpm");
-    if (v[2] < 0) return csv.value().field_error(2, "a standard error cannot be negative");
+    // An engine's friction and accessories lie within its reference torque (at most 64,255 N m,
+    // SPN 544's range), and so does what is known of them.
+    if (std::abs(v[1]) > 64255) return csv.value().field_error(1, "outside -64255..64255 N m");
+    if (v[2] < 0 || v[2] > 64255) return csv.value().field_error(2, "a standard error must lie in 0..64255 N m");
+    if (std::isfinite(v[3]) && std::abs(v[3]) > 64255) return csv.value().field_error(3, "outside -64255..64255 N m");
     if (map.size() == model::EngineLossMap::kCapacity) {
       return csv.value().field_error(0, "more than " + std::to_string(model::EngineLossMap::kCapacity) + " engine speeds");
     }

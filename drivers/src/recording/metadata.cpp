@@ -1,6 +1,8 @@
 #include "roadload/recording/metadata.hpp"
 
 #include <toml++/toml.h>
+
+#include <cmath>
 #include <sstream>
 
 namespace roadload::recording {
@@ -30,6 +32,15 @@ class Reader {
     }
     if (!n->is_string()) fail(n, std::string(where) + std::string(key), "expected a string");
     return std::string(*n->value<std::string_view>());
+  }
+
+  // A vehicle number a truck can have: finite; a mass (its name ends in _kg) above 0 and below
+  // 200 t; an axle's position between 0 and 50 m behind the front axle.
+  static const char* unphysical(std::string_view key, double v) {
+    if (!std::isfinite(v)) return "not a finite number";
+    if (key.ends_with("_kg") && !(v > 0 && v < 200'000)) return "a mass must lie between 0 and 200,000 kg";
+    if (key.ends_with("_position_m") && !(v >= 0 && v <= 50)) return "an axle's position must lie 0-50 m behind the front axle";
+    return nullptr;
   }
 
   double number(const toml::node& n, const std::string& field) const {
@@ -62,7 +73,9 @@ class Reader {
         if (node.is_string()) {
           m.vehicle_text[std::string(key.str())] = std::string(*node.value<std::string_view>());
         } else {
-          m.vehicle[std::string(key.str())] = number(node, field);
+          const double v = number(node, field);
+          if (const char* why = unphysical(key.str(), v)) fail(&node, field, why);
+          m.vehicle[std::string(key.str())] = v;
         }
       }
     }

@@ -1,5 +1,6 @@
 #include "roadload/recording/reader.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -83,9 +84,18 @@ class Fields {
     if (v < 0 || v > max) fail(i, "out of range 0.." + std::to_string(max));
     return static_cast<std::uint8_t>(v);
   }
+  // A value a sensor can report: within [lo, hi] (NaN, an unmeasured quantity, passes).
+  void within(std::size_t i, double v, double lo, double hi, const char* what) {
+    if (v < lo || v > hi) fail(i, std::string(what) + " out of range " + range(lo, hi));
+  }
   FieldError error() const { return error_; }
 
  private:
+  static std::string range(double lo, double hi) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%g..%g", lo, hi);
+    return text;
+  }
   void fail(std::size_t i, std::string m) {
     if (!error_) error_.emplace(i, std::move(m));
   }
@@ -119,6 +129,8 @@ FieldError to_gnss(std::span<const std::string_view> row, GnssFix& s) {
   s.course_deg = f.f64(6);
   s.mode = static_cast<GnssFixMode>(f.small(7, 5));
   s.hdop = f.f64_or_nan(8);  // gpsd reports HDOP only with satellites in view
+  f.within(4, s.alt_m, -1000, 10000, "height");
+  f.within(5, s.speed_mps, 0, 150, "speed");
   if (!f.error() && (s.lat_deg < -90 || s.lat_deg > 90)) return std::make_pair(std::size_t{2}, std::string("latitude out of range"));
   if (!f.error() && (s.lon_deg < -180 || s.lon_deg > 180))
     return std::make_pair(std::size_t{3}, std::string("longitude out of range"));
@@ -133,6 +145,11 @@ FieldError to_weather(std::span<const std::string_view> row, WeatherSample& s) {
   s.pressure_pa = f.f64_or_nan(3);
   s.wind_speed_mps = f.f64_or_nan(4);
   s.wind_from_deg = f.f64_or_nan(5);
+  // Air that exists at a road: the coldest and hottest recorded, the pressures of any road's height.
+  f.within(2, s.air_temp_c, -90, 60, "air temperature");
+  f.within(3, s.pressure_pa, 30000, 110000, "pressure");
+  f.within(4, s.wind_speed_mps, 0, 120, "wind speed");
+  f.within(5, s.wind_from_deg, 0, 360, "wind direction");
   return f.error();
 }
 

@@ -74,6 +74,19 @@ LineBuilder& LineBuilder::text(std::string_view s) {
   return *this;
 }
 
+LineBuilder& LineBuilder::field(std::string_view s) {
+  if (s.find_first_of(",\"\r\n") == std::string_view::npos) return text(s);
+  text("\"");
+  for (std::size_t at = 0; at < s.size();) {
+    const std::size_t quote = s.find('"', at);
+    text(s.substr(at, quote == std::string_view::npos ? std::string_view::npos : quote + 1 - at));
+    if (quote == std::string_view::npos) break;
+    text("\"");
+    at = quote + 1;
+  }
+  return text("\"");
+}
+
 std::string_view LineBuilder::finish() {
   buf_[len_++] = '\n';
   return {buf_, len_};

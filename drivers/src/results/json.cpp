@@ -1,6 +1,7 @@
 #include "roadload/results/json.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -223,6 +224,13 @@ std::string json_quote(std::string_view s) {
   }
   out += '"';
   return out;
+}
+
+std::string json_number(double v, const char* format) {
+  if (!std::isfinite(v)) return "null";
+  char text[64];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
 }
 
 }  // namespace roadload::results

@@ -13,6 +13,7 @@
 #include "roadload/cell_span.hpp"
 #include "roadload/drive_results.hpp"
 #include "roadload/drive_signals.hpp"
+#include "roadload/identification.hpp"
 
 namespace roadload {
 
@@ -33,6 +34,10 @@ struct CellLimits {
   double weight_n = 0;          // the truck's weight that CRR is a coefficient of
   double interval_z = 0;        // of the two-sided interval
   double identified_sigma = 0;  // a larger sigma is not identified
+  IdentificationLimits identification;
+  // The drive's own failed checks (drive_failures()): a cell of a drive the model does not fit is
+  // not identified either.
+  std::vector<std::string> drive_failures;
 };
 
 // The one place a cell's interval, identification and reason are set.

@@ -18,6 +18,7 @@
 #include "roadload/drive_results.hpp"
 #include "roadload/drive_signals.hpp"
 #include "roadload/grade_profile.hpp"
+#include "roadload/identification.hpp"
 #include "roadload/model/road_roughness.hpp"
 #include "roadload/route_geometry.hpp"
 #include "roadload/route_position.hpp"
@@ -51,6 +52,7 @@ struct AnalyzerConfig {
   double cg_behind_front_m = 0;
   double max_gnss_offset_m = 30.0;        // fixes farther from the route are not on it
   double interval_z = 1.645;              // 90 % two-sided
+  IdentificationLimits identification;    // when a CRR may be called identified (identification.hpp)
   double survey_elevation_sigma_m = 0.0;  // the route survey's height error (0: taken as exact)
   // The road's roughness, which ripples the speed (road_roughness.hpp), where a cell states none:
   // agencies measure IRI; 2.0 m/km is a fair highway's, and route files give their own.
@@ -109,6 +111,9 @@ class DriveAnalyzer {
   // torque bias) and the correlation between neighbouring ticks both kept. Needs a step.
   CrrMean crr_mean(std::span<const std::size_t> steps) const;
   CellLimits cell_limits() const;
+  // The trip's counters and NIS statistics as far as the drive has gone.
+  TripResult trip_so_far() const;
+  bool live_identified() const;
 
   RouteGeometry route_;
   GradeProfile grade_;

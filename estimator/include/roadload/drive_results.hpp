@@ -53,6 +53,8 @@ struct TripResult {
   // narrow): the noise model is consistent when the mean lies within 1 +- 1.96 se.
   double mean_nis = 0, mean_nis_se = 0;
   FuelBreakdown fuel;
+  // Why the trip's CRR is not identified (identification.hpp), every failed check; empty when it is.
+  std::vector<std::string> not_identified;
 };
 
 }  // namespace roadload

@@ -39,6 +39,7 @@ struct FuelBreakdown {
   double unsplit_l = 0;  // of it, burnt while the engine's torques could not be read
   double distance_m = 0;
   double time_s = 0;
+  double wheel_j = 0;  // the tractive force's work at the wheels, where the torques are known
 
   void add(const PowerInterval& p, double energy_jpl = kDieselEnergy_jpl);
   double energy(FuelUse u) const { return energy_j[static_cast<std::size_t>(u)]; }
@@ -46,6 +47,9 @@ struct FuelBreakdown {
   double sum_l(double energy_jpl = kDieselEnergy_jpl) const;
   // (sum of the rows - measured fuel) / measured fuel.
   double closure(double energy_jpl = kDieselEnergy_jpl) const;
+  // The work the force balance leaves unexplained (resistances, speed change and brakes less the
+  // wheel work), J: the rows' sum less the fuel's energy.
+  double unexplained_j(double energy_jpl = kDieselEnergy_jpl) const;
 };
 
 }  // namespace roadload

@@ -17,6 +17,7 @@
 // minutes: mostly an offset, which moves every bin and not the slope.
 // Bins with fewer than `min_passes` passes have no grade (NaN): never guessed.
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 #include <vector>
@@ -38,6 +39,9 @@ struct GradeConfig {
   // a variance with one or two degrees of freedom per bin, too noisy to weight a force balance.
   // The GNSS noise does not change over a few hundred metres. 0 keeps each bin's own.
   double sigma_pool_m = 100.0;
+  // A slope's standard error where the passes give no scatter (one pass): what a GNSS height error
+  // makes of a slope over the base. NaN: none, such bins have no standard error and no grade.
+  double pass_slope_sigma = std::numeric_limits<double>::quiet_NaN();
 };
 
 // One recording's fixes in time order, and the antenna's height above the road it stands on.

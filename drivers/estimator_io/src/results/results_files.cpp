@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "roadload/recording/writer.hpp"
+#include "roadload/results/json.hpp"
 #include "roadload/spectra/dynamic_power.hpp"
 #include "roadload/tire_crr.hpp"
 
@@ -33,7 +34,7 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
   for (std::size_t row = 0; row < cells.size(); ++row) {
     const CellResult& c = cells[row];
     line.clear();
-    line.text(c.id).sep().num(c.start_m, 1).sep().num(c.end_m, 1).sep().num(static_cast<std::int64_t>(c.samples)).sep();
+    line.field(c.id).sep().num(c.start_m, 1).sep().num(c.end_m, 1).sep().num(static_cast<std::int64_t>(c.samples)).sep();
     const bool have = c.samples > 0;
     line.num(have ? c.crr : nan, 6).sep().num(have ? c.crr_lo : nan, 6).sep().num(have ? c.crr_hi : nan, 6).sep();
     line.num(have ? c.crr_sigma : nan, 6).sep().num(std::int64_t{c.identified ? 1 : 0}).sep();
@@ -62,27 +63,31 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
       const std::optional<TireCrr> tire = measured ? tire_crr(c, p.total_w()) : std::nullopt;
       line.num(tire ? tire->crr : nan, 6).sep().num(tire ? tire->lo : nan, 6).sep().num(tire ? tire->hi : nan, 6).sep();
     }
-    line.text(c.reason);
+    line.field(c.reason);
     csv.value().write(line.finish());
   }
   return csv.value().close();
 }
 
 std::optional<ParseError> write_trip_json(const std::string& path, const TripResult& trip, const std::string& extra) {
+  const auto n = [](double v) { return json_number(v); };
   std::ofstream json(path);
-  json << "{\n  \"crr\": " << trip.crr << ",\n  \"crr_sigma\": " << trip.crr_sigma
-       << ",\n  \"crr_identified\": " << (trip.identified ? "true" : "false") << ",\n  \"cda_m2\": " << trip.cda_m2
-       << ",\n  \"ticks\": " << trip.ticks << ",\n  \"usable_ticks\": " << trip.usable_ticks << ",\n  \"unusable\": {";
+  json << "{\n  \"crr\": " << n(trip.crr) << ",\n  \"crr_sigma\": " << n(trip.crr_sigma)
+       << ",\n  \"crr_identified\": " << (trip.identified ? "true" : "false") << ",\n  \"not_identified\": [";
+  for (std::size_t i = 0; i < trip.not_identified.size(); ++i) json << (i ? ", " : "") << json_quote(trip.not_identified[i]);
+  json << "],\n  \"cda_m2\": " << n(trip.cda_m2) << ",\n  \"ticks\": " << trip.ticks << ",\n  \"usable_ticks\": " << trip.usable_ticks
+       << ",\n  \"unusable\": {";
   for (std::size_t i = 1; i < trip.unusable.size(); ++i) {
-    json << (i > 1 ? ", " : "") << "\"" << to_string(static_cast<Unusable>(i)) << "\": " << trip.unusable[i];
+    json << (i > 1 ? ", " : "") << json_quote(to_string(static_cast<Unusable>(i))) << ": " << trip.unusable[i];
   }
   json << "},\n  \"gnss_used\": " << trip.gnss_used << ",\n  \"gnss_off_route\": " << trip.gnss_off_route
-       << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << trip.mean_nis
-       << ",\n  \"mean_nis_95\": " << 1.96 * trip.mean_nis_se << ",\n  \"torque_bias_sigma_nm\": " << trip.torque_bias_sigma_nm
-       << ",\n  \"fuel\": {\n    \"measured_l\": " << trip.fuel.fuel_l << ",\n    \"unsplit_l\": " << trip.fuel.unsplit_l
-       << ",\n    \"diesel_energy_mj_per_l\": " << kDieselEnergy_jpl / 1e6 << ",\n    \"closure\": " << trip.fuel.closure()
-       << ",\n    \"distance_m\": " << trip.fuel.distance_m << ",\n    \"ticks_without_fuel_rate\": " << trip.no_fuel_rate;
-  for (std::size_t i = 0; i < kUses; ++i) json << ",\n    \"" << to_string(use(i)) << "_l\": " << trip.fuel.liters(use(i));
+       << ",\n  \"speed_outliers\": " << trip.filter.outliers << ",\n  \"mean_nis\": " << n(trip.mean_nis)
+       << ",\n  \"mean_nis_95\": " << n(1.96 * trip.mean_nis_se) << ",\n  \"torque_bias_sigma_nm\": " << n(trip.torque_bias_sigma_nm)
+       << ",\n  \"fuel\": {\n    \"measured_l\": " << n(trip.fuel.fuel_l) << ",\n    \"unsplit_l\": " << n(trip.fuel.unsplit_l)
+       << ",\n    \"diesel_energy_mj_per_l\": " << n(kDieselEnergy_jpl / 1e6) << ",\n    \"closure\": " << n(trip.fuel.closure())
+       << ",\n    \"unexplained_work_j\": " << n(trip.fuel.unexplained_j()) << ",\n    \"wheel_work_j\": " << n(trip.fuel.wheel_j)
+       << ",\n    \"distance_m\": " << n(trip.fuel.distance_m) << ",\n    \"ticks_without_fuel_rate\": " << trip.no_fuel_rate;
+  for (std::size_t i = 0; i < kUses; ++i) json << ",\n    \"" << to_string(use(i)) << "_l\": " << n(trip.fuel.liters(use(i)));
   json << "\n  }";
   if (!extra.empty()) json << ",\n" << extra;
   json << "\n}\n";

@@ -45,12 +45,15 @@ class LineBuilder {
   LineBuilder& num(std::int64_t v);
   LineBuilder& num(double v, int decimals);  // NaN gives an empty field
   LineBuilder& text(std::string_view s);
+  // A text field as RFC 4180 writes it: in quotes, its quotes doubled, when it holds a comma, a
+  // quote or a line break.
+  LineBuilder& field(std::string_view s);
   LineBuilder& sep() { return text(","); }
   std::string_view finish();  // appends '\n'; the view lives until the next clear()
   void clear() { len_ = 0; }
 
  private:
-  char buf_[512];
+  char buf_[4096];
   std::size_t len_ = 0;
 };
 

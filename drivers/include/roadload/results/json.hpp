@@ -48,5 +48,8 @@ Parsed<JsonValue> read_json_file(const std::string& path);
 
 // A JSON string literal: quotes, backslashes and control characters escaped.
 std::string json_quote(std::string_view s);
+// A JSON number, printf's `format` of it (six significant digits by default, as a C++ stream
+// writes a double); null when it is not finite, which JSON cannot hold.
+std::string json_number(double v, const char* format = "%.6g");
 
 }  // namespace roadload::results

@@ -1,0 +1,41 @@
+#pragma once
+// A route made from a drive's own GNSS track, for a road nobody surveyed: the fixes thinned to a
+// polyline, the road's height the antenna's less its height, and cells of a fixed length along it.
+// Its grade comes from the same fixes (GradeProfile::from_gnss); from one pass that grade carries
+// the GNSS height's error whole, so the intervals it gives are wide, as they must be.
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "roadload/cell_span.hpp"
+#include "roadload/geo_point.hpp"
+#include "roadload/samples.hpp"
+
+namespace roadload {
+
+struct TrackRouteConfig {
+  double point_spacing_m = 20.0;  // a fix's noise (a metre or two) moves the polyline's heading by a few degrees at most
+  double cell_length_m = 250.0;   // a few hundred metres: the length pavement inventories section roads by
+  double max_hdop = 5.0;          // as GradeConfig: beyond it a fix is worse than the road it should trace
+};
+
+// A slope's error from one pass of GNSS heights: an error of 0.2 m at each end of the grade
+// profile's 60 m base (GradeConfig) is 0.005 of slope, 0.5 % of grade.
+inline constexpr double kGnssPassSlopeSigma = 0.005;
+
+struct TrackRoute {
+  std::vector<GeoPoint> points;
+  std::size_t fixes_used = 0;
+};
+
+// The polyline the fixes (in time order) trace; none when they trace less than a cell.
+std::optional<TrackRoute> route_from_track(std::span<const GnssFix> fixes, double antenna_height_m,
+                                           const TrackRouteConfig& config = {});
+
+// Cells of `cell_length_m` from the route's start, named by where they start ("250 m"); the last
+// one takes the rest, or joins the one before when the rest is under half a cell.
+std::vector<CellSpan> fixed_length_cells(double route_length_m, double cell_length_m);
+
+}  // namespace roadload
