@@ -30,7 +30,7 @@ int fail(const std::string& what) {
 }
 
 struct Estimation {
-  Vehicle vehicle;
+  std::optional<Vehicle> vehicle;  // the configured one
   j1939::Database db;
   RouteGeometry route;
   std::vector<CellSpan> cells;
@@ -40,9 +40,11 @@ struct Estimation {
 };
 
 std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) {
-  auto vehicle = load_vehicle_file(c.estimator.vehicle.empty() ? default_vehicle_path() : resolve_vehicle(c.estimator.vehicle));
-  if (!vehicle) return vehicle.error();
-  e.vehicle = std::move(vehicle.value());
+  if (!c.vehicle.file.empty()) {
+    auto vehicle = load_vehicle_file(resolve_vehicle(c.vehicle.file));
+    if (!vehicle) return vehicle.error();
+    e.vehicle = std::move(vehicle.value());
+  }
   if (auto err = load_dbc_file(e.db, core_dbc_path())) return err;
   if (c.estimator.route.empty()) return std::nullopt;
   auto route = load_route_file(resolve_route(c.estimator.route));
@@ -61,8 +63,15 @@ std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) 
   return std::nullopt;
 }
 
-recording::Metadata metadata(const DaemonConfig& c, const BuiltSources& b) {
+// The recording's meta.toml: a replay's with this daemon's clock and, when one is configured, its
+// vehicle file; a truck's with its sensors and vehicle file.
+recording::Metadata metadata(const DaemonConfig& c, const BuiltSources& b, const std::optional<Vehicle>& vehicle) {
   recording::Metadata m = b.replaying ? b.replayed : recording::Metadata{};
+  if (vehicle) {
+    m.vehicle_file = *vehicle;
+    m.vehicle_text["name"] = vehicle->name;
+    if (!vehicle->vin.empty()) m.vehicle_text["vin"] = vehicle->vin;
+  }
   m.created_by = std::string("roadloadd ") + ROADLOAD_VERSION;
   m.clock_source = b.replaying ? "kernel (CAN), replayed (sensors)" : "kernel";
   m.can_interfaces = b.interfaces;
@@ -72,6 +81,36 @@ recording::Metadata metadata(const DaemonConfig& c, const BuiltSources& b) {
     }
   }
   return m;
+}
+
+// The force balance needs the route's grade and the truck: without both the daemon records and
+// reports only. A replay's recording states its drive (cargo, antenna) over the vehicle file.
+void configure_estimator(const DaemonConfig& c, const Estimation& est, DaemonSetup& setup, std::vector<std::string>& notes) {
+  const std::optional<Vehicle>& described = setup.metadata.vehicle_file;
+  if (c.estimator.route.empty()) notes.push_back("estimator: no route configured, CRR not estimated");
+  if (!described) notes.push_back("estimator: no vehicle file ([vehicle] file), CRR not estimated");
+  if (c.estimator.route.empty() || !described) return;
+  setup.db = &est.db;
+  setup.route = est.route;
+  setup.cells = est.cells;
+  const Vehicle vehicle = recording::vehicle_from_metadata(*described, setup.metadata);
+  setup.analyzer = recording::analyzer_config_for(vehicle, setup.metadata, std::nullopt);
+  setup.analyzer.roughness_iri_m_per_km = est.iri_m_per_km;
+  model::TruckModel& truck = setup.analyzer.filter.truck;
+  truck.engine_losses = est.engine_losses;
+  if (c.estimator.cda_m2 > 0) truck.cda_prior_m2 = c.estimator.cda_m2;
+  if (c.estimator.cda_sigma_m2 > 0) truck.cda_sigma_m2 = c.estimator.cda_sigma_m2;
+  truck.cda_torque_bias_correlation = c.estimator.cda_torque_correlation;
+  recording::LayoutResult layout = recording::axle_layout(setup.metadata, vehicle, "accelerometers");
+  if (layout.layout) {
+    setup.layout = std::move(layout.layout);
+    setup.accelerometers = recording::accelerometers(setup.metadata);
+    setup.cell_group = est.groups.cell_group;
+    setup.group_count = est.groups.names.size();
+  } else if (!setup.metadata.sensors.empty()) {
+    notes.push_back("spectra: not estimated: " + layout.why_not);
+  }
+  for (const std::string& why : layout.skipped) notes.push_back("spectra: no contact force for " + why);
 }
 
 std::optional<RecorderConfig> recorder_config(const RecordingConfig& r) {
@@ -123,38 +162,13 @@ int run(const CommandLine& cl) {
 
   DaemonSetup setup;
   setup.recording = recorder_config(c.recording);
-  setup.metadata = metadata(c, built.value());
+  setup.metadata = metadata(c, built.value(), est.vehicle);
   setup.interfaces = built.value().interfaces;
   setup.buses = built.value().buses;
   if (built.value().replaying && built.value().timing.paced() && built.value().timing.rate != 1.0) {
     setup.timeline = built.value().timing;
   }
-  // The force balance needs the route's grade: without one the daemon records and reports only.
-  setup.db = c.estimator.route.empty() ? nullptr : &est.db;
-  if (setup.db == nullptr) notes.push_back("estimator: no route configured, CRR not estimated");
-  setup.route = est.route;
-  setup.cells = est.cells;
-  // A replay's recording states its truck over the configured vehicle.
-  const Vehicle vehicle = recording::vehicle_from_metadata(est.vehicle, setup.metadata);
-  setup.analyzer = recording::analyzer_config_for(vehicle, setup.metadata, std::nullopt);
-  setup.analyzer.roughness_iri_m_per_km = est.iri_m_per_km;
-  model::TruckModel& truck = setup.analyzer.filter.truck;
-  truck.engine_losses = est.engine_losses;
-  if (c.estimator.cda_m2 > 0) truck.cda_prior_m2 = c.estimator.cda_m2;
-  if (c.estimator.cda_sigma_m2 > 0) truck.cda_sigma_m2 = c.estimator.cda_sigma_m2;
-  truck.cda_torque_bias_correlation = c.estimator.cda_torque_correlation;
-  if (setup.db != nullptr) {
-    recording::LayoutResult layout = recording::axle_layout(setup.metadata, vehicle, "accelerometers");
-    if (layout.layout) {
-      setup.layout = std::move(layout.layout);
-      setup.accelerometers = recording::accelerometers(setup.metadata);
-      setup.cell_group = est.groups.cell_group;
-      setup.group_count = est.groups.names.size();
-    } else if (!setup.metadata.sensors.empty()) {
-      notes.push_back("spectra: not estimated: " + layout.why_not);
-    }
-    for (const std::string& why : layout.skipped) notes.push_back("spectra: no contact force for " + why);
-  }
+  configure_estimator(c, est, setup, notes);
   std::string start = std::string("roadloadd ") + ROADLOAD_VERSION + " started with " + c.source;
   for (const std::string& n : notes) start += "; " + n;
   log.text(start + "\n");

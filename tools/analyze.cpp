@@ -57,13 +57,16 @@ constexpr const char* kHelp =
     "                  instead of EEC3's whole percent; engine speeds outside it are not used\n"
     "  --survey-sigma M  the route survey's height error, carried into the force balance (default 0:\n"
     "                  the survey taken as exact)\n"
+    "  --vehicle V     vehicle file or built-in name (config/vehicles): the truck's force balance, axles and\n"
+    "                  priors (default: the vehicle file the recording's meta.toml carries; a recording that\n"
+    "                  describes no truck is analysed as the default vehicle and nothing is identified)\n"
     "  --mass KG       vehicle mass (default: meta.toml vehicle.mass_kg, else the vehicle file's axle loads)\n"
     "  --dbc FILE      load FILE after the built-in definitions; repeatable\n"
     "  -q, --quiet     no table on standard output\n"
     "  -h, --help      this text\n";
 
 struct AnalyzeOptions {
-  std::string recording, route, out, truth_dir, grade_file, losses_file;
+  std::string recording, route, out, truth_dir, grade_file, losses_file, vehicle;
   double survey_sigma = 0;
   std::optional<double> mass, cda_m2, cda_sigma_m2, cda_torque_correlation;
   std::vector<std::string> dbcs;
@@ -94,6 +97,8 @@ std::variant<AnalyzeOptions, int> parse(Args args) {
       o.survey_sigma = *sg;
     } else if (auto r = opt.value("--route")) {
       o.route = *r;
+    } else if (auto v = opt.value("--vehicle")) {
+      o.vehicle = *v;
     } else if (auto out = opt.value("--out")) {
       o.out = *out;
     } else if (auto t = opt.value("--truth")) {
@@ -242,11 +247,14 @@ int analyze(const AnalyzeOptions& o) {
     return reader.error().line > 0 ? kExitDataErr : kExitNoInput;
   }
   const recording::Metadata& meta = reader.value().metadata();
-  auto vehicle = recording_vehicle("analyze", meta);
-  if (const int* rc = std::get_if<int>(&vehicle)) return *rc;
-  if (!found) found = traced_road(o, std::get<Vehicle>(vehicle));
+  auto described = recording_vehicle("analyze", meta, o.vehicle);
+  if (const int* rc = std::get_if<int>(&described)) return *rc;
+  const Vehicle& vehicle = std::get<RecordingVehicle>(described).vehicle;
+  const std::string& assumed = std::get<RecordingVehicle>(described).assumed;
+  if (!assumed.empty()) std::fprintf(stderr, "roadload analyze: %s\n", assumed.c_str());
+  if (!found) found = traced_road(o, vehicle);
   Road& road = std::get<Road>(*found);
-  auto cfg = configure(o, std::get<Vehicle>(vehicle), meta, road.default_iri_m_per_km);
+  auto cfg = configure(o, vehicle, meta, road.default_iri_m_per_km);
   if (const int* rc = std::get_if<int>(&cfg)) return *rc;
   const double route_length_m = road.geometry.length_m();
   DriveAnalyzer analyzer(db, road.geometry, road.spans, std::get<AnalyzerConfig>(cfg));
@@ -258,15 +266,14 @@ int analyze(const AnalyzeOptions& o) {
   }
   const PavementGroups groups = pavement_groups(road.cells);
   Accelerometers acc;
-  attach(acc, analyzer, o, std::get<Vehicle>(vehicle), meta, groups);
+  attach(acc, analyzer, o, vehicle, meta, groups);
   while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { analyzer.push(s); }, *r);
   for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
   analyzer.finish();
-  const std::vector<CellResult> results = analyzer.cells();
+  std::vector<CellResult> results = analyzer.cells();
   TripResult trip = analyzer.trip();
-  if (!road.unplaced.empty()) {
-    trip.not_identified.insert(trip.not_identified.begin(), road.unplaced);
-    trip.identified = false;
+  for (const std::string* why : {static_cast<const std::string*>(&road.unplaced), &assumed}) {
+    if (!why->empty()) withhold(trip, results, *why);
   }
   std::optional<VibrationSummary> spectra;
   if (acc.vibration) spectra = summarize(*acc.vibration, groups, trip.fuel.time_s, trip.fuel.distance_m);

@@ -41,6 +41,7 @@ constexpr const char* kHelp =
     "  --engine-losses FILE  (--aero) the engine-loss table of the same truck\n"
     "  --cda M2          (--aero) the prior both drives are analysed with (default: the vehicle file's);\n"
     "                    the fit does not depend on it beyond linearity\n"
+    "  --vehicle V       (--aero) vehicle file or built-in name (default: the one each recording carries)\n"
     "  --dbc FILE        load FILE after the built-in definitions; repeatable\n"
     "  -q, --quiet       no table on standard output\n"
     "  -h, --help        this text\n";
@@ -88,6 +89,8 @@ int run_calibrate(Args args) {
       ao.engine_losses = *l;
     } else if (auto c = opt.real("--cda", 0.5, 30)) {
       ao.cda_prior_m2 = *c;
+    } else if (auto v = opt.value("--vehicle")) {
+      ao.vehicle = *v;
     } else if (auto f = opt.value("--out")) {
       out = *f;
     } else if (auto d = opt.value("--dbc")) {

@@ -62,16 +62,20 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
       std::fprintf(stderr, "roadload calibrate: %s\n", meta.error().to_string().c_str());
       return kExitNoInput;
     }
-    auto vehicle = recording_vehicle("calibrate", meta.value().metadata());
-    if (const int* rc = std::get_if<int>(&vehicle)) return *rc;
-    AnalyzerConfig cfg = recording::analyzer_config_for(std::get<Vehicle>(vehicle), meta.value().metadata(), std::nullopt);
+    auto described = recording_vehicle("calibrate", meta.value().metadata(), o.vehicle);
+    if (const int* rc = std::get_if<int>(&described)) return *rc;
+    const Vehicle& vehicle = std::get<RecordingVehicle>(described).vehicle;
+    if (!std::get<RecordingVehicle>(described).assumed.empty()) {
+      std::fprintf(stderr, "roadload calibrate: %s: %s\n", path.c_str(), std::get<RecordingVehicle>(described).assumed.c_str());
+    }
+    AnalyzerConfig cfg = recording::analyzer_config_for(vehicle, meta.value().metadata(), std::nullopt);
     cfg.filter.truck.engine_losses = losses.value();
     cfg.roughness_iri_m_per_km = route.file.default_iri_m_per_km;
     if (o.cda_prior_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_prior_m2;
     prior_m2 = cfg.filter.truck.cda_prior_m2;
     std::optional<ParseError> failed;
     drives[k] = analyse_for_aero(cfg, [&](const AnalyzerConfig& c) {
-      auto r = analyse(path, db, route, cells, c, std::get<Vehicle>(vehicle));
+      auto r = analyse(path, db, route, cells, c, vehicle);
       if (r) return std::move(r.value());
       failed = r.error();
       return std::vector<CellResult>{};

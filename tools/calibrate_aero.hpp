@@ -11,7 +11,7 @@ namespace roadload::cli {
 
 struct AeroOptions {
   std::vector<std::string> recordings;
-  std::string route, engine_losses, out;
+  std::string route, engine_losses, out, vehicle;
   std::optional<double> cda_prior_m2;
 };
 

@@ -30,6 +30,8 @@ constexpr const char* kHelp =
     "  --model S           scenario (built-in name or TOML file) for the runs, in order; one for all,\n"
     "                      or none: the built-in scenario whose route the drive's first GNSS fix lies\n"
     "                      on and whose speed is nearest\n"
+    "  --vehicle V         vehicle file or built-in name the model drives (default: the one each\n"
+    "                      recording carries, else the scenario's)\n"
     "  --holdout H         what the fit never sees: cells (every other cell, default) or runs\n"
     "                      (fit on the 1st, 3rd, ... runs, judge on the 2nd, 4th, ...)\n"
     "  --json FILE         write the diagnosis as JSON (docs/gap.md)\n"
@@ -47,7 +49,7 @@ constexpr const char* kHelp =
 
 int run_diagnosis(OptionParser& opt) {
   std::vector<std::string> reals, models;
-  std::string json, features;
+  std::string json, features, vehicle_name;
   gap::GapOptions options;
   options.jobs = default_jobs();
   bool quiet = false;
@@ -59,6 +61,8 @@ int run_diagnosis(OptionParser& opt) {
       reals.emplace_back(*r);
     } else if (auto m = opt.value("--model")) {
       models.emplace_back(*m);
+    } else if (auto v = opt.value("--vehicle")) {
+      vehicle_name = *v;
     } else if (auto j = opt.value("--json")) {
       json = *j;
     } else if (auto f = opt.value("--features")) {
@@ -85,11 +89,17 @@ int run_diagnosis(OptionParser& opt) {
     std::fprintf(stderr, "roadload gap: %s\n", err->to_string().c_str());
     return kExitNoInput;
   }
+  std::optional<Vehicle> vehicle;
+  if (!vehicle_name.empty()) {
+    auto v = load_vehicle("gap", vehicle_name);
+    if (const int* rc = std::get_if<int>(&v)) return *rc;
+    vehicle = std::move(std::get<Vehicle>(v));
+  }
   std::vector<gap::RealRun> runs;
   std::vector<std::string> run_lines;
   for (std::size_t i = 0; i < reals.size(); ++i) {
     const std::string model_name = models.empty() ? std::string() : models[models.size() == 1 ? 0 : i];
-    auto run = gap::load_real_run(reals[i], model_name, db);
+    auto run = gap::load_real_run(reals[i], model_name, db, vehicle);
     if (!run) {
       std::fprintf(stderr, "roadload gap: %s\n", run.error().to_string().c_str());
       return run.error().line > 0 ? kExitDataErr : kExitNoInput;

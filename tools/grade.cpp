@@ -42,13 +42,14 @@ constexpr const char* kHelp =
     "  --min-passes N       passes a bin needs for a grade (default 2: one pass has no scatter)\n"
     "  --survey-sigma M     the survey's height standard error (default 0.02)\n"
     "  --max-offset M       fixes farther than M from the route are on another road (default 15)\n"
-    "  --antenna-height M   GNSS antenna above the road (default: each recording's meta.toml\n"
-    "                       vehicle.gnss_antenna_height_m, else 0: heights are then the antenna's)\n"
+    "  --antenna-height M   GNSS antenna above the road (default: the vehicle's, as --vehicle or each\n"
+    "                       recording's meta.toml gives it, else 0: heights are then the antenna's)\n"
+    "  --vehicle V          vehicle file or built-in name whose antenna height the recordings share\n"
     "  -q, --quiet          no per-bin comparison on standard output\n"
     "  -h, --help           this text\n";
 
 struct Options {
-  std::string route_name, out;
+  std::string route_name, out, vehicle;
   std::vector<std::string> recordings;
   GradeConfig cfg;
   double survey_sigma_m = kDefaultSurveySigma_m;
@@ -85,6 +86,8 @@ std::optional<int> parse(OptionParser& opt, Options& o) {
       o.cfg.max_offset_m = *m;
     } else if (auto a = opt.real("--antenna-height", -10, 20)) {
       o.antenna_height_m = *a;
+    } else if (auto v = opt.value("--vehicle")) {
+      o.vehicle = *v;
     } else if (auto p = opt.positional()) {
       o.recordings.emplace_back(*p);
     } else if (!opt.failed()) {
@@ -106,11 +109,15 @@ std::optional<int> read_track(const std::string& path, const Options& o, Track& 
     return kExitNoInput;
   }
   t.path = path;
-  const auto& vehicle = reader.value().metadata().vehicle;
-  const auto it = vehicle.find("gnss_antenna_height_m");
+  const recording::Metadata& meta = reader.value().metadata();
+  const auto it = meta.vehicle.find("gnss_antenna_height_m");
   if (o.antenna_height_m) {
     t.antenna_height_m = *o.antenna_height_m;
-  } else if (it != vehicle.end()) {
+  } else if (!o.vehicle.empty() || meta.vehicle_file) {
+    auto described = recording_vehicle("grade", meta, o.vehicle);
+    if (const int* rc = std::get_if<int>(&described)) return *rc;
+    t.antenna_height_m = std::get<RecordingVehicle>(described).vehicle.gnss_antenna_height_m;
+  } else if (it != meta.vehicle.end()) {
     t.antenna_height_m = it->second;
   } else {
     std::fprintf(stderr, "roadload grade: %s: meta.toml: vehicle.gnss_antenna_height_m: not given; heights are the antenna's\n",

@@ -116,14 +116,29 @@ std::variant<LoadedRoute, int> load_route(std::string_view command, const std::s
   return LoadedRoute{std::move(route.value()), std::move(*geometry)};
 }
 
-std::variant<Vehicle, int> recording_vehicle(std::string_view command, const recording::Metadata& meta) {
-  auto vehicle = load_vehicle_file(default_vehicle_path());
-  if (!vehicle) {
-    std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(),
-                 vehicle.error().to_string().c_str());
-    return vehicle.error().line > 0 ? kExitDataErr : kExitNoInput;
+std::variant<Vehicle, int> load_vehicle(std::string_view command, const std::string& name_or_path) {
+  auto vehicle = load_vehicle_file(resolve_vehicle(name_or_path));
+  if (vehicle) return std::move(vehicle.value());
+  std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), vehicle.error().to_string().c_str());
+  return vehicle.error().line > 0 ? kExitDataErr : kExitNoInput;
+}
+
+std::variant<RecordingVehicle, int> recording_vehicle(std::string_view command, const recording::Metadata& meta,
+                                                      const std::string& vehicle_option) {
+  RecordingVehicle r;
+  if (!vehicle_option.empty() || !meta.vehicle_file) {
+    auto v = load_vehicle(command, vehicle_option.empty() ? std::string(kDefaultVehicle) : vehicle_option);
+    if (const int* rc = std::get_if<int>(&v)) return *rc;
+    r.vehicle = std::move(std::get<Vehicle>(v));
+    if (vehicle_option.empty()) {
+      r.assumed = "no vehicle file: neither --vehicle nor the recording's meta.toml describes the truck, so " + r.vehicle.source +
+                  " was assumed";
+    }
+  } else {
+    r.vehicle = *meta.vehicle_file;
   }
-  return recording::vehicle_from_metadata(vehicle.value(), meta);
+  r.vehicle = recording::vehicle_from_metadata(r.vehicle, meta);
+  return r;
 }
 
 }  // namespace roadload::cli

@@ -56,8 +56,18 @@ struct LoadedRoute {
 };
 std::variant<LoadedRoute, int> load_route(std::string_view command, const std::string& name);
 
-// The vehicle a recording was made with: the default vehicle file with what its meta.toml states
-// over it; on failure the error is printed as above and the exit code returned.
-std::variant<Vehicle, int> recording_vehicle(std::string_view command, const recording::Metadata& meta);
+// A vehicle file or built-in vehicle name (--vehicle); on failure the error is printed as above and
+// the exit code returned (66: no such file, 65: a bad value in it).
+std::variant<Vehicle, int> load_vehicle(std::string_view command, const std::string& name_or_path);
+
+// The vehicle a recording was made with: --vehicle when given, else the vehicle file its meta.toml
+// carries, with what meta.toml states of this drive over it. A recording that describes no truck
+// is analysed as the default vehicle, and `assumed` says so: nothing from it is identified.
+struct RecordingVehicle {
+  Vehicle vehicle;
+  std::string assumed;  // empty when the truck is described
+};
+std::variant<RecordingVehicle, int> recording_vehicle(std::string_view command, const recording::Metadata& meta,
+                                                      const std::string& vehicle_option);
 
 }  // namespace roadload::cli

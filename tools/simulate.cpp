@@ -26,6 +26,7 @@ constexpr const char* kHelp =
     "(docs/recording-format.md)\n"
     "and, with --truth, the ground truth (true forces, CRR, dissipated powers, per-cell table).\n\n"
     "  --scenario S        built-in scenario name or a scenario TOML file\n"
+    "  --vehicle V         vehicle file or built-in name (config/vehicles) instead of the scenario's truck\n"
     "  --seed N            seed of every random process except the road (default 1)\n"
     "  --out DIR           recording folder to write\n"
     "  --truth DIR         ground-truth folder to write (series.csv, axles.csv, cells.csv, truth.toml)\n"
@@ -55,7 +56,7 @@ int list_scenarios() {
 }
 
 struct SimulateOptions {
-  std::string scenario, out, truth_dir;
+  std::string scenario, out, truth_dir, vehicle;
   std::uint64_t seed = 1;
   std::vector<std::string> effects;
   std::optional<double> duration_s;
@@ -74,6 +75,8 @@ std::variant<SimulateOptions, int> parse(Args args) {
       o.quiet = true;
     } else if (auto v = opt.value("--scenario")) {
       o.scenario = *v;
+    } else if (auto veh = opt.value("--vehicle")) {
+      o.vehicle = *veh;
     } else if (auto n = opt.number("--seed", 0, INT64_MAX)) {
       o.seed = static_cast<std::uint64_t>(*n);
     } else if (auto out = opt.value("--out")) {
@@ -102,7 +105,12 @@ int fail(const ParseError& e, int status) {
 // The scenario as the options change it.
 std::variant<sim::Scenario, int> scenario_of(const SimulateOptions& o) {
   auto scenario = sim::load_scenario(o.scenario, data_dir());
-  if (!scenario) return fail(scenario.error(), kExitNoInput);
+  if (!scenario) return fail(scenario.error(), scenario.error().line > 0 ? kExitDataErr : kExitNoInput);
+  if (!o.vehicle.empty()) {
+    auto v = load_vehicle("simulate", o.vehicle);
+    if (const int* rc = std::get_if<int>(&v)) return *rc;
+    scenario.value().vehicle = std::move(std::get<Vehicle>(v));
+  }
   for (const auto& e : o.effects) {
     if (auto err = scenario.value().effects.parse_and_set(e)) {
       std::fprintf(stderr, "roadload simulate: --effect %s (see --help)\n", err->c_str());

@@ -17,6 +17,7 @@ const char* const kUsage =
     "  --no-record          record nothing (status and estimate only)\n"
     "  --status FILE        status text, one line per interval (status.text_file)\n"
     "  --status-json FILE   status as JSON lines; '' for none (status.json_file)\n"
+    "  --vehicle V          vehicle file or built-in name: the truck recorded and modelled (vehicle.file)\n"
     "  --route R            route file or built-in route name: cells for the live CRR\n"
     "  --results DIR        at exit, DIR/cells.csv and DIR/trip.json from the live filter\n"
     "  --no-gnss            do not connect to gpsd\n"
@@ -88,6 +89,8 @@ Parsed<CommandLine> parse_command_line(const std::vector<std::string>& args) {
       if (!value(cl.config.status.text_file)) return arg_error(a, "needs a file");
     } else if (a == "--status-json") {
       if (!value(cl.config.status.json_file)) return arg_error(a, "needs a file ('' for none)");
+    } else if (a == "--vehicle") {
+      if (!value(cl.config.vehicle.file)) return arg_error(a, "needs a vehicle file or name");
     } else if (a == "--route") {
       if (!value(cl.config.estimator.route)) return arg_error(a, "needs a route file or name");
     } else if (a == "--results") {

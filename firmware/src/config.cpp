@@ -90,10 +90,12 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
     c.replay.rate = f.number(*t, "rate", "replay.", c.replay.rate);
     c.replay.can = f.flag(*t, "can", "replay.").value_or(c.replay.can);
   }
+  if (const toml::table* t = f.table(root, "vehicle")) {
+    f.only(*t, {"file"}, "vehicle.");
+    c.vehicle.file = f.text(*t, "file", "vehicle.").value_or("");
+  }
   if (const toml::table* t = f.table(root, "estimator")) {
-    f.only(*t, {"vehicle", "route", "results_dir", "engine_losses", "cda_m2", "cda_sigma_m2", "cda_torque_correlation"},
-           "estimator.");
-    c.estimator.vehicle = f.text(*t, "vehicle", "estimator.").value_or("");
+    f.only(*t, {"route", "results_dir", "engine_losses", "cda_m2", "cda_sigma_m2", "cda_torque_correlation"}, "estimator.");
     c.estimator.route = f.text(*t, "route", "estimator.").value_or("");
     c.estimator.results_dir = f.text(*t, "results_dir", "estimator.").value_or("");
     c.estimator.engine_losses = f.text(*t, "engine_losses", "estimator.").value_or("");
@@ -136,7 +138,7 @@ Parsed<DaemonConfig> load_config(const std::string& path) {
   DaemonConfig c;
   c.source = path;
   try {
-    f.only(root, {"can", "accelerometer", "gnss", "recording", "status", "replay", "estimator"}, "");
+    f.only(root, {"can", "accelerometer", "gnss", "recording", "status", "replay", "vehicle", "estimator"}, "");
     read_can(f, root, c);
     read_accelerometers(f, root, c);
     read_sections(f, root, c);
@@ -214,10 +216,10 @@ std::string format_config(const DaemonConfig& c) {
     << "\ninterval_s = " << c.status.interval.count() << "\n";
   o << "\n[replay]\nrecording = " << quoted(c.replay.recording) << "\nrate = " << c.replay.rate
     << "\ncan = " << (c.replay.can ? "true" : "false") << "\norigin_file = " << quoted(c.replay.origin_file) << "\n";
-  o << "\n[estimator]\nvehicle = " << quoted(c.estimator.vehicle) << "\nroute = " << quoted(c.estimator.route)
-    << "\nresults_dir = " << quoted(c.estimator.results_dir) << "\nengine_losses = " << quoted(c.estimator.engine_losses)
-    << "\ncda_m2 = " << c.estimator.cda_m2 << "\ncda_sigma_m2 = " << c.estimator.cda_sigma_m2
-    << "\ncda_torque_correlation = " << c.estimator.cda_torque_correlation << "\n";
+  o << "\n[vehicle]\nfile = " << quoted(c.vehicle.file) << "\n";
+  o << "\n[estimator]\nroute = " << quoted(c.estimator.route) << "\nresults_dir = " << quoted(c.estimator.results_dir)
+    << "\nengine_losses = " << quoted(c.estimator.engine_losses) << "\ncda_m2 = " << c.estimator.cda_m2
+    << "\ncda_sigma_m2 = " << c.estimator.cda_sigma_m2 << "\ncda_torque_correlation = " << c.estimator.cda_torque_correlation << "\n";
   return o.str();
 }
 

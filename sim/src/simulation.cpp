@@ -238,8 +238,10 @@ recording::Metadata Simulation::metadata() const {
   m.can_interfaces = {"can0"};
   const double scale = 1.0 + sc.effects.magnitude(Effect::mass_error);
   const TruckParams& t = p_->truck;
+  m.vehicle_text["name"] = sc.vehicle.name;
   m.vehicle_text["vin"] = t.vin;
   m.vehicle_text["description"] = t.description;
+  m.vehicle_file = sc.vehicle;
   m.vehicle["mass_kg"] = t.total_mass_kg() * scale;
   for (const auto& a : t.axles) {
     m.vehicle[a.name + "_load_kg"] = a.load_kg * scale;

@@ -11,6 +11,7 @@
 
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/model/longitudinal.hpp"
+#include "roadload/recording/metadata.hpp"
 #include "vehicles.hpp"
 
 namespace roadload {
@@ -94,6 +95,79 @@ TEST_F(VehicleFileErrors, EngineMapNeedsEc1sSixPoints) {
 
 TEST_F(VehicleFileErrors, AnAccelerometerMustSitOnAnAxleOfTheTruck) {
   EXPECT_EQ(error_of("axle = \"front\"", "axle = \"fifth\"").field, "accelerometer[0].axle");
+}
+
+TEST(VehicleFile, TheSecondShippedTruckIsA30TonneTractorWithAnEighteenSpeed) {
+  auto v = load_vehicle_file(resolve_vehicle("tractor-53ft-18speed", ROADLOAD_CONFIG_DIR));
+  ASSERT_TRUE(v.ok()) << v.error().to_string();
+  EXPECT_NEAR(v.value().mass_kg(), 30240.0, 1e-9);
+  EXPECT_EQ(v.value().driveline.gear_ratios.size(), 18u);
+  EXPECT_DOUBLE_EQ(v.value().driveline.gear_ratios.back(), 0.73);
+  EXPECT_DOUBLE_EQ(v.value().driveline.efficiency_sigma, 0.015);
+  EXPECT_GT(v.value().engine.torque_scale_sigma, 0.0);
+  EXPECT_GT(v.value().mass_sigma_kg, 0.0);
+  ASSERT_NE(v.value().drive_axle(), nullptr);
+  EXPECT_EQ(v.value().drive_axle()->name, "drive1");
+}
+
+// Written back and read again, a vehicle is the same vehicle: `vehicle identify` writes files this
+// way and recordings carry them so.
+Vehicle reread(const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("roadload-vehicle-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + ".toml");
+  std::ofstream(path) << text;
+  auto v = load_vehicle_file(path.string());
+  std::filesystem::remove(path);
+  EXPECT_TRUE(v.ok()) << v.error().to_string() << "\n" << text;
+  return v.ok() ? v.value() : Vehicle{};
+}
+
+TEST(VehicleFile, AFormattedVehicleReadsBackExactly) {
+  for (const char* name : {"mnroad-truck", "tractor-53ft-18speed"}) {
+    auto v = load_vehicle_file(resolve_vehicle(name, ROADLOAD_CONFIG_DIR));
+    ASSERT_TRUE(v.ok());
+    const std::string text = format_vehicle(v.value());
+    const Vehicle back = reread(text);
+    EXPECT_EQ(format_vehicle(back), text) << name;
+    EXPECT_EQ(back.mass_kg(), v.value().mass_kg());
+    EXPECT_EQ(back.driveline.gear_ratios, v.value().driveline.gear_ratios);
+    EXPECT_EQ(back.accelerometers.size(), v.value().accelerometers.size());
+  }
+}
+
+TEST(VehicleFile, NotesBecomeCommentsAboveTheirValues) {
+  const std::string text = format_vehicle(shipped::mnroad_vehicle(),
+                                          {{"axle[1].tire_radius_m", "GNSS speed against wheel speed\n3 recordings"}});
+  const auto at = text.find("# GNSS speed against wheel speed\n# 3 recordings\ntire_radius_m = 0.5\n");
+  ASSERT_NE(at, std::string::npos) << text;
+  EXPECT_GT(at, text.find("name = \"drive1\""));  // the second axle's
+}
+
+TEST(VehicleFile, ARecordingCarriesTheVehicleItWasMadeWith) {
+  recording::Metadata m;
+  m.clock_source = "simulated";
+  m.vehicle["mass_kg"] = 30000;
+  m.vehicle_file = shipped::mnroad_vehicle();
+  const std::string text = recording::format_metadata(m);
+  auto back = recording::parse_metadata(text, "meta.toml");
+  ASSERT_TRUE(back.ok()) << back.error().to_string() << "\n" << text;
+  ASSERT_TRUE(back.value().vehicle_file.has_value());
+  EXPECT_EQ(format_vehicle(*back.value().vehicle_file), format_vehicle(shipped::mnroad_vehicle()));
+  EXPECT_DOUBLE_EQ(back.value().vehicle.at("mass_kg"), 30000.0);
+}
+
+TEST(VehicleFile, ABadValueInARecordingsVehicleIsNamedThere) {
+  recording::Metadata m;
+  m.vehicle_file = shipped::mnroad_vehicle();
+  std::string text = recording::format_metadata(m);
+  const auto at = text.find("efficiency = 0.94");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 17, "efficiency = nan");
+  auto back = recording::parse_metadata(text, "rec/meta.toml");
+  ASSERT_FALSE(back.ok());
+  EXPECT_EQ(back.error().file, "rec/meta.toml");
+  EXPECT_EQ(back.error().field, "vehicle.file.driveline.efficiency");
+  EXPECT_GT(back.error().line, 0);
 }
 
 TEST(VehicleFile, AMissingFileSaysSo) {

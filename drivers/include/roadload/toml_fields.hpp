@@ -91,6 +91,9 @@ class TomlFields {
   }
   // A key the reader does not know is a typo until proven otherwise: stop at it.
   void only(const toml::table& t, std::initializer_list<std::string_view> known, const std::string& where) const {
+    only(t, std::vector<std::string_view>(known), where);
+  }
+  void only(const toml::table& t, const std::vector<std::string_view>& known, const std::string& where) const {
     for (const auto& [key, node] : t) {
       if (std::find(known.begin(), known.end(), key.str()) == known.end()) {
         fail(&node, where + std::string(key.str()), "unknown key");

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "roadload/vehicle_file.hpp"
+#include "roadload/vehicle_table.hpp"
+
 namespace roadload::recording {
 namespace {
 
@@ -70,7 +73,9 @@ class Reader {
     if (const toml::table* vehicle = root["vehicle"].as_table()) {
       for (const auto& [key, node] : *vehicle) {
         const std::string field = "vehicle." + std::string(key.str());
-        if (node.is_string()) {
+        if (key.str() == "file" && node.is_table()) {
+          m.vehicle_file = described_vehicle(*node.as_table());
+        } else if (node.is_string()) {
           m.vehicle_text[std::string(key.str())] = std::string(*node.value<std::string_view>());
         } else {
           const double v = number(node, field);
@@ -98,6 +103,16 @@ class Reader {
   }
 
  private:
+  Vehicle described_vehicle(const toml::table& t) const {
+    try {
+      Vehicle v = detail::read_vehicle(detail::TomlFields(std::string(source_)), t, "vehicle.file.");
+      v.source = std::string(source_) + " [vehicle.file]";
+      return v;
+    } catch (const detail::TomlFailure& e) {
+      throw Bad{e.error};
+    }
+  }
+
   SensorInfo sensor(const toml::node& n, std::size_t index) const {
     const std::string where = "sensor[" + std::to_string(index) + "].";
     const toml::table* t = n.as_table();
@@ -162,6 +177,7 @@ std::string format_metadata(const Metadata& m) {
   for (const auto& [k, v] : m.vehicle_text) o << k << " = " << quoted(v) << "\n";
   o.precision(17);
   for (const auto& [k, v] : m.vehicle) o << k << " = " << toml::value<double>(v) << "\n";
+  if (m.vehicle_file) o << format_vehicle(*m.vehicle_file, {}, "vehicle.file");
   o << "\n[can]\ninterfaces = [";
   for (std::size_t i = 0; i < m.can_interfaces.size(); ++i) o << (i ? ", " : "") << quoted(m.can_interfaces[i]);
   o << "]\n";

@@ -45,6 +45,10 @@ std::vector<std::string> drive_failures(const TripResult& trip, const Identifica
 // A CRR estimate's own: its sigma against `max_sigma` and the physical range.
 std::vector<std::string> estimate_failures(double crr, double sigma, double max_sigma, const IdentificationLimits& limits);
 
+// A reason from outside the drive's own checks (the truck assumed, the drive not placed): the trip
+// and every cell are withheld from "identified" with it.
+void withhold(TripResult& trip, std::vector<CellResult>& cells, const std::string& why);
+
 // "a; b; c".
 std::string join_reasons(const std::vector<std::string>& reasons);
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "roadload/definitions.hpp"
+#include "roadload/recording/reader.hpp"
 #include "roadload/vehicle_file.hpp"
 
 namespace roadload::gap {
@@ -35,7 +36,14 @@ Parsed<sim::Scenario> nearest_builtin(const RunConditions& c, const std::string&
 
 }  // namespace
 
-Parsed<RealRun> load_real_run(const std::string& recording, const std::string& model, const j1939::Database& db) {
+Parsed<RealRun> load_real_run(const std::string& recording, const std::string& model, const j1939::Database& db,
+                              const std::optional<Vehicle>& vehicle) {
+  std::optional<Vehicle> truck = vehicle;
+  if (!truck) {
+    auto opened = recording::RecordingReader::open(recording);
+    if (!opened) return opened.error();
+    truck = opened.value().metadata().vehicle_file;
+  }
   // The layout needs the route, the route may need the recording: read the model first when named.
   std::optional<sim::Scenario> scenario;
   if (!model.empty()) {
@@ -46,14 +54,15 @@ Parsed<RealRun> load_real_run(const std::string& recording, const std::string& m
   if (!scenario) {
     // A first pass with no bins finds where the drive started.
     const RunLayout probe{*RouteGeometry::build(std::vector<GeoPoint>{{45, -93, 0}, {45.001, -93, 0}}), {}};
-    auto vehicle = load_vehicle_file(default_vehicle_path());
-    if (!vehicle) return vehicle.error();
-    auto first = read_run(recording, db, probe, vehicle.value());
+    auto fallback = truck ? Parsed<Vehicle>(*truck) : load_vehicle_file(default_vehicle_path());
+    if (!fallback) return fallback.error();
+    auto first = read_run(recording, db, probe, fallback.value());
     if (!first) return first.error();
     auto chosen = nearest_builtin(first.value().features.conditions, recording);
     if (!chosen) return chosen.error();
     scenario = std::move(chosen.value());
   }
+  if (truck) scenario->vehicle = *truck;
   auto run = read_run(recording, db, layout_for(scenario->route), scenario->vehicle);
   if (!run) return run.error();
   std::string label = std::filesystem::path(recording).filename().string();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "roadload/parse_error.hpp"
+#include "roadload/vehicle.hpp"
 
 namespace roadload::recording {
 
@@ -37,6 +38,9 @@ struct Metadata {
   std::optional<std::int64_t> utc_offset_ns;        // UTC = capture + offset, when a GNSS fix gave one
   std::map<std::string, std::string> vehicle_text;  // vin, name, ...
   std::map<std::string, double> vehicle;            // mass_kg, ... (names carry units)
+  // The vehicle file the recording was made with, in full ([vehicle.file]); the keys above state
+  // this drive's own values over it (its cargo, its antenna).
+  std::optional<Vehicle> vehicle_file;
   std::vector<std::string> can_interfaces;
   std::vector<SensorInfo> sensors;
 };

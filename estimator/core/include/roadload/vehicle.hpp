@@ -55,13 +55,17 @@ struct EngineDescription {
   std::vector<double> full_load_rpm, full_load_fraction;
   // Motoring friction, a + b n + c n^2 in % of the reference, n in thousands of rpm.
   double friction_a_pct = 0, friction_b_pct = 0, friction_c_pct = 0;
+  // How far the ECU's torque (EEC1 against SPN 544) may be from the flywheel's, as a share: one
+  // sigma of a scale error. J1939 states no accuracy; makers quote a few percent.
+  double torque_scale_sigma = 0;
 };
 
 struct DrivelineDescription {
   std::vector<double> gear_ratios;  // first gear first
   double final_drive = 0;
-  double efficiency = 0;    // one figure for every gear and load
-  double inertia_kgm2 = 0;  // gearbox, shafts and axle gears referred to the engine
+  double efficiency = 0;        // one figure for every gear and load
+  double efficiency_sigma = 0;  // how far one gearbox and axle of the type may be from it
+  double inertia_kgm2 = 0;      // gearbox, shafts and axle gears referred to the engine
   Seconds shift_time{0};
 };
 
@@ -112,6 +116,8 @@ struct Vehicle {
   double cda_sigma_m2 = 0;  // how far one truck of the type may be from it
   double gnss_antenna_behind_front_m = 0;
   double gnss_antenna_height_m = 0;
+  // How well the axle loads are known: a scale ticket's 1 %, a declared cargo's 5-10 %.
+  double mass_sigma_kg = 0;
 
   double mass_kg() const;            // the axles' static loads
   double cg_behind_front_m() const;  // from the axle loads

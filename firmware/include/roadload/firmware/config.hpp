@@ -58,8 +58,15 @@ struct ReplayConfig {
   std::string origin_file;  // written by `roadload replay --origin`: the timeline of the CAN it plays
 };
 
+// The truck the daemon rides in: its vehicle file (docs/vehicle-file.md), which the recordings carry
+// in their meta.toml and the estimator models.
+struct VehicleConfig {
+  // A vehicle file or built-in name (config/vehicles). Empty: a replayed recording's own; otherwise
+  // none, and the daemon records without estimating, as no truck is described.
+  std::string file;
+};
+
 struct EstimatorConfig {
-  std::string vehicle;      // vehicle file or built-in name (config/vehicles); empty: the default vehicle
   std::string route;        // route file or built-in name; empty: no cells
   std::string results_dir;  // cells.csv and trip.json written here at exit; empty: none
   // The truck's calibration (`roadload calibrate`): its engine-loss table, and its CdA with the
@@ -77,6 +84,7 @@ struct DaemonConfig {
   RecordingConfig recording;
   StatusConfig status;
   ReplayConfig replay;
+  VehicleConfig vehicle;
   EstimatorConfig estimator;
 };
 
