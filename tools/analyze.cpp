@@ -11,6 +11,7 @@
 #include "analyze_results.hpp"
 #include "analyze_vibration.hpp"
 #include "command.hpp"
+#include "gnss_tracks.hpp"
 #include "options.hpp"
 #include "roadload/contact_forces.hpp"
 #include "roadload/drive_analyzer.hpp"
@@ -191,19 +192,22 @@ struct Road {
   std::vector<CellSpan> spans;
   std::optional<GradeProfile> grade;  // a traced road's, from the same fixes
   double default_iri_m_per_km = AnalyzerConfig{}.roughness_iri_m_per_km;
-  std::string unplaced;  // why the drive has no road, when it has none
+  std::string grade_file;  // the route's own grade profile, which --grade overrides
+  std::string unplaced;    // why the drive has no road, when it has none
 };
 
 // Without a route the drive's own GNSS traces one, its grade from that one pass (so wide, honest
 // intervals); without GNSS either, the drive has no road: nothing can place it or give its grade.
-Road traced_road(const AnalyzeOptions& o, const Vehicle& vehicle) {
+Road traced_road(const AnalyzeOptions& o, const Vehicle& vehicle, const j1939::Database& db) {
   Road road;
-  std::vector<GnssFix> fixes;
-  if (auto gnss = recording::RecordingReader::open(o.recording, recording::kGnssStream)) {
-    while (const recording::Record* r = gnss.value().next()) {
-      if (const auto* f = std::get_if<GnssFix>(r)) fixes.push_back(*f);
-    }
-  }
+  // Errors in the recording are the main read's to report; here a track is only looked for.
+  RecordedTrack recorded;
+  std::uint64_t malformed = 0;
+  TrackOptions antenna;
+  antenna.antenna_height_m = vehicle.gnss_antenna_height_m;
+  antenna.print_errors = false;
+  read_recorded_track("analyze", o.recording, antenna, db, recorded, malformed);
+  const std::vector<GnssFix>& fixes = recorded.fixes;
   const std::optional<TrackRoute> track = route_from_track(fixes, vehicle.gnss_antenna_height_m);
   const std::optional<RouteGeometry> geometry = track ? RouteGeometry::build(track->points) : std::nullopt;
   if (!geometry) {
@@ -233,6 +237,7 @@ std::optional<std::variant<Road, int>> given_road(const AnalyzeOptions& o) {
   road.spans = cell_spans(route.file.cells);
   road.cells = std::move(route.file.cells);
   road.default_iri_m_per_km = route.file.default_iri_m_per_km;
+  road.grade_file = route.file.grade_file;
   return road;
 }
 
@@ -252,15 +257,15 @@ int analyze(const AnalyzeOptions& o) {
   const Vehicle& vehicle = std::get<RecordingVehicle>(described).vehicle;
   const std::string& assumed = std::get<RecordingVehicle>(described).assumed;
   if (!assumed.empty()) std::fprintf(stderr, "roadload analyze: %s\n", assumed.c_str());
-  if (!found) found = traced_road(o, vehicle);
+  if (!found) found = traced_road(o, vehicle, db);
   Road& road = std::get<Road>(*found);
   auto cfg = configure(o, vehicle, meta, road.default_iri_m_per_km);
   if (const int* rc = std::get_if<int>(&cfg)) return *rc;
   const double route_length_m = road.geometry.length_m();
   DriveAnalyzer analyzer(db, road.geometry, road.spans, std::get<AnalyzerConfig>(cfg));
   if (road.grade) analyzer.set_grade(std::move(*road.grade));
-  if (!o.grade_file.empty()) {
-    auto grade = load_grade_file(o.grade_file, route_length_m);
+  if (!o.grade_file.empty() || !road.grade_file.empty()) {
+    auto grade = load_grade_file(o.grade_file.empty() ? road.grade_file : o.grade_file, route_length_m);
     if (auto rc = failed_input(grade)) return *rc;
     analyzer.set_grade(std::move(grade.value()));
   }

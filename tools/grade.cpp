@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "command.hpp"
+#include "gnss_tracks.hpp"
 #include "options.hpp"
 #include "roadload/definitions.hpp"
+#include "roadload/grade_file.hpp"
 #include "roadload/grade_profile.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/writer.hpp"
@@ -49,19 +51,12 @@ constexpr const char* kHelp =
     "  -h, --help           this text\n";
 
 struct Options {
-  std::string route_name, out, vehicle;
+  std::string route_name, out;
+  TrackOptions track;
   std::vector<std::string> recordings;
   GradeConfig cfg;
   double survey_sigma_m = kDefaultSurveySigma_m;
-  std::optional<double> antenna_height_m;
   bool quiet = false;
-};
-
-// One recording's GNSS fixes, with the antenna height that turns them into road heights.
-struct Track {
-  std::string path;
-  std::vector<GnssFix> fixes;
-  double antenna_height_m = 0;
 };
 
 // Returns an exit code when the options are unusable, else nullopt.
@@ -85,9 +80,9 @@ std::optional<int> parse(OptionParser& opt, Options& o) {
     } else if (auto m = opt.real("--max-offset", 0.1, 1000)) {
       o.cfg.max_offset_m = *m;
     } else if (auto a = opt.real("--antenna-height", -10, 20)) {
-      o.antenna_height_m = *a;
+      o.track.antenna_height_m = *a;
     } else if (auto v = opt.value("--vehicle")) {
-      o.vehicle = *v;
+      o.track.vehicle = *v;
     } else if (auto p = opt.positional()) {
       o.recordings.emplace_back(*p);
     } else if (!opt.failed()) {
@@ -101,58 +96,8 @@ std::optional<int> parse(OptionParser& opt, Options& o) {
   return std::nullopt;
 }
 
-// Reads the GnssFix records of a recording; malformed lines are printed and counted in `bad`.
-std::optional<int> read_track(const std::string& path, const Options& o, Track& t, std::uint64_t& bad) {
-  auto reader = recording::RecordingReader::open(path);
-  if (!reader) {
-    std::fprintf(stderr, "roadload grade: %s\n", reader.error().to_string().c_str());
-    return kExitNoInput;
-  }
-  t.path = path;
-  const recording::Metadata& meta = reader.value().metadata();
-  const auto it = meta.vehicle.find("gnss_antenna_height_m");
-  if (o.antenna_height_m) {
-    t.antenna_height_m = *o.antenna_height_m;
-  } else if (!o.vehicle.empty() || meta.vehicle_file) {
-    auto described = recording_vehicle("grade", meta, o.vehicle);
-    if (const int* rc = std::get_if<int>(&described)) return *rc;
-    t.antenna_height_m = std::get<RecordingVehicle>(described).vehicle.gnss_antenna_height_m;
-  } else if (it != meta.vehicle.end()) {
-    t.antenna_height_m = it->second;
-  } else {
-    std::fprintf(stderr, "roadload grade: %s: meta.toml: vehicle.gnss_antenna_height_m: not given; heights are the antenna's\n",
-                 path.c_str());
-  }
-  while (const recording::Record* r = reader.value().next()) {
-    if (const auto* f = std::get_if<GnssFix>(r)) t.fixes.push_back(*f);
-  }
-  const recording::ErrorLog& errors = reader.value().errors();
-  for (const ParseError& e : errors.kept()) std::fprintf(stderr, "roadload grade: %s\n", e.to_string().c_str());
-  if (errors.count() > errors.kept().size()) {
-    std::fprintf(stderr, "roadload grade: %s: ... and %" PRIu64 " more malformed lines\n", path.c_str(),
-                 errors.count() - errors.kept().size());
-  }
-  bad += errors.count();
-  if (t.fixes.empty()) std::fprintf(stderr, "roadload grade: %s: no GNSS fixes (gnss.csv)\n", path.c_str());
-  return std::nullopt;
-}
-
 std::optional<int> write_csv(const std::string& path, const GradeProfile& g) {
-  auto csv = recording::OutputFile::create(path);
-  if (!csv) {
-    std::fprintf(stderr, "roadload grade: %s\n", csv.error().to_string().c_str());
-    return kExitCantCreate;
-  }
-  csv.value().write("s_m,elevation_m,elevation_sigma_m,grade_pct,grade_sigma_pct,passes\n");
-  recording::LineBuilder line;
-  for (const GradeBin& b : g.bins()) {
-    line.clear();
-    line.num(b.s_m, 1).sep().num(b.elevation_m, 3).sep().num(b.elevation_sigma_m, 3).sep();
-    line.num(100 * std::tan(b.grade_rad), 4).sep().num(100 * b.grade_sigma_rad, 4).sep();
-    line.num(static_cast<std::int64_t>(b.passes));
-    csv.value().write(line.finish());
-  }
-  if (auto e = csv.value().close()) {
+  if (auto e = write_grade_file(path, g)) {
     std::fprintf(stderr, "roadload grade: %s\n", e->to_string().c_str());
     return kExitCantCreate;
   }
@@ -219,13 +164,17 @@ int run_grade(Args args) {
     return kExitOk;
   }
 
-  std::vector<Track> tracks(o.recordings.size());
+  j1939::Database db;
+  if (auto rc = load_definitions("grade", {}, db)) return *rc;
+  std::vector<RecordedTrack> tracks(o.recordings.size());
   std::uint64_t malformed = 0;
   for (std::size_t i = 0; i < tracks.size(); ++i) {
-    if (auto code = read_track(o.recordings[i], o, tracks[i], malformed)) return *code;
+    if (auto code = read_recorded_track("grade", o.recordings[i], o.track, db, tracks[i], malformed)) return *code;
+    if (tracks[i].fixes.empty())
+      std::fprintf(stderr, "roadload grade: %s: no GNSS fixes (gnss.csv, J1939 VP1)\n", tracks[i].path.c_str());
   }
   std::vector<GnssTrack> gnss_tracks;
-  for (const Track& t : tracks) gnss_tracks.push_back({t.fixes, t.antenna_height_m});
+  for (const RecordedTrack& t : tracks) gnss_tracks.push_back({t.fixes, t.antenna_height_m});
   const GradeProfile gnss = GradeProfile::from_gnss(route.geometry, gnss_tracks, o.cfg);
   if (auto code = write_csv(o.out, gnss)) return *code;
   compare(gnss, survey, o.quiet);

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <sstream>
 
+#include "roadload/results/json.hpp"
 #include "roadload/vehicle_file.hpp"
 #include "vehicle_fields.hpp"
 
@@ -19,22 +20,8 @@ std::string number(double v) {
   return ec == std::errc() ? std::string(text, end) : std::string("0");
 }
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\u%04x", static_cast<unsigned>(c));
-      out += esc;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+// A TOML basic string escapes as a JSON string does: quotes, backslashes, control characters as \uXXXX.
+std::string quoted(const std::string& s) { return results::json_quote(s); }
 
 class Writer {
  public:

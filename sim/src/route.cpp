@@ -40,7 +40,7 @@ Parsed<RouteDef> load_route(const std::string& path) {
     } else if (c.iso8608_class) {
       gd = iso8608_class_gd_m3(*c.iso8608_class);
     }
-    d.cells.push_back({c.id, c.start_m, c.end_m, c.surface, c.crr, gd, c.joint_spacing_m});
+    d.cells.push_back({c.id, c.start_m, c.end_m, c.surface, c.crr.value_or(rf.default_crr), gd, c.joint_spacing_m});
   }
   return d;
 }

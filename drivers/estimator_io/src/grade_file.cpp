@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "roadload/recording/csv.hpp"
+#include "roadload/recording/writer.hpp"
 
 namespace roadload {
 namespace {
@@ -48,6 +49,21 @@ Parsed<GradeProfile> load_grade_file(const std::string& path, double route_lengt
     return ParseError{path, 0, "s_m", "bins are not evenly spaced along this route (" + std::to_string(route_length_m) + " m long)"};
   }
   return std::move(*profile);
+}
+
+std::optional<ParseError> write_grade_file(const std::string& path, const GradeProfile& profile) {
+  auto csv = recording::OutputFile::create(path);
+  if (!csv) return csv.error();
+  csv.value().write("s_m,elevation_m,elevation_sigma_m,grade_pct,grade_sigma_pct,passes\n");
+  recording::LineBuilder line;
+  for (const GradeBin& b : profile.bins()) {
+    line.clear();
+    line.num(b.s_m, 1).sep().num(b.elevation_m, 3).sep().num(b.elevation_sigma_m, 3).sep();
+    line.num(100 * std::tan(b.grade_rad), 4).sep().num(100 * b.grade_sigma_rad, 4).sep();
+    line.num(static_cast<std::int64_t>(b.passes));
+    csv.value().write(line.finish());
+  }
+  return csv.value().close();
 }
 
 }  // namespace roadload

@@ -19,8 +19,8 @@ struct CellDef {
   std::string id;
   double start_m = 0;  // along the polyline from its first point
   double end_m = 0;
-  std::string surface;  // "concrete" or "bituminous"
-  double crr = 0;       // the pavement's CRR as the file states it (the simulator's truth)
+  std::string surface;        // "concrete" or "bituminous"; empty where not known
+  std::optional<double> crr;  // the pavement's CRR where the file states it (the simulator's truth)
   std::optional<double> iri_m_per_km;
   std::optional<char> iso8608_class;
   double joint_spacing_m = 0;
@@ -28,10 +28,11 @@ struct CellDef {
 
 struct RouteFile {
   std::string name;
-  std::string source;       // where the geometry and cells come from
-  std::string source_file;  // the file it was read from, for errors
-  std::vector<RoutePoint> points;
-  std::vector<CellDef> cells;  // ordered, not overlapping
+  std::string source;              // where the geometry and cells come from
+  std::string source_file;         // the file it was read from, for errors
+  std::vector<RoutePoint> points;  // [[point]] tables, or the GeoJSON or GPX file `geometry` names
+  std::string grade_file;          // `grade`: a grade profile with its sigma (`roadload grade`), resolved
+  std::vector<CellDef> cells;      // ordered, not overlapping
   double default_crr = 0.0055;
   double default_iri_m_per_km = 1.5;
 };
@@ -41,6 +42,8 @@ Parsed<RouteFile> load_route_file(const std::string& path);
 PavementGroups pavement_groups(const std::vector<CellDef>& cells);
 // The cells as the estimator takes them, with the IRI each states (a class alone is not converted).
 std::vector<CellSpan> cell_spans(const std::vector<CellDef>& cells);
+// The route as a route file: [[point]] tables (never a geometry file) and `grade` as given.
+std::string format_route_file(const RouteFile& route);
 // A route argument: a route file, or the name of a built-in route (data_dir()/routes/NAME.toml).
 std::string resolve_route(const std::string& name_or_path);
 

@@ -1,0 +1,85 @@
+#include "gnss_tracks.hpp"
+
+#include <cinttypes>
+#include <cstdio>
+
+#include "options.hpp"
+#include "roadload/bus_position.hpp"
+#include "roadload/j1939/assembler.hpp"
+#include "roadload/recording/reader.hpp"
+
+namespace roadload::cli {
+namespace {
+
+void report_errors(std::string_view command, const std::string& path, const recording::ErrorLog& errors, bool print,
+                   std::uint64_t& malformed) {
+  malformed += errors.count();
+  if (!print) return;
+  for (const ParseError& e : errors.kept())
+    std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), e.to_string().c_str());
+  if (errors.count() > errors.kept().size()) {
+    std::fprintf(stderr, "roadload %.*s: %s: ... and %" PRIu64 " more malformed lines\n", static_cast<int>(command.size()),
+                 command.data(), path.c_str(), errors.count() - errors.kept().size());
+  }
+}
+
+// The antenna height: --antenna-height, else the vehicle's (--vehicle or the recording's file),
+// else meta.toml's bare value; without any, heights stay the antenna's and the user is told.
+std::optional<int> antenna_height(std::string_view command, const std::string& path, const TrackOptions& o,
+                                  const recording::Metadata& meta, RecordedTrack& t) {
+  const auto it = meta.vehicle.find("gnss_antenna_height_m");
+  if (o.antenna_height_m) {
+    t.antenna_height_m = *o.antenna_height_m;
+  } else if (!o.vehicle.empty() || meta.vehicle_file) {
+    auto described = recording_vehicle(command, meta, o.vehicle);
+    if (const int* rc = std::get_if<int>(&described)) return *rc;
+    t.antenna_height_m = std::get<RecordingVehicle>(described).vehicle.gnss_antenna_height_m;
+  } else if (it != meta.vehicle.end()) {
+    t.antenna_height_m = it->second;
+  } else {
+    std::fprintf(stderr, "roadload %.*s: %s: meta.toml: vehicle.gnss_antenna_height_m: not given; heights are the antenna's\n",
+                 static_cast<int>(command.size()), command.data(), path.c_str());
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<int> read_recorded_track(std::string_view command, const std::string& path, const TrackOptions& o,
+                                       const j1939::Database& db, RecordedTrack& t, std::uint64_t& malformed) {
+  // One read of both: the logger's own receiver where it has one, else the truck's, as its bus
+  // broadcasts it.
+  auto reader = recording::RecordingReader::open(path, recording::kGnssStream | recording::kCanStream);
+  if (!reader) {
+    std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), reader.error().to_string().c_str());
+    return reader.error().line > 0 ? kExitDataErr : kExitNoInput;
+  }
+  t.path = path;
+  if (auto rc = antenna_height(command, path, o, reader.value().metadata(), t)) return rc;
+  j1939::MessageAssembler assembler;
+  BusPosition position(db);
+  std::vector<GnssFix> bus;
+  bool altitude = false;
+  while (const recording::Record* r = reader.value().next()) {
+    if (const auto* f = std::get_if<GnssFix>(r)) {
+      t.fixes.push_back(*f);
+    } else if (const auto* frame = std::get_if<CanFrame>(r)) {
+      const auto m = assembler.push(*frame);
+      if (!m) continue;
+      if (auto placed = position.push(*m)) {
+        altitude = altitude || placed->mode == GnssFixMode::fix_3d;
+        bus.push_back(*placed);
+      }
+    }
+  }
+  report_errors(command, path, reader.value().errors(), o.print_errors, malformed);
+  if (!t.fixes.empty()) {
+    t.source = "gnss.csv";
+  } else if (!bus.empty()) {
+    t.fixes = std::move(bus);
+    t.source = altitude ? "J1939 VP1 and VDS" : "J1939 VP1 (no altitude: VDS not sent)";
+  }
+  return std::nullopt;
+}
+
+}  // namespace roadload::cli
