@@ -23,6 +23,7 @@ int run_replay(Args args);
 int run_report(Args args);
 int run_gap(Args args);
 int run_route(Args args);
+int run_vehicle(Args args);
 
 // Exit codes, as sysexits.h names them.
 inline constexpr int kExitOk = 0;

@@ -17,11 +17,13 @@ constexpr Command kCommands[] = {
     {"grade", "build a route's grade profile with its uncertainty from its survey or GNSS passes", roadload::cli::run_grade},
     {"psd", "Welch power spectral density of accelerometer channels, as scipy.signal.welch computes it", roadload::cli::run_psd},
     {"replay", "play a recording's CAN frames onto a (virtual) CAN interface, in real time or faster", roadload::cli::run_replay},
+    {"report", "draw a drive's results as one self-contained HTML page (figures and tables)", roadload::cli::run_report},
     {"route", "build a route file from the recordings' own GNSS passes, with cells or a GIS file's sections",
      roadload::cli::run_route},
-    {"report", "draw a drive's results as one self-contained HTML page (figures and tables)", roadload::cli::run_report},
     {"simulate", "drive the simulated truck over a simulated road; write a recording and its ground truth",
      roadload::cli::run_simulate},
+    {"vehicle", "identify a truck's vehicle file from its recordings: VIN, torque, gear ratios, tire radius, mass",
+     roadload::cli::run_vehicle},
 };
 
 void usage(std::FILE* out) {

@@ -141,4 +141,15 @@ std::variant<RecordingVehicle, int> recording_vehicle(std::string_view command, 
   return r;
 }
 
+std::optional<int> expect_action(std::string_view command, Args args, std::string_view action, const char* help) {
+  if (args.empty() || std::string_view(args[0]) == "-h" || std::string_view(args[0]) == "--help") {
+    std::fputs(help, args.empty() ? stderr : stdout);
+    return args.empty() ? kExitUsage : kExitOk;
+  }
+  if (std::string_view(args[0]) == action) return std::nullopt;
+  std::fprintf(stderr, "roadload %.*s: unknown action '%s' (expected: %.*s)\n", static_cast<int>(command.size()), command.data(),
+               args[0], static_cast<int>(action.size()), action.data());
+  return kExitUsage;
+}
+
 }  // namespace roadload::cli

@@ -44,6 +44,11 @@ class OptionParser {
   bool failed_ = false;
 };
 
+// A command whose first argument names its action (`roadload route build`): with no argument it
+// prints `help` on standard error (64), with -h or --help on standard output (0), and refuses any
+// action but `action` (64). nullopt: the action is the one expected; its options follow it.
+std::optional<int> expect_action(std::string_view command, Args args, std::string_view action, const char* help);
+
 // The built-in J1939 definitions, then each of `extra` (--dbc) over them; on failure the error is
 // printed as "roadload COMMAND: file:line: field: message" and the exit code returned.
 std::optional<int> load_definitions(std::string_view command, const std::vector<std::string>& extra, j1939::Database& db);

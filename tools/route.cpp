@@ -234,14 +234,7 @@ int build(const Options& o) {
 }  // namespace
 
 int run_route(Args args) {
-  if (args.empty() || std::string_view(args[0]) == "-h" || std::string_view(args[0]) == "--help") {
-    std::fputs(kHelp, args.empty() ? stderr : stdout);
-    return args.empty() ? kExitUsage : kExitOk;
-  }
-  if (std::string_view(args[0]) != "build") {
-    std::fprintf(stderr, "roadload route: unknown action '%s' (expected: build)\n", args[0]);
-    return kExitUsage;
-  }
+  if (auto rc = expect_action("route", args, "build", kHelp)) return *rc;
   OptionParser opt("route build", args.subspan(1));
   Options o;
   if (auto rc = parse(opt, o)) return *rc;
