@@ -96,6 +96,10 @@ CrrFilterConfig config() {
   CrrFilterConfig cfg = analyzer_config(shipped::mnroad_vehicle()).filter;
   cfg.crr_walk_per_sqrt_s = 1e-9;  // the truth here is constant
   cfg.cda_walk_per_sqrt_s = 1e-9;
+  // These drives' truck is the model's exactly: no tractive or mass scale error to consider (their
+  // own test below gives the drive one).
+  cfg.truck.tractive_scale_sigma = 0;
+  cfg.truck.mass_sigma_kg = 0;
   return cfg;
 }
 
@@ -303,6 +307,26 @@ TEST(CrrFilter, SmootherTracksAPavementChangeBetterThanTheFilter) {
     se_s += std::pow(smoother.x(k)(CrrState::crr) - d.crr_true[k - 1], 2);
   }
   EXPECT_LT(se_s, 0.7 * se_f) << "filtered RMSE " << std::sqrt(se_f / 9000) << ", smoothed " << std::sqrt(se_s / 9000);
+}
+
+// A truck whose tractive force is 5 % below what its ECU's torque and its file's efficiency say
+// (a 3 % torque scale and 1.6 % of efficiency are one sigma each): a filter that takes them as exact
+// puts the missing force on CRR, confidently wrong. With the scale considered its interval holds the
+// truth: here the grade's swings (+-1 %) move the tractive force and with it the scale's share, which
+// CRR's constant force does not, so the considered filter's estimate itself lands near the truth.
+TEST(CrrFilter, ATractiveScaleConsideredKeepsTheTruthInItsInterval) {
+  CrrFilterConfig exact = config();
+  exact.truck.cda_sigma_m2 = 1e-6;  // the scale alone, not hidden behind CdA's prior
+  Drive d = make_drive(7, 900, 0.0055, exact.truck.cda_prior_m2, exact, false);
+  for (model::ForceInputs& in : d.inputs) in.tractive_n *= 1.05;
+  const CrrFilter taken_as_exact = run(exact, d);
+  CrrFilterConfig considered = exact;
+  considered.truck.tractive_scale_sigma = std::hypot(0.03, 0.015 / 0.94);
+  const CrrFilter f = run(considered, d);
+  std::printf("CRR error %.5f (as exact %.5f); sigma taken as exact %.5f, with the scale considered %.5f\n", f.crr() - 0.0055,
+              taken_as_exact.crr() - 0.0055, taken_as_exact.crr_sigma(), f.crr_sigma());
+  EXPECT_GT(std::abs(taken_as_exact.crr() - 0.0055), 3 * taken_as_exact.crr_sigma());
+  EXPECT_LT(std::abs(f.crr() - 0.0055), 2.58 * f.crr_sigma());
 }
 
 }  // namespace

@@ -26,6 +26,11 @@ struct TruckModel {
   // Between CdA's error and the flywheel torque bias's: a CdA calibrated from two speeds took up
   // the engine-loss calibration's error, which the same truck carries into every later drive.
   double cda_torque_bias_correlation = 0.0;
+  // The ECU's torque and the driveline's efficiency are known to a share: one sigma of the scale
+  // error of the tractive force they give (the vehicle file's torque_scale_sigma and
+  // efficiency_sigma, combined). And the mass to its sigma (a scale ticket, a declared cargo).
+  double tractive_scale_sigma = 0.0;
+  double mass_sigma_kg = 0.0;
   double crr_prior = 0.0055;
   double crr_sigma = 0.002;
   // Friction + accessories by engine speed from a standstill calibration; empty: EEC3's.
