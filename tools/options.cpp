@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 #include "roadload/definitions.hpp"
 #include "roadload/recording/metadata_vehicle.hpp"
@@ -150,6 +151,15 @@ std::optional<int> expect_action(std::string_view command, Args args, std::strin
   std::fprintf(stderr, "roadload %.*s: unknown action '%s' (expected: %.*s)\n", static_cast<int>(command.size()), command.data(),
                args[0], static_cast<int>(action.size()), action.data());
   return kExitUsage;
+}
+
+std::optional<int> write_text_file(std::string_view command, const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (out) return std::nullopt;
+  std::fprintf(stderr, "roadload %.*s: %s: cannot write\n", static_cast<int>(command.size()), command.data(), path.c_str());
+  return kExitCantCreate;
 }
 
 }  // namespace roadload::cli

@@ -49,6 +49,10 @@ class OptionParser {
 // action but `action` (64). nullopt: the action is the one expected; its options follow it.
 std::optional<int> expect_action(std::string_view command, Args args, std::string_view action, const char* help);
 
+// Writes `text` to `path` whole; on failure prints "roadload COMMAND: path: cannot write" and
+// returns the exit code (73).
+std::optional<int> write_text_file(std::string_view command, const std::string& path, const std::string& text);
+
 // The built-in J1939 definitions, then each of `extra` (--dbc) over them; on failure the error is
 // printed as "roadload COMMAND: file:line: field: message" and the exit code returned.
 std::optional<int> load_definitions(std::string_view command, const std::vector<std::string>& extra, j1939::Database& db);

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -147,17 +146,6 @@ std::vector<CellDef> fixed_cells(double length_m, double cell_length_m) {
   return cells;
 }
 
-std::optional<int> write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.close();
-  if (!out) {
-    std::fprintf(stderr, "roadload route: %s: cannot write\n", path.c_str());
-    return kExitCantCreate;
-  }
-  return std::nullopt;
-}
-
 int build(const Options& o) {
   j1939::Database db;
   if (auto rc = load_definitions("route", {}, db)) return *rc;
@@ -205,7 +193,7 @@ int build(const Options& o) {
     std::fprintf(stderr, "roadload route: %s\n", e->to_string().c_str());
     return kExitCantCreate;
   }
-  if (auto rc = write_text(o.out, format_route_file(route))) return *rc;
+  if (auto rc = write_text_file("route", o.out, format_route_file(route))) return *rc;
   if (!o.quiet) {
     const GnssFixCounts& f = grade.fixes();
     double sigma = 0;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -177,15 +176,10 @@ int identify(const Options& o) {
   const VehicleIdentification id = identifier->result();
   VehicleNotes notes;
   const Vehicle v = fill(*prior, id, o.name, notes);
-  std::ofstream out(o.out, std::ios::binary | std::ios::trunc);
-  out << "# Written by roadload vehicle identify from " << o.recordings.size() << " recording(s); every value not noted as\n"
-      << "# identified is the prior's (" << (prior->source.empty() ? prior->name : prior->source) << ").\n"
-      << format_vehicle(v, notes);
-  out.close();
-  if (!out) {
-    std::fprintf(stderr, "roadload vehicle: %s: cannot write\n", o.out.c_str());
-    return kExitCantCreate;
-  }
+  const std::string header = "# Written by roadload vehicle identify from " + std::to_string(o.recordings.size()) +
+                             " recording(s); every value not noted as\n# identified is the prior's (" +
+                             (prior->source.empty() ? prior->name : prior->source) + ").\n";
+  if (auto rc = write_text_file("vehicle", o.out, header + format_vehicle(v, notes))) return *rc;
   print(*prior, id);
   return malformed > 0 ? kExitDataErr : kExitOk;
 }

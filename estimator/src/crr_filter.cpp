@@ -29,7 +29,7 @@ double eec3_quantization_sigma_nm(double reference_torque_nm) { return reference
 
 void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> torque_bias_sigma_nm) {
   Vec x;
-  x << speed_mps, config_.truck.crr_prior, config_.truck.cda_prior_m2, 0.0, 0.0, 0.0, 0.0, 0.0;
+  x << speed_mps, config_.truck.crr_prior, config_.truck.cda_prior_m2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0;
   Mat p = Mat::Zero();
   p(CrrState::speed, CrrState::speed) = 0.25;
   p(CrrState::crr, CrrState::crr) = config_.truck.crr_sigma * config_.truck.crr_sigma;
@@ -38,14 +38,17 @@ void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> tor
   p(CrrState::torque_bias, CrrState::torque_bias) = bias_sigma * bias_sigma;
   const double rho = std::clamp(config_.truck.cda_torque_bias_correlation, -1.0, 1.0);
   p(CrrState::cda, CrrState::torque_bias) = p(CrrState::torque_bias, CrrState::cda) = rho * config_.truck.cda_sigma_m2 * bias_sigma;
-  p(CrrState::tractive_scale, CrrState::tractive_scale) = config_.truck.tractive_scale_sigma * config_.truck.tractive_scale_sigma;
+  p(CrrState::torque_scale, CrrState::torque_scale) = config_.truck.torque_scale_sigma * config_.truck.torque_scale_sigma;
+  p(CrrState::efficiency_scale, CrrState::efficiency_scale) = config_.truck.efficiency_scale_sigma *
+                                                              config_.truck.efficiency_scale_sigma;
   const double mass_share = config_.truck.mass_kg > 0 ? config_.truck.mass_sigma_kg / config_.truck.mass_kg : 0.0;
   p(CrrState::mass_scale, CrrState::mass_scale) = mass_share * mass_share;
   core_.reset(x, p);
   core_.set_consider(CrrState::cda, !config_.estimate_cda);
   core_.set_consider(CrrState::torque_bias, true);
   core_.set_consider(CrrState::grade_error, true);
-  core_.set_consider(CrrState::tractive_scale, true);
+  core_.set_consider(CrrState::torque_scale, true);
+  core_.set_consider(CrrState::efficiency_scale, true);
   core_.set_consider(CrrState::mass_scale, true);
   t_ = t;
   started_ = true;
@@ -68,7 +71,7 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
                                                   x(CrrState::grade_error));
   const double aero = r.aero_n;
   const double bias_n = in.wheel_force_per_flywheel_nm * x(CrrState::torque_bias);
-  const double tractive = in.tractive_n * (1.0 + x(CrrState::tractive_scale));
+  const double tractive = in.tractive_n * (1.0 + x(CrrState::efficiency_scale)) + in.indicated_force_n * x(CrrState::torque_scale);
   const double accel = (tractive + bias_n - aero - r.grade_n - r.rolling_n) / m_eff;
 
   Vec next = x;
@@ -81,7 +84,8 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
     f(CrrState::speed, CrrState::cda) = -dt * half_rho * v_air * std::abs(v_air) / m_eff;
     f(CrrState::speed, CrrState::torque_bias) = dt * in.wheel_force_per_flywheel_nm / m_eff;
     f(CrrState::speed, CrrState::grade_error) = -dt * weight * std::cos(in.grade_rad) / m_eff;
-    f(CrrState::speed, CrrState::tractive_scale) = dt * in.tractive_n / m_eff;
+    f(CrrState::speed, CrrState::torque_scale) = dt * in.indicated_force_n / m_eff;
+    f(CrrState::speed, CrrState::efficiency_scale) = dt * in.tractive_n / m_eff;
     // The mass moves the weight's forces and the inertia: d(accel)/d(scale) at the scale's value.
     f(CrrState::speed, CrrState::mass_scale) = dt * (-(r.grade_n + r.rolling_n) / mass_scale - accel * m0) / m_eff;
     const double sf = std::hypot(config_.force_noise_n, config_.aero_force_noise_per_sqrt_hz * aero) / m_eff;

@@ -197,6 +197,7 @@ model::ForceInputs DriveAnalyzer::force_inputs(CaptureTime t, double s_front_m, 
   in.tractive_n = tr.tractive_n;
   in.effective_mass_kg = tr.effective_mass_kg;
   in.wheel_force_per_flywheel_nm = tr.wheel_force_per_flywheel_nm;
+  in.indicated_force_n = tr.indicated_nm * tr.wheel_force_per_flywheel_nm;
   in.crr_jump_variance = crr_jump_variance(last_front_m_, s_front_m);
   in.air_density_kgpm3 = model::air_density_kgpm3(pressure_pa_, air_temp_c_);
   in.grade_rad = std::isnan(grade) ? 0.0 : grade;

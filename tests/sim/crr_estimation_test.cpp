@@ -41,7 +41,8 @@ Score estimate(const char* scenario, std::uint64_t seed, bool exact_truck = fals
   EXPECT_TRUE(route.has_value());
   AnalyzerConfig cfg = test::analyzer_config(sc);
   if (exact_truck) {
-    cfg.filter.truck.tractive_scale_sigma = 0;
+    cfg.filter.truck.torque_scale_sigma = 0;
+    cfg.filter.truck.efficiency_scale_sigma = 0;
     cfg.filter.truck.mass_sigma_kg = 0;
   }
   DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), cfg);
@@ -219,7 +220,8 @@ TEST(CrrEstimation, TheTripSigmaIsThatOfTheAverageOverCells) {
   AnalyzerConfig known = test::analyzer_config(sc);
   known.filter.truck.cda_sigma_m2 = 1e-6;
   known.filter.torque_bias_sigma_nm = 1e-6;
-  known.filter.truck.tractive_scale_sigma = 0;
+  known.filter.truck.torque_scale_sigma = 0;
+  known.filter.truck.efficiency_scale_sigma = 0;
   known.filter.truck.mass_sigma_kg = 0;
   const auto [trip_known, cell_known] = analyse(known);
   std::printf("trip sigma %.6f (cells %.6f); with CdA and the torque known %.6f (cells %.6f)\n", trip, cell, trip_known, cell_known);

@@ -98,7 +98,8 @@ CrrFilterConfig config() {
   cfg.cda_walk_per_sqrt_s = 1e-9;
   // These drives' truck is the model's exactly: no tractive or mass scale error to consider (their
   // own test below gives the drive one).
-  cfg.truck.tractive_scale_sigma = 0;
+  cfg.truck.torque_scale_sigma = 0;
+  cfg.truck.efficiency_scale_sigma = 0;
   cfg.truck.mass_sigma_kg = 0;
   return cfg;
 }
@@ -321,7 +322,8 @@ TEST(CrrFilter, ATractiveScaleConsideredKeepsTheTruthInItsInterval) {
   for (model::ForceInputs& in : d.inputs) in.tractive_n *= 1.05;
   const CrrFilter taken_as_exact = run(exact, d);
   CrrFilterConfig considered = exact;
-  considered.truck.tractive_scale_sigma = std::hypot(0.03, 0.015 / 0.94);
+  // This drive states no indicated torque: the whole scale is carried as the efficiency's.
+  considered.truck.efficiency_scale_sigma = std::hypot(0.03, 0.015 / 0.94);
   const CrrFilter f = run(considered, d);
   std::printf("CRR error %.5f (as exact %.5f); sigma taken as exact %.5f, with the scale considered %.5f\n", f.crr() - 0.0055,
               taken_as_exact.crr() - 0.0055, taken_as_exact.crr_sigma(), f.crr_sigma());

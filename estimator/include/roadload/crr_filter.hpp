@@ -1,9 +1,9 @@
 #pragma once
 // The real-time CRR filter: a fixed-size EKF over [speed, CRR, CdA, torque bias, grade error,
-// ripple, tractive scale, mass scale] driven by the force balance (model/longitudinal.hpp) and corrected by measured speed. Push API
-// in capture time; no I/O and no heap after construction. CRR, CdA, a flywheel torque bias and the grade's error are confounded at
-// one steady speed in one gear: the last three carry priors (config, and the grade profile's sigma along the road), and the filter
-// reports CRR as identified only when its posterior is tight enough.
+// ripple, torque scale, efficiency scale, mass scale] driven by the force balance (model/longitudinal.hpp) and corrected by measured
+// speed. Push API in capture time; no I/O and no heap after construction. CRR, CdA, a flywheel torque bias and the grade's error are
+// confounded at one steady speed in one gear: the last three carry priors (config, and the grade profile's sigma along the road), and
+// the filter reports CRR as identified only when its posterior is tight enough.
 #include <cstdint>
 #include <optional>
 
@@ -18,8 +18,9 @@ namespace roadload {
 struct CrrState {
   // ripple: the speed the road's roughness lends and takes back (road_roughness.hpp), with the
   // force errors that integrate to nothing; the wheel speed is speed + ripple.
-  // tractive_scale, mass_scale: the tractive force's and the mass's share errors, constant over a
-  // drive, only considered: their priors' uncertainty widens every interval they move.
+  // torque_scale, efficiency_scale, mass_scale: share errors of the ECU's indicated torque, the
+  // driveline's efficiency and the mass, constant over a drive, only considered: their priors'
+  // uncertainty widens every interval they move.
   enum Index : int {
     speed = 0,
     crr = 1,
@@ -27,12 +28,13 @@ struct CrrState {
     torque_bias = 3,
     grade_error = 4,
     ripple = 5,
-    tractive_scale = 6,
-    mass_scale = 7,
-    count = 8
+    torque_scale = 6,
+    efficiency_scale = 7,
+    mass_scale = 8,
+    count = 9
   };
 };
-static_assert(CrrState::count == 8, "CrrFilter matrices are sized by CrrState::count");
+static_assert(CrrState::count == 9, "CrrFilter matrices are sized by CrrState::count");
 
 // One whole-percent step of EEC3's friction (SPN 514) and parasitic (SPN 2978) torque each, as
 // uniform rounding errors: the flywheel torque the J1939 signals cannot resolve.

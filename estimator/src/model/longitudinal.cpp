@@ -18,8 +18,8 @@ TruckModel truck_model(const Vehicle& v) {
   m.driveline_inertia_kgm2 = v.driveline.inertia_kgm2;
   m.cda_prior_m2 = v.cda_m2;
   m.cda_sigma_m2 = v.cda_sigma_m2;
-  const double efficiency_share = v.driveline.efficiency > 0 ? v.driveline.efficiency_sigma / v.driveline.efficiency : 0.0;
-  m.tractive_scale_sigma = std::hypot(v.engine.torque_scale_sigma, efficiency_share);
+  m.torque_scale_sigma = v.engine.torque_scale_sigma;
+  m.efficiency_scale_sigma = v.driveline.efficiency > 0 ? v.driveline.efficiency_sigma / v.driveline.efficiency : 0.0;
   m.mass_sigma_kg = v.mass_sigma_kg;
   return m;
 }

@@ -26,10 +26,11 @@ struct TruckModel {
   // Between CdA's error and the flywheel torque bias's: a CdA calibrated from two speeds took up
   // the engine-loss calibration's error, which the same truck carries into every later drive.
   double cda_torque_bias_correlation = 0.0;
-  // The ECU's torque and the driveline's efficiency are known to a share: one sigma of the scale
-  // error of the tractive force they give (the vehicle file's torque_scale_sigma and
-  // efficiency_sigma, combined). And the mass to its sigma (a scale ticket, a declared cargo).
-  double tractive_scale_sigma = 0.0;
+  // The ECU's indicated torque (EEC1 against SPN 544) and the driveline's efficiency are known to
+  // a share each, one sigma of a scale error (the vehicle file's torque_scale_sigma, and its
+  // efficiency_sigma over the efficiency); the mass to its sigma (a scale ticket, a declared cargo).
+  double torque_scale_sigma = 0.0;
+  double efficiency_scale_sigma = 0.0;
   double mass_sigma_kg = 0.0;
   double crr_prior = 0.0055;
   double crr_sigma = 0.002;
@@ -67,6 +68,9 @@ double air_density_kgpm3(double pressure_pa, double temp_c);
 struct ForceInputs {
   CaptureTime t;
   double tractive_n = 0;
+  // The ECU's indicated torque at the wheels, before friction and parasitic losses come off: what
+  // a scale error of EEC1's torque scales (at cruise it is about twice the tractive force).
+  double indicated_force_n = 0;
   double air_density_kgpm3 = 1.2;
   double headwind_mps = 0;  // wind component blowing against the direction of travel
   double grade_rad = 0;
