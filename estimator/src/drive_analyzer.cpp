@@ -155,21 +155,25 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
     fuel_.add({power, smoother_.size(), cell, in.air_density_kgpm3, in.headwind_mps, in.grade_rad});
     if (in.usable) usable_steps_.push_back(smoother_.size());
   }
-  live_ = {t, true, wheel_speed_mps, s_front, cell, now.crr, 0, 0, false, in.usable};
+  live_ = {t, true, wheel_speed_mps, s_front, cell, now.crr, 0, 0, false, nullptr, in.usable};
   live_.crr_lo = live_.crr - config_.interval_z * now.sigma;
   live_.crr_hi = live_.crr + config_.interval_z * now.sigma;
   count(in, why, upd);
-  live_.identified = live_identified();
+  live_.not_identified = live_failure();
+  live_.identified = live_.not_identified == nullptr;
 }
 
 // The checks a live estimate can have, without allocating: its sigma and range, the outliers so far
 // and the GNSS fixes that placed it.
-bool DriveAnalyzer::live_identified() const {
+const char* DriveAnalyzer::live_failure() const {
   const IdentificationLimits& l = config_.identification;
   const CrrCounters& c = filter_.counters();
   const double updates = static_cast<double>(c.updates + c.outliers);
-  return filter_.crr_identified() && filter_.crr() >= l.min_crr && filter_.crr() <= l.max_crr &&
-         static_cast<double>(c.outliers) <= l.max_outlier_share * updates && position_.fixes_used() >= l.min_fixes_on_route;
+  if (position_.fixes_used() < l.min_fixes_on_route) return "the drive is not placed on the route (too few GNSS fixes on it)";
+  if (!filter_.crr_identified()) return "its uncertainty exceeds the limit";
+  if (!(filter_.crr() >= l.min_crr && filter_.crr() <= l.max_crr)) return "the CRR lies outside what truck tires show";
+  if (static_cast<double>(c.outliers) > l.max_outlier_share * updates) return "too many speed updates were outliers";
+  return nullptr;
 }
 
 void DriveAnalyzer::count(const model::ForceInputs& in, Unusable why, const ekf::UpdateResult& update) {

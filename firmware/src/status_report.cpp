@@ -57,7 +57,10 @@ std::vector<std::string> warnings_for(const StatusReport& r) {
   if (j.repeats_recent > 0) w.push_back("j1939: " + std::to_string(j.repeats_recent) + " frames repeated");
   if (j.tp_incomplete_recent > 0) w.push_back("j1939: " + std::to_string(j.tp_incomplete_recent) + " transport sessions incomplete");
   if (r.sync.clock_steps > 0) w.push_back("wall clock stepped " + std::to_string(r.sync.clock_steps) + "x (data unaffected)");
-  if (r.estimate.started && !r.estimate.identified) w.push_back("CRR not identified yet");
+  if (r.estimate.started && !r.estimate.identified) {
+    w.push_back(std::string("CRR not identified yet: ") +
+                (r.estimate.not_identified ? r.estimate.not_identified : "no check has run"));
+  }
   return w;
 }
 
@@ -100,6 +103,7 @@ std::string format_json(const StatusReport& r) {
     j += ",\"cell\":" + (r.cell.empty() ? std::string("null") : results::json_quote(r.cell));
     j += ",\"crr\":" + json_number(e.crr) + ",\"crr_lo\":" + json_number(e.crr_lo) + ",\"crr_hi\":" + json_number(e.crr_hi);
     j += std::string(",\"crr_identified\":") + (e.identified ? "true" : "false");
+    j += ",\"crr_not_identified\":" + (e.not_identified ? results::json_quote(e.not_identified) : std::string("null"));
   }
   j += ",\"dynamic_power_w\":" + (r.dynamic_power_w >= 0 ? json_number(r.dynamic_power_w, "%.1f") : std::string("null"));
   j += ",\"sources\":[";

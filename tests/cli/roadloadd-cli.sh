@@ -50,6 +50,10 @@ tail -n 1 "$work/status.jsonl" | grep -q '"lines_lost":0' || fail "the last JSON
 # Every JSON line parses.
 /usr/bin/python3 -c 'import json,sys; [json.loads(l) for l in open(sys.argv[1])]' "$work/status.jsonl" ||
   fail "status.jsonl has a line that is not JSON"
+# Early in the drive the CRR is not identified yet, and the status says which check holds it back.
+grep -Eq 'WARN CRR not identified yet: (its uncertainty exceeds the limit|the drive is not placed on the route)' "$work/status.log" ||
+  fail "no status line says why the CRR is not identified: $(grep -m1 'not identified' "$work/status.log")"
+grep -q '"crr_not_identified":"' "$work/status.jsonl" || fail "status.jsonl never names why the CRR is not identified"
 
 # SIGHUP (logrotate): the status files are reopened by name and a new segment begins; SIGTERM
 # flushes and exits cleanly with everything recorded.

@@ -113,7 +113,8 @@ class DriveAnalyzer {
   CellLimits cell_limits() const;
   // The trip's counters and NIS statistics as far as the drive has gone.
   TripResult trip_so_far() const;
-  bool live_identified() const;
+  // The first live check that fails; nullptr when every one holds.
+  const char* live_failure() const;
 
   RouteGeometry route_;
   GradeProfile grade_;

@@ -23,7 +23,8 @@ struct LiveEstimate {
   int cell = -1;         // index of the cell under the centre of gravity; -1 off the cells
   double crr = 0, crr_lo = 0, crr_hi = 0;
   bool identified = false;
-  bool usable = false;  // the last tick entered the force balance
+  const char* not_identified = nullptr;  // the first live check that fails, while one does (static text)
+  bool usable = false;                   // the last tick entered the force balance
 };
 
 struct CellResult {
