@@ -198,15 +198,8 @@ struct Road {
 
 // Without a route the drive's own GNSS traces one, its grade from that one pass (so wide, honest
 // intervals); without GNSS either, the drive has no road: nothing can place it or give its grade.
-Road traced_road(const AnalyzeOptions& o, const Vehicle& vehicle, const j1939::Database& db) {
+Road traced_road(const RecordedTrack& recorded, const Vehicle& vehicle) {
   Road road;
-  // Errors in the recording are the main read's to report; here a track is only looked for.
-  RecordedTrack recorded;
-  std::uint64_t malformed = 0;
-  TrackOptions antenna;
-  antenna.antenna_height_m = vehicle.gnss_antenna_height_m;
-  antenna.print_errors = false;
-  read_recorded_track("analyze", o.recording, antenna, db, recorded, malformed);
   const std::vector<GnssFix>& fixes = recorded.fixes;
   const std::optional<TrackRoute> track = route_from_track(fixes, vehicle.gnss_antenna_height_m);
   const std::optional<RouteGeometry> geometry = track ? RouteGeometry::build(track->points) : std::nullopt;
@@ -224,6 +217,18 @@ Road traced_road(const AnalyzeOptions& o, const Vehicle& vehicle, const j1939::D
   const GnssTrack tracks[] = {{fixes, vehicle.gnss_antenna_height_m}};
   road.grade = GradeProfile::from_gnss(road.geometry, tracks, one_pass);
   return road;
+}
+
+// The drive's GNSS track: gnss.csv's, else the truck's VP1. Errors in the recording are the main
+// read's to report; here a track is only looked for.
+RecordedTrack drive_track(const AnalyzeOptions& o, const Vehicle& vehicle, const j1939::Database& db) {
+  RecordedTrack recorded;
+  std::uint64_t malformed = 0;
+  TrackOptions antenna;
+  antenna.antenna_height_m = vehicle.gnss_antenna_height_m;
+  antenna.print_errors = false;
+  read_recorded_track("analyze", o.recording, antenna, db, recorded, malformed);
+  return recorded;
 }
 
 // The route given, read before the recording so that a bad one is named at once.
@@ -257,7 +262,8 @@ int analyze(const AnalyzeOptions& o) {
   const Vehicle& vehicle = std::get<RecordingVehicle>(described).vehicle;
   const std::string& assumed = std::get<RecordingVehicle>(described).assumed;
   if (!assumed.empty()) std::fprintf(stderr, "roadload analyze: %s\n", assumed.c_str());
-  if (!found) found = traced_road(o, vehicle, db);
+  const RecordedTrack track = drive_track(o, vehicle, db);
+  if (!found) found = traced_road(track, vehicle);
   Road& road = std::get<Road>(*found);
   auto cfg = configure(o, vehicle, meta, road.default_iri_m_per_km);
   if (const int* rc = std::get_if<int>(&cfg)) return *rc;
@@ -272,7 +278,14 @@ int analyze(const AnalyzeOptions& o) {
   const PavementGroups groups = pavement_groups(road.cells);
   Accelerometers acc;
   attach(acc, analyzer, o, vehicle, meta, groups);
-  while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { analyzer.push(s); }, *r);
+  // A logger without a receiver of its own: the truck's VP1 places the drive, in time order.
+  const bool from_bus = track.source.rfind("J1939", 0) == 0;
+  std::size_t bus_fix = 0;
+  while (const recording::Record* r = reader.value().next()) {
+    const CaptureTime t = std::visit([](const auto& s) { return s.t; }, *r);
+    while (from_bus && bus_fix < track.fixes.size() && track.fixes[bus_fix].t <= t) analyzer.push(track.fixes[bus_fix++]);
+    std::visit([&](const auto& s) { analyzer.push(s); }, *r);
+  }
   for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
   analyzer.finish();
   std::vector<CellResult> results = analyzer.cells();

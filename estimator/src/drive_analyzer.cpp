@@ -96,6 +96,7 @@ void DriveAnalyzer::push(const WeatherSample& w) {
   if (!std::isnan(w.wind_speed_mps) && !std::isnan(w.wind_from_deg)) {
     wind_mps_ = w.wind_speed_mps;
     wind_from_deg_ = w.wind_from_deg;
+    ++trip_.wind_samples;
   }
 }
 
@@ -170,6 +171,7 @@ const char* DriveAnalyzer::live_failure() const {
   const CrrCounters& c = filter_.counters();
   const double updates = static_cast<double>(c.updates + c.outliers);
   if (position_.fixes_used() < l.min_fixes_on_route) return "the drive is not placed on the route (too few GNSS fixes on it)";
+  if (trip_.wind_samples == 0) return "no wind measured (no weather station)";
   if (!filter_.crr_identified()) return "its uncertainty exceeds the limit";
   if (!(filter_.crr() >= l.min_crr && filter_.crr() <= l.max_crr)) return "the CRR lies outside what truck tires show";
   if (static_cast<double>(c.outliers) > l.max_outlier_share * updates) return "too many speed updates were outliers";

@@ -44,6 +44,12 @@ std::vector<std::string> drive_failures(const TripResult& trip, const Identifica
                        static_cast<double>(trip.usable_ticks), static_cast<double>(trip.ticks)));
     }
   }
+  // A wind of 3 m/s along the road moves the drag at 30 mph by half: taken as calm, it lands on CRR.
+  if (trip.wind_samples == 0) {
+    out.emplace_back(
+        "no wind was measured (no weather station in the recording): the air's speed against the truck, and so "
+        "its drag, is unknown");
+  }
   const std::size_t fixes = trip.gnss_used + trip.gnss_off_route;
   if (trip.gnss_used < limits.min_fixes_on_route) {
     out.push_back(format("the drive is not placed on the route: %.0f GNSS fixes on it (at least %.0f)",

@@ -84,7 +84,13 @@ class Case:
 
 
 def drop_gnss(rec, _):
+    """A logger of CAN alone: no receiver, no weather mast."""
     (rec / "gnss.csv").unlink()
+    (rec / "weather.csv").unlink()
+
+
+def drop_weather(rec, _):
+    (rec / "weather.csv").unlink()
 
 
 def drop_gnss_after_third(rec, _):
@@ -116,6 +122,7 @@ def cases(count, rng):
         add("wind gusts 2.5 m/s", effects={"wind-gusts": 2.5})
         add("self-surveyed route, GNSS heights drifting 2 m", effects={"gnss-elevation-bias": 2.0}, route="none")
         add("CAN only", recording_edit=drop_gnss)
+        add("no weather station", recording_edit=drop_weather)
         add("GNSS lost after a third of the drive", recording_edit=drop_gnss_after_third)
         for b in (-0.05, 0.05):
             add(f"engine torque scaled {1 + b:.2f}", effects={"torque-bias": b})
@@ -156,7 +163,7 @@ def run(cmd):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("roadload")
-    ap.add_argument("--cases", type=int, default=60)
+    ap.add_argument("--cases", type=int, default=68)
     ap.add_argument("--keep")
     a = ap.parse_args()
     work = pathlib.Path(a.keep or tempfile.mkdtemp(prefix="mismatch-bench."))

@@ -47,6 +47,8 @@ struct TripResult {
   double crr = 0, crr_sigma = 0, cda_m2 = 0, torque_bias_nm = 0, torque_bias_sigma_nm = 0;
   bool identified = false;
   std::size_t gnss_used = 0, gnss_off_route = 0;
+  // Weather samples that measured the wind: without one the drag's airspeed is a guess.
+  std::size_t wind_samples = 0;
   std::size_t no_fuel_rate = 0;  // ticks without LFE1: the breakdown's measured fuel misses them
   CrrCounters filter;
   // Mean NIS of the speed updates and its standard error from means of batches of consecutive
