@@ -101,6 +101,12 @@ void configure_estimator(const DaemonConfig& c, const Estimation& est, DaemonSet
   if (c.estimator.cda_m2 > 0) truck.cda_prior_m2 = c.estimator.cda_m2;
   if (c.estimator.cda_sigma_m2 > 0) truck.cda_sigma_m2 = c.estimator.cda_sigma_m2;
   truck.cda_torque_bias_correlation = c.estimator.cda_torque_correlation;
+  // The live filter runs forward only: the torque, efficiency and mass scales' Schmidt gains let
+  // its CRR swing on replay timing (docs/roadloadd.md, "Not done yet"); the recording's analysis
+  // carries them.
+  truck.torque_scale_sigma = 0;
+  truck.efficiency_scale_sigma = 0;
+  truck.mass_sigma_kg = 0;
   recording::LayoutResult layout = recording::axle_layout(setup.metadata, vehicle, "accelerometers");
   if (layout.layout) {
     setup.layout = std::move(layout.layout);

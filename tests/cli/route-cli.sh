@@ -81,6 +81,15 @@ expect_status 0 "$roadload" route build "$work/can" --out "$work/vp1.toml"
 grep -q "from J1939 VP1" "$work/err" || fail "VP1 not used: $(cat "$work/err")"
 grep -q "no bin has a grade" "$work/err" || fail "a grade claimed without heights: $(cat "$work/err")"
 ! grep -q '^elev_m' "$work/vp1.toml" || fail "heights written without a 3-D fix"
+# analyze places the same drive by VP1 on the built route; without a weather station's wind it
+# is not identified, and says so.
+expect_status 0 "$roadload" analyze "$work/can" --route "$work/own.toml" --out "$work/c" -q
+python3 - "$work/c/trip.json" <<'PY' || fail "the CAN-only drive on its route: $(cat "$work/err")"
+import json, sys
+t = json.load(open(sys.argv[1]))
+assert t["gnss_used"] >= 10, f"placed by {t['gnss_used']} fixes"
+assert not t["crr_identified"] and any("no wind was measured" in r for r in t["not_identified"]), t["not_identified"]
+PY
 
 # Bad input: a GIS file's bad value (65, file and field), an unknown kind.
 sed 's/"panel_length_m": 4.57/"panel_length_m": -4/' "$work/sections.geojson" >"$work/bad.geojson"

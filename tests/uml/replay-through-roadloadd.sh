@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A simulated Mainline drive replayed into the real roadloadd the way a truck would deliver it: CAN
 # frames onto vcan0 by `roadload replay`, the accelerometer, GNSS and weather streams through the
-# daemon's replay drivers in step with them (--origin / --replay-origin), five times faster than
+# daemon's replay drivers in step with them (--origin / --replay-origin), three times faster than
 # real time (UML's one CPU carries the replay, the daemon's parsing of the sensor files, its
 # recording and its estimator). Then compare:
 #   (a) the daemon's recording against the input, frame for frame and sample for sample;
@@ -17,7 +17,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 . "$here/j1939-lib.sh"
 # shellcheck source=roadloadd-lib.sh source-path=SCRIPTDIR
 . "$here/roadloadd-lib.sh"
-readonly route=mnroad-mainline-westbound rate=5 duration_s=180
+readonly route=mnroad-mainline-westbound rate=3 duration_s=180
 
 if [[ ${1:-} == --kernel-part ]]; then
   work=${2:?} roadloadd=${3:?} roadload=${4:?}
@@ -81,10 +81,10 @@ last=$(grep -E '^[0-9]{4}-' "$work/status.log" | tail -n 1)
 # nothing was lost; the clocks never stepped.
 [[ $last == *"| vcan0 up "* && $last == *"| accel ended "*"drop 0 err 0"* && $last == *"| rec none "*"lost 0"* &&
   $last == *"| sync ok"* ]] || die "(c) last status line: $last"
-# No frame was lost or repeated ((a) shows it). At five times real time EEC1's period is 2 ms and a
-# repeat is judged within 0.4 ms, while UML's one CPU delays and bunches replayed frames by more
-# than that: the cadence monitor reads some of it as gaps or repeats, 5 to 207 of the 43,451 frames
-# in the runs of docs/journal.md (2026-11-25). A status that cried loss on every frame would show
+# No frame was lost or repeated ((a) shows it). At three times real time EEC1's period is 3.3 ms
+# and a repeat is judged within 0.7 ms, while UML's one CPU delays and bunches replayed frames by
+# more than that: the cadence monitor reads some of it as gaps or repeats (at five times, 5 to 207
+# of the 43,451 frames in the runs of docs/journal.md, 2026-11-25). A status that cried loss on every frame would show
 # here; the fault test shows the monitor counting frames that were really dropped.
 read -r gaps repeats < <(tail -n 1 "$work/status.jsonl" | grep -o '"gaps":[0-9]*,"repeats":[0-9]*' | tr -c '0-9\n' ' ')
 cadence=$((gaps + repeats))
