@@ -28,16 +28,19 @@ constexpr const char* kHelp =
     "gear), which this table removes. Hold each speed for 10 s or more; the first 3 s of a hold are\n"
     "the governor's approach and are left out. `roadload simulate --scenario engine-losses` drives such\n"
     "a calibration.\n\n"
-    "usage: roadload calibrate --aero DRIVE_A DRIVE_B --route ROUTE --engine-losses FILE [--out FILE]\n\n"
+    "usage: roadload calibrate --aero SLOW FAST [SLOW FAST ...] --route ROUTE [--route ROUTE ...]\n"
+    "                          --engine-losses FILE [--out FILE]\n\n"
     "Measures the truck's CdA from two drives over the same route's cells at two speeds (the report's\n"
     "Mainline runs at 30 and 64 mph): a pavement's CRR is the same at both, the drag is not, so the CdA\n"
     "that makes each cell's CRR agree is the truck's. At one speed the force balance cannot tell them\n"
     "apart, and CdA's prior (the vehicle file's, the type's spread) is then most of each cell's interval.\n"
     "The engine-loss table is required: EEC3's rounding differs between the two engine speeds and would be\n"
-    "fitted as drag.\n"
+    "fitted as drag. More pairs (the road's other direction on its own route, another day) give one\n"
+    "CdA from all their cells: give one --route per pair, in order, or one for every pair.\n"
     "Prints the CdA with its standard error as `roadload analyze` options; --out writes them as CSV.\n\n"
     "  --out FILE        write FILE: rpm,loss_nm,sigma_nm,eec3_loss_nm,hold_s,samples, one line per hold\n"
-    "  --route R         (--aero) route file or built-in route name: the cells both drives cross\n"
+    "  --route R         (--aero) route file or built-in route name: the cells both drives cross;\n"
+    "                    repeatable, one per pair\n"
     "  --engine-losses FILE  (--aero) the engine-loss table of the same truck\n"
     "  --cda M2          (--aero) the prior both drives are analysed with (default: the vehicle file's);\n"
     "                    the fit does not depend on it beyond linearity\n"
@@ -84,7 +87,7 @@ int run_calibrate(Args args) {
     } else if (opt.flag("--aero")) {
       aero = true;
     } else if (auto r = opt.value("--route")) {
-      ao.route = *r;
+      ao.routes.emplace_back(*r);
     } else if (auto l = opt.value("--engine-losses")) {
       ao.engine_losses = *l;
     } else if (auto c = opt.real("--cda", 0.5, 30)) {
@@ -103,7 +106,11 @@ int run_calibrate(Args args) {
   }
   if (opt.failed()) return kExitUsage;
   if (recordings.empty()) return opt.fail("a recording is required");
-  if (aero && ao.route.empty()) return opt.fail("--aero needs --route");
+  if (aero && ao.routes.empty()) return opt.fail("--aero needs --route");
+  if (aero && recordings.size() % 2 != 0) return opt.fail("--aero takes drives in pairs, one at each of two speeds");
+  if (aero && ao.routes.size() != 1 && ao.routes.size() != recordings.size() / 2) {
+    return opt.fail("--aero takes one --route, or one per pair of drives");
+  }
   if (aero && ao.engine_losses.empty()) return opt.fail("--aero needs --engine-losses (roadload calibrate, standing)");
   if (!aero && out.empty()) return opt.fail("--out is required");
 

@@ -1,6 +1,9 @@
 // roadload calibrate --aero: the truck's CdA from two recorded drives over the same route's cells at
 // two speeds (estimator/aero_calibration.hpp), printed as the options `roadload analyze` takes.
 #include <cstdio>
+#include <optional>
+#include <variant>
+#include <vector>
 
 #include "calibrate_aero.hpp"
 #include "options.hpp"
@@ -37,55 +40,65 @@ Parsed<std::vector<CellResult>> analyse(const std::string& path, const j1939::Da
   return vibration ? with_tire_crr(analyzer.cells(), *vibration) : analyzer.cells();
 }
 
+// One drive analysed the three ways the fit needs; an exit code when it cannot be.
+std::variant<int, AeroDrive> aero_drive(const std::string& path, const AeroOptions& o, const j1939::Database& db,
+                                        const LoadedRoute& route, const model::EngineLossMap& losses, double& prior_m2) {
+  auto meta = recording::RecordingReader::open(path);
+  if (!meta) {
+    std::fprintf(stderr, "roadload calibrate: %s\n", meta.error().to_string().c_str());
+    return kExitNoInput;
+  }
+  auto described = recording_vehicle("calibrate", meta.value().metadata(), o.vehicle);
+  if (const int* rc = std::get_if<int>(&described)) return *rc;
+  const Vehicle& vehicle = std::get<RecordingVehicle>(described).vehicle;
+  if (!std::get<RecordingVehicle>(described).assumed.empty()) {
+    std::fprintf(stderr, "roadload calibrate: %s: %s\n", path.c_str(), std::get<RecordingVehicle>(described).assumed.c_str());
+  }
+  AnalyzerConfig cfg = recording::analyzer_config_for(vehicle, meta.value().metadata(), std::nullopt);
+  cfg.filter.truck.engine_losses = losses;
+  cfg.roughness_iri_m_per_km = route.file.default_iri_m_per_km;
+  if (o.cda_prior_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_prior_m2;
+  prior_m2 = cfg.filter.truck.cda_prior_m2;
+  const std::vector<CellSpan> cells = cell_spans(route.file.cells);
+  std::optional<ParseError> failed;
+  AeroDrive d = analyse_for_aero(cfg, [&](const AnalyzerConfig& c) {
+    auto r = analyse(path, db, route, cells, c, vehicle);
+    if (r) return std::move(r.value());
+    failed = r.error();
+    return std::vector<CellResult>{};
+  });
+  if (failed) {
+    std::fprintf(stderr, "roadload calibrate: %s\n", failed->to_string().c_str());
+    return failed->line > 0 ? kExitDataErr : kExitNoInput;
+  }
+  return d;
+}
+
 }  // namespace
 
 int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
-  if (o.recordings.size() != 2) {
-    std::fprintf(stderr, "roadload calibrate: --aero takes two recordings, one drive at each of two speeds\n");
-    return kExitUsage;
-  }
   auto losses = load_engine_loss_file(o.engine_losses);
   if (!losses) {
     std::fprintf(stderr, "roadload calibrate: %s\n", losses.error().to_string().c_str());
     return losses.error().line > 0 ? kExitDataErr : kExitNoInput;
   }
-  auto loaded = load_route("calibrate", o.route);
-  if (const int* rc = std::get_if<int>(&loaded)) return *rc;
-  const LoadedRoute& route = std::get<LoadedRoute>(loaded);
-  const std::vector<CellSpan> cells = cell_spans(route.file.cells);
-  AeroDrive drives[2];
-  double prior_m2 = 0;
-  for (std::size_t k = 0; k < 2; ++k) {
-    const std::string& path = o.recordings[k];
-    auto meta = recording::RecordingReader::open(path);
-    if (!meta) {
-      std::fprintf(stderr, "roadload calibrate: %s\n", meta.error().to_string().c_str());
-      return kExitNoInput;
-    }
-    auto described = recording_vehicle("calibrate", meta.value().metadata(), o.vehicle);
-    if (const int* rc = std::get_if<int>(&described)) return *rc;
-    const Vehicle& vehicle = std::get<RecordingVehicle>(described).vehicle;
-    if (!std::get<RecordingVehicle>(described).assumed.empty()) {
-      std::fprintf(stderr, "roadload calibrate: %s: %s\n", path.c_str(), std::get<RecordingVehicle>(described).assumed.c_str());
-    }
-    AnalyzerConfig cfg = recording::analyzer_config_for(vehicle, meta.value().metadata(), std::nullopt);
-    cfg.filter.truck.engine_losses = losses.value();
-    cfg.roughness_iri_m_per_km = route.file.default_iri_m_per_km;
-    if (o.cda_prior_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_prior_m2;
-    prior_m2 = cfg.filter.truck.cda_prior_m2;
-    std::optional<ParseError> failed;
-    drives[k] = analyse_for_aero(cfg, [&](const AnalyzerConfig& c) {
-      auto r = analyse(path, db, route, cells, c, vehicle);
-      if (r) return std::move(r.value());
-      failed = r.error();
-      return std::vector<CellResult>{};
-    });
-    if (failed) {
-      std::fprintf(stderr, "roadload calibrate: %s\n", failed->to_string().c_str());
-      return failed->line > 0 ? kExitDataErr : kExitNoInput;
-    }
+  std::vector<LoadedRoute> routes;
+  for (const std::string& r : o.routes) {
+    auto loaded = load_route("calibrate", r);
+    if (const int* rc = std::get_if<int>(&loaded)) return *rc;
+    routes.push_back(std::move(std::get<LoadedRoute>(loaded)));
   }
-  const AeroCalibration fit = fit_cda(drives[0], drives[1], prior_m2, losses.value().sigma_nm());
+  std::vector<AeroDrive> drives;
+  double prior_m2 = 0;
+  for (std::size_t k = 0; k < o.recordings.size(); ++k) {
+    const LoadedRoute& route = routes[routes.size() == 1 ? 0 : k / 2];
+    auto d = aero_drive(o.recordings[k], o, db, route, losses.value(), prior_m2);
+    if (const int* rc = std::get_if<int>(&d)) return *rc;
+    drives.push_back(std::move(std::get<AeroDrive>(d)));
+  }
+  std::vector<AeroPair> pairs;
+  for (std::size_t k = 0; k + 1 < drives.size(); k += 2) pairs.push_back({&drives[k], &drives[k + 1]});
+  const AeroCalibration fit = fit_cda(pairs, prior_m2, losses.value().sigma_nm());
   if (fit.cells == 0) {
     std::fprintf(stderr,
                  "roadload calibrate: %s and %s: fewer than two cells estimated in both, or speeds too close to tell "

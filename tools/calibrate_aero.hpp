@@ -1,5 +1,5 @@
 #pragma once
-// `roadload calibrate --aero`: CdA from two drives at two speeds (calibrate_aero.cpp).
+// `roadload calibrate --aero`: CdA from pairs of drives at two speeds (calibrate_aero.cpp).
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,7 +11,8 @@ namespace roadload::cli {
 
 struct AeroOptions {
   std::vector<std::string> recordings;
-  std::string route, engine_losses, out, vehicle;
+  std::vector<std::string> routes;  // one per pair, or one for all
+  std::string engine_losses, out, vehicle;
   std::optional<double> cda_prior_m2;
 };
 

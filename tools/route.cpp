@@ -24,8 +24,10 @@ namespace {
 constexpr const char* kHelp =
     "usage: roadload route build RECORDING... --out FILE [--cell-length M | --sections FILE] [options]\n\n"
     "Makes a route file from the recordings' own GNSS (gnss.csv, else the truck's J1939 VP1 with VDS's\n"
-    "altitude). The longest pass, in either direction, traces the road; each recording is cut into\n"
-    "passes where it turns back on itself. Every pass's heights, less the antenna's height, give the\n"
+    "altitude). The longest pass traces the road; each recording is cut into passes where it turns\n"
+    "back on itself. The route runs the way the first recording's first pass drives: analyze follows\n"
+    "a drive along its route, so a road driven both ways gets two routes from the same recordings,\n"
+    "each with a recording of its direction first. Every pass's heights, less the antenna's height, give the\n"
     "grade per bin with its standard error, written beside FILE as FILE's stem + .grade.csv and named\n"
     "by the route file: from several passes the scatter of their slopes, from one pass a GNSS height's\n"
     "error over the slope's base (0.5 % of grade), so the intervals from a lone pass are wide.\n"
@@ -39,7 +41,7 @@ constexpr const char* kHelp =
     "  --vehicle V         vehicle file or built-in name whose antenna height the recordings share\n"
     "  --antenna-height M  GNSS antenna above the road, over any vehicle's\n"
     "  --bin M             grade bin length (default 10)\n"
-    "  --base M            slope over +-M (default 30)\n"
+    "  --base M            slope over +-M (default 60); the grade's errors correlate over 2 M\n"
     "  --max-offset M      fixes or section ends farther than M from the traced road are elsewhere (default 15)\n"
     "  -q, --quiet         no summary on standard error\n"
     "  -h, --help          this text\n";
@@ -54,8 +56,15 @@ struct Options {
   bool quiet = false;
 };
 
+// A route's own GNSS heights carry a few decimetres of white noise per fix: over +-30 m that is
+// 0.2 % of grade per bin, over +-60 m half of it. A longer base flattens the road's own swells
+// (3 % of a 1.1 km wave's grade at +-100 m), and the mass the filter finds on them follows. The
+// filter carries the errors as correlated over the window (120 m).
+constexpr double kTracedSlopeBase_m = 60.0;
+
 std::optional<int> parse(OptionParser& opt, Options& o) {
   o.grade.min_passes = 1;
+  o.grade.base_m = kTracedSlopeBase_m;
   o.grade.pass_slope_sigma = kGnssPassSlopeSigma;
   while (opt.more()) {
     if (opt.help(kHelp)) return kExitOk;

@@ -12,6 +12,9 @@ AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::
   held.estimate_cda = false;
   held.filter.truck.cda_sigma_m2 = 1e-6;
   held.filter.truck.engine_losses = base.filter.truck.engine_losses.shifted(0.0, 1e-6);
+  // The mass held at its prior too: estimated, it would move with each trial CdA and take up part
+  // of the drag the two speeds are compared for.
+  held.filter.estimate_mass = false;
   AeroDrive d;
   d.held = analyze(held);
   AnalyzerConfig cda = held;
@@ -24,38 +27,50 @@ AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::
 }
 
 AeroCalibration fit_cda(const AeroDrive& a, const AeroDrive& b, double cda_prior_m2, double torque_sigma_nm) {
+  const AeroPair pair[] = {{&a, &b}};
+  return fit_cda(pair, cda_prior_m2, torque_sigma_nm);
+}
+
+AeroCalibration fit_cda(std::span<const AeroPair> pairs, double cda_prior_m2, double torque_sigma_nm) {
   AeroCalibration out;
-  const std::size_t n = std::min({a.held.size(), b.held.size(), a.cda.size(), b.cda.size(), a.torque.size(), b.torque.size()});
   // Per cell: the two drives' CRR differ by D (c - CdA) at the prior c, where D is the difference
   // of their sensitivities to CdA.
   double swdd = 0, swdx = 0, swta = 0, swtb = 0;
   struct Cell {
     double x, d, w;
+    bool first;  // of its pair: no neighbour before it along the road
   };
   std::vector<Cell> cells;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (a.held[i].samples == 0 || b.held[i].samples == 0 || a.cda[i].samples == 0 || b.cda[i].samples == 0) continue;
-    const double sa = (a.cda[i].crr - a.held[i].crr) / kCdaStep_m2;
-    const double sb = (b.cda[i].crr - b.held[i].crr) / kCdaStep_m2;
-    const double d = sa - sb;
-    const double x = a.held[i].crr - b.held[i].crr;
-    const double var = a.held[i].crr_sigma * a.held[i].crr_sigma + b.held[i].crr_sigma * b.held[i].crr_sigma;
-    if (!(var > 0) || !std::isfinite(d) || !std::isfinite(x)) continue;
-    const double w = 1.0 / var;
-    swdd += w * d * d;
-    swdx += w * d * x;
-    swta += w * (a.torque[i].crr - a.held[i].crr) * d;
-    swtb += w * (b.torque[i].crr - b.held[i].crr) * d;
-    cells.push_back({x, d, w});
+  for (const AeroPair& pair : pairs) {
+    const AeroDrive& a = *pair.slow;
+    const AeroDrive& b = *pair.fast;
+    const std::size_t n = std::min({a.held.size(), b.held.size(), a.cda.size(), b.cda.size(), a.torque.size(), b.torque.size()});
+    bool first = true;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (a.held[i].samples == 0 || b.held[i].samples == 0 || a.cda[i].samples == 0 || b.cda[i].samples == 0) continue;
+      const double sa = (a.cda[i].crr - a.held[i].crr) / kCdaStep_m2;
+      const double sb = (b.cda[i].crr - b.held[i].crr) / kCdaStep_m2;
+      const double d = sa - sb;
+      const double x = a.held[i].crr - b.held[i].crr;
+      const double var = a.held[i].crr_sigma * a.held[i].crr_sigma + b.held[i].crr_sigma * b.held[i].crr_sigma;
+      if (!(var > 0) || !std::isfinite(d) || !std::isfinite(x)) continue;
+      const double w = 1.0 / var;
+      swdd += w * d * d;
+      swdx += w * d * x;
+      swta += w * (a.torque[i].crr - a.held[i].crr) * d;
+      swtb += w * (b.torque[i].crr - b.held[i].crr) * d;
+      cells.push_back({x, d, w, first});
+      first = false;
+    }
   }
   // Below one sigma of a cell per m^2 of CdA in total, drag and rolling resistance stay confounded.
   if (cells.size() < 2 || swdd < 1.0) return out;
   const double shift = swdx / swdd;  // c - CdA
   double chi2 = 0, lag1 = 0, previous = 0;
   for (const Cell& c : cells) {
-    const double z = std::sqrt(c.w) * (c.x - c.d * shift);  // the first cell's previous is 0
+    const double z = std::sqrt(c.w) * (c.x - c.d * shift);
     chi2 += z * z;
-    lag1 += z * previous;
+    lag1 += c.first ? 0.0 : z * previous;
     previous = z;
   }
   out.cells = cells.size();

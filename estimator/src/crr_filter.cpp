@@ -49,9 +49,13 @@ void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> tor
   core_.set_consider(CrrState::grade_error, true);
   core_.set_consider(CrrState::torque_scale, true);
   core_.set_consider(CrrState::efficiency_scale, true);
-  core_.set_consider(CrrState::mass_scale, true);
+  core_.set_consider(CrrState::mass_scale, !config_.estimate_mass);
   t_ = t;
   started_ = true;
+}
+
+double CrrFilter::mass_sigma_kg() const {
+  return config_.truck.mass_kg * std::sqrt(core_.p()(CrrState::mass_scale, CrrState::mass_scale));
 }
 
 double CrrFilter::crr_sigma() const { return std::sqrt(core_.p()(CrrState::crr, CrrState::crr)); }
@@ -59,7 +63,8 @@ double CrrFilter::crr_sigma() const { return std::sqrt(core_.p()(CrrState::crr, 
 void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_variance) {
   const Vec& x = core_.x();
   const double m0 = config_.truck.mass_kg;
-  // The scales stay at zero (considered, never updated); written out so the Jacobian is the model's.
+  // The torque and efficiency scales stay at zero (considered, never updated), the mass scale too
+  // unless estimated; all written out so the Jacobian is the model's.
   const double mass_scale = 1.0 + x(CrrState::mass_scale);
   const double m = m0 * mass_scale;
   const double m_eff = (in.effective_mass_kg > 0 ? in.effective_mass_kg : m0) + (m - m0);

@@ -296,6 +296,8 @@ void DriveAnalyzer::finish() {
     trip_.crr_sigma = filter_.crr_sigma();
   }
   trip_.cda_m2 = filter_.cda_m2();
+  trip_.mass_kg = filter_.mass_kg();
+  trip_.mass_sigma_kg = filter_.mass_sigma_kg();
   trip_.torque_bias_nm = filter_.torque_bias_nm();
   trip_.torque_bias_sigma_nm = std::sqrt(filter_.core().p()(CrrState::torque_bias, CrrState::torque_bias));
   trip_ = trip_so_far();

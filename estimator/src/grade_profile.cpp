@@ -280,12 +280,12 @@ double GradeProfile::interpolate(double s_m, double GradeBin::*field) const {
   return bins_[k].*field + w * (bins_[k + 1].*field - bins_[k].*field);
 }
 
-std::optional<GradeProfile> GradeProfile::from_bins(double route_length_m, std::vector<GradeBin> bins) {
+std::optional<GradeProfile> GradeProfile::from_bins(double route_length_m, std::vector<GradeBin> bins, double base_m) {
   if (bins.size() < 2) return std::nullopt;
   GradeConfig cfg;
   cfg.bin_m = bins[1].s_m - bins[0].s_m;
   if (!(cfg.bin_m > 0)) return std::nullopt;
-  cfg.base_m = std::max(cfg.base_m, cfg.bin_m);
+  cfg.base_m = std::max(base_m, cfg.bin_m);
   GradeProfile g(cfg, route_length_m);
   if (g.bins_.size() != bins.size()) return std::nullopt;
   for (std::size_t k = 0; k < bins.size(); ++k) {

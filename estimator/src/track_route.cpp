@@ -82,6 +82,15 @@ std::vector<std::vector<GeoPoint>> passes_of(const std::vector<GeoPoint>& points
   return out;
 }
 
+// Where along `road` a point is: the index of its nearest vertex.
+std::size_t nearest_vertex(const std::vector<GeoPoint>& road, const GeoPoint& p) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < road.size(); ++i) {
+    if (distance_m(road[i], p) < distance_m(road[best], p)) best = i;
+  }
+  return best;
+}
+
 }  // namespace
 
 std::optional<TrackRoute> route_from_track(std::span<const GnssFix> fixes, double antenna_height_m, const TrackRouteConfig& config) {
@@ -92,20 +101,27 @@ std::optional<TrackRoute> route_from_track(std::span<const GnssFix> fixes, doubl
 
 std::optional<TrackRoute> longest_pass(std::span<const GnssTrack> tracks, const TrackRouteConfig& config) {
   TrackRoute best;
+  std::vector<GeoPoint> first;
   double best_m = 0;
   std::size_t used = 0;
   for (const GnssTrack& t : tracks) {
     const TrackRoute thinned = thin(t.fixes, t.antenna_height_m, config);
     used += thinned.fixes_used;
     for (std::vector<GeoPoint>& pass : passes_of(thinned.points, config)) {
+      if (pass.size() < 2) continue;
+      if (first.empty()) first = pass;
       const double m = length_m(pass);
-      if (pass.size() < 2 || m <= best_m) continue;
+      if (m <= best_m) continue;
       best_m = m;
       best.points = std::move(pass);
     }
   }
   best.fixes_used = used;
   if (best.points.size() < 2 || best_m < config.cell_length_m) return std::nullopt;
+  // A route has a direction (cells, grade and odometry run along it): the first pass's.
+  if (nearest_vertex(best.points, first.back()) < nearest_vertex(best.points, first.front())) {
+    std::reverse(best.points.begin(), best.points.end());
+  }
   return best;
 }
 

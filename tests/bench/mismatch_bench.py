@@ -11,49 +11,25 @@ tests/data/traces have no truth: any identified cell is one.
 usage: mismatch_bench.py ROADLOAD_BIN [--cases N] [--keep DIR]
 Prints one line per case and the totals; the goal is 0 confident wrong answers.
 """
-import argparse
 import csv
-import datetime
 import json
 import math
-import os
 import pathlib
 import random
 import shutil
-import subprocess
 import sys
-import tempfile
 import tomllib
+
+from benchlib import bench_args, run, toml_value, truth_cells, write_toml
 
 HERE = pathlib.Path(__file__).resolve().parent
 CONFIG = HERE.parent.parent / "config"
 TRACES = HERE.parent / "data" / "traces"
 Z99 = 2.5758
-G = 9.80665
 
 BASES = ["mnroad-mainline-30mph", "mnroad-mainline-64mph", "th10-55mph", "th66-55mph"]
 OTHER_ROUTE = {"mnroad-mainline-westbound": "th66-good-thunder", "th10-sartell": "mnroad-mainline-westbound",
                "th66-good-thunder": "th10-sartell"}
-
-
-def toml_value(v):
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v)
-    if isinstance(v, datetime.datetime):
-        return v.isoformat().replace("+00:00", "Z")
-    if isinstance(v, list):
-        return "[" + ", ".join(toml_value(x) for x in v) + "]"
-    return json.dumps(v)
-
-
-def write_scenario(path, scenario):
-    lines = [f"{k} = {toml_value(v)}" for k, v in scenario.items() if not isinstance(v, dict)]
-    for k, v in scenario.items():
-        if isinstance(v, dict):
-            lines += ["", f"[{k}]"] + [f"{kk} = {toml_value(vv)}" for kk, vv in v.items()]
-    path.write_text("\n".join(lines) + "\n")
 
 
 def shifted_route(route_name, out, east_m, north_m):
@@ -129,17 +105,6 @@ def cases(count, rng):
     return out[:count]
 
 
-def truth_cells(truth_dir, mass_kg):
-    cells = {}
-    for r in csv.DictReader(open(truth_dir / "cells.csv")):
-        if r["complete"] != "1":
-            continue
-        v = float(r["speed_mps"])
-        dissipation = (float(r["damper_power_w"]) + float(r["tire_power_w"])) / (v * mass_kg * G) if v > 0 else 0.0
-        cells[r["cell"]] = float(r["crr"]) + dissipation
-    return cells
-
-
 def judge(results, truth, wrong_road):
     """(identified cells, confident wrong answers, worst error over sigma among them)."""
     identified = wrong = 0
@@ -156,18 +121,8 @@ def judge(results, truth, wrong_road):
     return identified, wrong
 
 
-def run(cmd):
-    return subprocess.run(cmd, capture_output=True, text=True)
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("roadload")
-    ap.add_argument("--cases", type=int, default=68)
-    ap.add_argument("--keep")
-    a = ap.parse_args()
-    work = pathlib.Path(a.keep or tempfile.mkdtemp(prefix="mismatch-bench."))
-    work.mkdir(parents=True, exist_ok=True)
+    a, work = bench_args(__doc__, "--cases", 68, "mismatch-bench.")
     rng = random.Random(2026)
     total = identified_total = wrong_total = cases_with_wrong = 0
     for i, case in enumerate(cases(a.cases, rng)):
@@ -180,7 +135,7 @@ def main():
         base["accelerometers"] = 0
         base.setdefault("effects", {}).update(case.effects)
         case.scenario_edit(base)
-        write_scenario(d / "scenario.toml", base)
+        write_toml(d / "scenario.toml", base)
         sim = run([a.roadload, "simulate", "--scenario", str(d / "scenario.toml"), "--seed", str(case.seed), "--out", str(d / "rec"),
                    "--truth", str(d / "truth"), "-q"])
         if sim.returncode != 0:
@@ -213,7 +168,7 @@ def main():
         why = "; ".join(trip.get("not_identified", []))[:110]
         print(f"{case.name:62s} cells identified {ident:3d}, confident wrong {wrong:3d}; trip "
               f"{'identified' if trip['crr_identified'] else 'not identified: ' + why}", flush=True)
-    for trace in sorted(TRACES.glob("*.log")) if a.cases >= 60 else []:
+    for trace in sorted(TRACES.glob("*.log")):
         d = work / trace.stem
         shutil.rmtree(d, ignore_errors=True)
         (d / "rec").mkdir(parents=True)

@@ -38,6 +38,9 @@ for v in 30 64; do
   "$roadload" simulate --scenario mnroad-mainline-${v}mph --seed 5 --out "$work/m$v" -q || fail "simulate failed"
 done
 expect_status 64 "$roadload" calibrate --aero "$work/m30" "$work/m64" --route $route
+# Drives come in pairs, with one route for all or one per pair.
+expect_status 64 "$roadload" calibrate --aero "$work/m30" "$work/m64" "$work/m30" --route $route --engine-losses "$work/losses.csv"
+expect_status 64 "$roadload" calibrate --aero "$work/m30" "$work/m64" --route $route --route $route --engine-losses "$work/losses.csv"
 expect_status 0 "$roadload" calibrate --aero "$work/m30" "$work/m64" --route $route --engine-losses "$work/losses.csv" \
   --out "$work/aero.csv"
 read -r cda sigma rho < <(awk -F, 'NR == 2 { print $1, $2, $8 }' "$work/aero.csv")

@@ -20,10 +20,11 @@ grep -q "no-such-recording" "$work/err" || fail "missing recording not named: $(
 
 # The survey: one bin per 10 m of the 5.2 km route, every bin with a grade, the route's +-0.5 %.
 expect_status 0 "$roadload" grade --route $route --out "$work/survey.csv"
-[[ $(head -1 "$work/survey.csv") == "$header" ]] || fail "survey.csv header: $(head -1 "$work/survey.csv")"
-awk -F, 'NR > 1 { n++; if ($4 == "" || $5 == "" || $6 != 0) bad++; g = $4 < 0 ? -$4 : $4; if (g > max) max = g }
+[[ $(head -1 "$work/survey.csv") == "# slope_base_m = 30.0" ]] || fail "survey.csv base: $(head -1 "$work/survey.csv")"
+[[ $(sed -n 2p "$work/survey.csv") == "$header" ]] || fail "survey.csv header: $(sed -n 2p "$work/survey.csv")"
+awk -F, 'NR > 2 { n++; if ($4 == "" || $5 == "" || $6 != 0) bad++; g = $4 < 0 ? -$4 : $4; if (g > max) max = g }
   END { exit !(n >= 500 && n <= 540 && bad == 0 && max > 0.4 && max < 0.6) }' "$work/survey.csv" ||
-  fail "survey profile: $(awk -F, 'NR > 1 && NR < 6' "$work/survey.csv")"
+  fail "survey profile: $(awk -F, 'NR > 2 && NR < 7' "$work/survey.csv")"
 
 # Two passes at 30 mph (the simulator drives westbound only). Its code-DGPS heights (Gauss-Markov
 # 0.35 m over 100 s + white 0.2 m, docs/simulator.md 5.3) give about 0.24 % of grade per pass and
@@ -33,24 +34,25 @@ for seed in 1 2; do
   "$roadload" simulate --scenario mnroad-mainline-30mph --seed $seed --out "$work/rec$seed" -q || fail "simulate failed"
 done
 expect_status 0 "$roadload" grade --route $route "$work/rec1" "$work/rec2" --out "$work/gnss.csv"
-[[ $(head -1 "$work/gnss.csv") == "$header" ]] || fail "gnss.csv header: $(head -1 "$work/gnss.csv")"
+[[ $(head -1 "$work/gnss.csv") == "# slope_base_m = 30.0" ]] || fail "gnss.csv base: $(head -1 "$work/gnss.csv")"
+[[ $(sed -n 2p "$work/gnss.csv") == "$header" ]] || fail "gnss.csv header: $(sed -n 2p "$work/gnss.csv")"
 grep -q "passes 2;" "$work/err" || fail "summary does not report 2 passes: $(cat "$work/err")"
 grep -q "RMS difference" "$work/err" || fail "no comparison with the survey printed"
-[[ $(wc -l <"$work/out") == $(wc -l <"$work/gnss.csv") ]] || fail "not one comparison line per bin"
-read -r bins rms sigma < <(paste -d, "$work/gnss.csv" "$work/survey.csv" | awk -F, 'NR > 1 && $4 != "" {
+[[ $(wc -l <"$work/out") == $(($(wc -l <"$work/gnss.csv") - 1)) ]] || fail "not one comparison line per bin"
+read -r bins rms sigma < <(paste -d, "$work/gnss.csv" "$work/survey.csv" | awk -F, 'NR > 2 && $4 != "" {
     n++; d = $4 - $10; s2 += d * d; sig += $5 } END { printf "%d %.4f %.4f\n", n, sqrt(s2 / n), sig / n }')
 echo "grade-cli: 2 passes: $bins bins with a grade, RMS difference from the survey $rms %, mean sigma $sigma %"
 ((bins >= 450)) || fail "only $bins bins with a grade from two passes over 4.86 km"
 awk -v r="$rms" -v s="$sigma" 'BEGIN { exit !(r < 0.3 && r < 2 * s && s < 2 * r) }' ||
   fail "GNSS grade vs survey: RMS $rms %, mean sigma $sigma %"
-awk -F, 'NR > 1 && $6 < 2 && $4 != "" { exit 1 }' "$work/gnss.csv" || fail "a bin with fewer than 2 passes has a grade"
+awk -F, 'NR > 2 && $6 < 2 && $4 != "" { exit 1 }' "$work/gnss.csv" || fail "a bin with fewer than 2 passes has a grade"
 
 # One pass is not enough for the default --min-passes: the file is written, nothing in it guessed.
 mkdir "$work/one"
 cp "$work/rec1/meta.toml" "$work/rec1/gnss.csv" "$work/one/"
 expect_status 65 "$roadload" grade --route $route "$work/one" --out "$work/one.csv"
 grep -q "no bin has a grade" "$work/err" || fail "a single pass not explained: $(cat "$work/err")"
-awk -F, 'NR > 1 && $4 != "" { exit 1 }' "$work/one.csv" || fail "a grade from one pass"
+awk -F, 'NR > 2 && $4 != "" { exit 1 }' "$work/one.csv" || fail "a grade from one pass"
 sed -i '5s/^\([0-9]*,[0-9]*,\)[^,]*,/\1abc,/' "$work/one/gnss.csv"
 expect_status 65 "$roadload" grade --route $route "$work/one" --out "$work/one.csv" --min-passes 1 -q
 grep -q "one/gnss.csv:5: lat_deg" "$work/err" || fail "malformed fix not named: $(cat "$work/err")"

@@ -331,5 +331,23 @@ TEST(CrrFilter, ATractiveScaleConsideredKeepsTheTruthInItsInterval) {
   EXPECT_LT(std::abs(f.crr() - 0.0055), 2.58 * f.crr_sigma());
 }
 
+TEST(CrrFilter, HillsTellTheMassFromTheCrr) {
+  // A truck 6 % heavier than declared over +-1 % grades: the grade's force swings with the mass,
+  // the rolling resistance's hardly, so the filter finds the mass and keeps CRR in its interval.
+  CrrFilterConfig heavy = config();
+  heavy.truck.mass_kg *= 1.06;
+  Drive d = make_drive(11, 1800, 0.0055, heavy.truck.cda_prior_m2, heavy, false);
+  CrrFilterConfig cfg = config();
+  cfg.truck.mass_sigma_kg = 0.05 * cfg.truck.mass_kg;
+  // The signals tell the rotating parts' inertia, not the cargo's.
+  for (model::ForceInputs& in : d.inputs) in.effective_mass_kg -= heavy.truck.mass_kg - cfg.truck.mass_kg;
+  const CrrFilter f = run(cfg, d);
+  std::printf("mass %.0f +- %.0f kg (truth %.0f, prior %.0f +- %.0f); CRR error %.5f +- %.5f\n", f.mass_kg(), f.mass_sigma_kg(),
+              heavy.truck.mass_kg, cfg.truck.mass_kg, cfg.truck.mass_sigma_kg, f.crr() - 0.0055, f.crr_sigma());
+  EXPECT_NEAR(f.mass_kg(), heavy.truck.mass_kg, 2.58 * f.mass_sigma_kg());
+  EXPECT_LT(f.mass_sigma_kg(), 0.5 * cfg.truck.mass_sigma_kg);
+  EXPECT_LT(std::abs(f.crr() - 0.0055), 2.58 * f.crr_sigma());
+}
+
 }  // namespace
 }  // namespace roadload

@@ -58,6 +58,18 @@ TEST(TrackRoute, AnOutAndBackDriveIsCutAtItsTurnaround) {
   EXPECT_NEAR(pass->points.front().elev_m, 300.0, 1e-9);  // the road's height, not the antenna's
 }
 
+TEST(TrackRoute, TheRouteRunsTheWayTheFirstPassDrives) {
+  // The way back (900 m) drives first, the longer outbound pass (1200 m) second: the road is the
+  // outbound pass's, in the direction of the way back.
+  const std::vector<GnssFix> out_back = out_and_back(1200, 900);
+  const std::vector<GnssFix> back(out_back.end() - 600, out_back.end());
+  const GnssTrack tracks[] = {{back, 3.5}, {out_back, 3.5}};
+  const auto pass = longest_pass(tracks);
+  ASSERT_TRUE(pass);
+  EXPECT_NEAR(RouteGeometry::build(pass->points)->length_m(), 1200, 40);
+  EXPECT_GT(pass->points.front().lat_deg, pass->points.back().lat_deg);  // southward
+}
+
 TEST(TrackRoute, ABendIsNoTurnaround) {
   // A right angle of 60 m radius: 90 degrees over 94 m, not a pass's end.
   std::vector<GnssFix> fixes;

@@ -1,9 +1,11 @@
 #include "roadload/grade_file.hpp"
 
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -14,6 +16,20 @@ namespace roadload {
 namespace {
 
 constexpr std::string_view kColumns[] = {"s_m", "elevation_m", "elevation_sigma_m", "grade_pct", "grade_sigma_pct", "passes"};
+
+constexpr std::string_view kBaseKey = "# slope_base_m = ";
+
+// The slopes' +-base from the file's comment (files written before it carry none: the default's).
+double slope_base_m(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line) && !line.empty() && line[0] == '#') {
+    if (line.rfind(kBaseKey, 0) != 0) continue;
+    const auto v = recording::parse_f64(std::string_view(line).substr(kBaseKey.size()));
+    if (v && *v > 0 && *v < 1e4) return *v;
+  }
+  return GradeConfig{}.base_m;
+}
 
 std::optional<double> field(std::string_view text) {
   if (text.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -44,7 +60,7 @@ Parsed<GradeProfile> load_grade_file(const std::string& path, double route_lengt
     bins.push_back(b);
   }
   if (csv.value().error()) return *csv.value().error();
-  auto profile = GradeProfile::from_bins(route_length_m, std::move(bins));
+  auto profile = GradeProfile::from_bins(route_length_m, std::move(bins), slope_base_m(path));
   if (!profile) {
     return ParseError{path, 0, "s_m", "bins are not evenly spaced along this route (" + std::to_string(route_length_m) + " m long)"};
   }
@@ -54,6 +70,9 @@ Parsed<GradeProfile> load_grade_file(const std::string& path, double route_lengt
 std::optional<ParseError> write_grade_file(const std::string& path, const GradeProfile& profile) {
   auto csv = recording::OutputFile::create(path);
   if (!csv) return csv.error();
+  recording::LineBuilder base;
+  base.num(profile.config().base_m, 1);
+  csv.value().write(std::string(kBaseKey) + std::string(base.finish()));
   csv.value().write("s_m,elevation_m,elevation_sigma_m,grade_pct,grade_sigma_pct,passes\n");
   recording::LineBuilder line;
   for (const GradeBin& b : profile.bins()) {

@@ -6,6 +6,7 @@
 // the estimator itself, wind, air density and gear included.
 #include <cstddef>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "roadload/drive_analyzer.hpp"
@@ -42,5 +43,14 @@ struct AeroCalibration {
 // fewer than two cells are shared or the speeds are too close to separate drag from rolling
 // resistance.
 AeroCalibration fit_cda(const AeroDrive& a, const AeroDrive& b, double cda_prior_m2, double torque_sigma_nm);
+
+// Two drives over the same cells at two speeds: one pair of several (a road both ways, each on its
+// own direction's route; another day's pair). One CdA fits every pair's cells: each direction's
+// wind and grade errors then count once, not as the truck's drag.
+struct AeroPair {
+  const AeroDrive* slow = nullptr;
+  const AeroDrive* fast = nullptr;
+};
+AeroCalibration fit_cda(std::span<const AeroPair> pairs, double cda_prior_m2, double torque_sigma_nm);
 
 }  // namespace roadload

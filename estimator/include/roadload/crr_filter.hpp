@@ -67,6 +67,10 @@ struct CrrFilterConfig {
   // (one steady speed, where speed ripples would pull it onto any speed-correlated model error).
   // The torque bias is always only considered: one gear cannot tell it from CRR.
   bool estimate_cda = true;
+  // Estimate the mass's share error from the drive: the road's grade changes the force by m g
+  // sin(grade), the rolling resistance by far less, so hills tell the mass from the CRR. On flat
+  // roads it stays near its prior and only widens the intervals, as a considered state would.
+  bool estimate_mass = true;
   // The grade's error is considered too: a first-order Gauss-Markov process along the road, its
   // sigma the grade profile's at each place, correlated over the profile's slope window.
   double grade_error_correlation_m = 60.0;
@@ -105,11 +109,15 @@ class CrrFilter {
   double crr() const { return core_.x()(CrrState::crr); }
   double crr_sigma() const;
   double cda_m2() const { return core_.x()(CrrState::cda); }
+  double mass_kg() const { return config_.truck.mass_kg * (1.0 + core_.x()(CrrState::mass_scale)); }
+  double mass_sigma_kg() const;
   double torque_bias_nm() const { return core_.x()(CrrState::torque_bias); }
   bool crr_identified() const { return crr_sigma() <= config_.identified_crr_sigma; }
   const Core& core() const { return core_; }
   const CrrCounters& counters() const { return counters_; }
   const CrrFilterConfig& config() const { return config_; }
+  // The grade profile's own error correlation (GradeProfile::error_correlation_m), once it is known.
+  void set_grade_error_correlation_m(double m) { config_.grade_error_correlation_m = m; }
 
  private:
   void step(double dt_s, const model::ForceInputs& in, double crr_jump_variance);

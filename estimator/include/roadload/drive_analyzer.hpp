@@ -82,7 +82,10 @@ class DriveAnalyzer {
   void attach(ContactForces* contact) { contact_ = contact; }
   void attach(VibrationAnalysis* vibration) { vibration_ = vibration; }
   // Grade and its sigma from this profile (`roadload grade`) instead of the route's survey.
-  void set_grade(GradeProfile grade) { grade_ = std::move(grade); }
+  void set_grade(GradeProfile grade) {
+    filter_.set_grade_error_correlation_m(grade.error_correlation_m());
+    grade_ = std::move(grade);
+  }
   // Runs the smoother; call once after the last push.
   void finish();
 

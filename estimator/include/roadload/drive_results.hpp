@@ -45,6 +45,9 @@ struct TripResult {
   std::size_t ticks = 0, usable_ticks = 0;
   std::array<std::size_t, kUnusableCount> unusable{};  // ticks by Unusable
   double crr = 0, crr_sigma = 0, cda_m2 = 0, torque_bias_nm = 0, torque_bias_sigma_nm = 0;
+  // The mass the drive's grades and accelerations tell, with its standard error (the declared
+  // mass and its prior's sigma where they tell nothing).
+  double mass_kg = 0, mass_sigma_kg = 0;
   bool identified = false;
   std::size_t gnss_used = 0, gnss_off_route = 0;
   // Weather samples that measured the wind: without one the drag's airspeed is a guess.

@@ -75,8 +75,9 @@ class GradeProfile {
   static GradeProfile from_survey(const RouteGeometry& route, double survey_sigma_m, const GradeConfig& cfg = {});
   static GradeProfile from_gnss(const RouteGeometry& route, std::span<const GnssTrack> tracks, const GradeConfig& cfg = {});
   // A profile written earlier (`roadload grade`): nothing when the bins are not this route's
-  // bins at their own spacing (another route, or edited by hand).
-  static std::optional<GradeProfile> from_bins(double route_length_m, std::vector<GradeBin> bins);
+  // bins at their own spacing (another route, or edited by hand). `base_m`: the slopes' +-base.
+  static std::optional<GradeProfile> from_bins(double route_length_m, std::vector<GradeBin> bins,
+                                               double base_m = GradeConfig{}.base_m);
 
   // Linear between bin centres; NaN off the route or where a bin involved has no value.
   double grade_rad(double s_m) const;
@@ -89,6 +90,9 @@ class GradeProfile {
   std::size_t bins_with_grade() const;
   const GradeConfig& config() const { return cfg_; }
   double length_m() const { return length_m_; }
+  // How far along the road the grade's errors stay alike: a slope over +-base shares its end
+  // heights' errors with every slope whose window overlaps its own.
+  double error_correlation_m() const { return 2.0 * cfg_.base_m; }
 
  private:
   GradeProfile(const GradeConfig& cfg, double length_m);

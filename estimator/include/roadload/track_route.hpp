@@ -40,7 +40,8 @@ std::optional<TrackRoute> route_from_track(std::span<const GnssFix> fixes, doubl
                                            const TrackRouteConfig& config = {});
 
 // The longest pass of any track (a track cut where it turns back on itself), thinned: the road's
-// polyline when nobody surveyed it. None when no pass traces a cell.
+// polyline when nobody surveyed it, running the way the first track's first pass runs. None when
+// no pass traces a cell.
 std::optional<TrackRoute> longest_pass(std::span<const GnssTrack> tracks, const TrackRouteConfig& config = {});
 
 // A pavement section placed on the route by its ends' projections; `skipped` says why it is not.
