@@ -87,10 +87,11 @@ void VehicleIdentifier::on_message(const j1939::Message& m) {
   }
 }
 
-// The gear's ratio as ETC2 sends it now, else the prior's.
-double VehicleIdentifier::gear_ratio_now(int gear) const {
+// The gear's ratio as ETC2 sends it now, else the prior's: a ratio from before a shift is another
+// gear's.
+double VehicleIdentifier::gear_ratio_now(int gear, CaptureTime t) const {
   const Reading& etc2 = feed_.get(Quantity::gear_ratio);
-  if (etc2.seen && etc2.value > 0) return etc2.value;
+  if (etc2.seen && t - etc2.t <= kGearFresh && etc2.value > 0) return etc2.value;
   return prior_.driveline.gear_ratios[static_cast<std::size_t>(gear - 1)];
 }
 
@@ -103,7 +104,7 @@ void VehicleIdentifier::push(const GnssFix& fix) {
   const int gear = static_cast<int>(feed_.get(Quantity::current_gear).value);
   if (gear < 1 || static_cast<std::size_t>(gear) > prior_.driveline.gear_ratios.size()) return;
   const double wheel_rad_s = rad_per_s(feed_.get(Quantity::engine_speed_rpm).value) /
-                             (gear_ratio_now(gear) * prior_.driveline.final_drive);
+                             (gear_ratio_now(gear, fix.t) * prior_.driveline.final_drive);
   if (wheel_rad_s > 0) radii_m_.push_back(fix.speed_mps / wheel_rad_s);
   wheel_scales_.push_back(fix.speed_mps / feed_.get(Quantity::wheel_speed_mps).value);
 }
@@ -138,7 +139,9 @@ VehicleIdentification VehicleIdentifier::result() const {
     w->sigma = std::hypot(w->sigma, kCombinationWeightSigma * w->value);
     r.mass_kg = w;
   } else {
-    r.not_identified.push_back("mass: CVW (PGN 65136) not on the bus; mass from acceleration episodes is not done yet");
+    r.not_identified.push_back(
+        "mass: CVW (PGN 65136) not on the bus; `roadload analyze` finds each drive's mass on its grades "
+        "(trip.json mass_kg, mass_sigma_kg)");
   }
   r.not_identified.push_back("body.cda_m2: needs drives at two speeds (`roadload calibrate --aero`)");
   return r;

@@ -56,7 +56,7 @@ class VehicleIdentifier {
  private:
   void on_message(const j1939::Message& m);
   bool steady_in_gear(CaptureTime t) const;
-  double gear_ratio_now(int gear) const;
+  double gear_ratio_now(int gear, CaptureTime t) const;
 
   const Vehicle& prior_;
   SignalFeed feed_;
