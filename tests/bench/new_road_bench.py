@@ -10,7 +10,8 @@ prior, the county's section file), the CLI runs as docs and README tell a user:
 
   roadload vehicle identify REC... --vehicle tractor-53ft-18speed --out truck.toml
   roadload route build REC... --sections example-county-road-sections.geojson --out ROUTE (each way)
-  roadload calibrate HOLD --out losses.csv; roadload calibrate --aero SLOW FAST (each way)
+  roadload calibrate HOLD --out losses.csv
+  roadload calibrate --aero SLOW FAST SLOW FAST --route EAST --route WEST (one CdA, both ways)
   roadload analyze REC --vehicle truck.toml --route ROUTE [--engine-losses ... --cda ...]
 
 and the per-cell CRR is scored against the simulator's truth (the tires' CRR plus the suspension's
