@@ -135,15 +135,17 @@ def main():
         write_toml(d / "hold.toml", hold)
         run_checked([rl, "simulate", "--scenario", d / "hold.toml", "--seed", seed, "--out", d / "hold", "-q"], "simulate hold")
         drives = {}
-        for way in ("eastbound", "westbound"):
+        for w, way in enumerate(("eastbound", "westbound")):
             for mph in SPEEDS_MPH:
                 name = f"{way}-{mph}"
                 sc = scenario(name, CONFIG / "routes" / f"{ROAD}-{way}.toml", seed, d / "truck-true.toml", scales, effects, wind,
                               speed_mph=mph, start_m=100, end_m=4600)
                 write_toml(d / f"{name}.toml", sc)
-                run_checked([rl, "simulate", "--scenario", d / f"{name}.toml", "--seed", seed * 10 + mph, "--out", d / name,
+                run_checked([rl, "simulate", "--scenario", d / f"{name}.toml", "--seed", seed * 1000 + w * 100 + mph, "--out", d / name,
                              "--truth", d / f"{name}.truth", "-q"], f"simulate {name}")
                 drives[name] = (way, mph)
+        # Each drive its own seed: two drives sharing one would share their GNSS's height errors,
+        # mirrored along the road, and the route's heights would keep them (a bowl, not noise).
         recs = [d / n for n in drives]
         # What a user runs: nothing below reads the simulator's files but the recordings.
         run_checked([rl, "vehicle", "identify", *recs, "--vehicle", VEHICLE, "--out", d / "truck.toml"], "vehicle identify")

@@ -32,7 +32,7 @@ TEST(GradeFile, KeepsTheSlopesBaseAndWithItTheErrorsCorrelation) {
   auto read = load_grade_file(path, route.length_m());
   ASSERT_TRUE(read) << read.error().to_string();
   EXPECT_DOUBLE_EQ(read.value().config().base_m, 100.0);
-  EXPECT_DOUBLE_EQ(read.value().error_correlation_m(), 200.0);
+  EXPECT_DOUBLE_EQ(read.value().error_correlation_m(), 5.0 / 6.0 * 100.0);
   ASSERT_EQ(read.value().bins().size(), written.bins().size());
   EXPECT_NEAR(read.value().grade_rad(500.0), written.grade_rad(500.0), 1e-6);
   std::filesystem::remove(path);
@@ -54,7 +54,7 @@ TEST(GradeFile, AFileWithoutItsBaseReadsAsTheDefaults) {
   auto read = load_grade_file(path, route.length_m());
   ASSERT_TRUE(read) << read.error().to_string();
   EXPECT_DOUBLE_EQ(read.value().config().base_m, GradeConfig{}.base_m);
-  EXPECT_DOUBLE_EQ(read.value().error_correlation_m(), 2.0 * GradeConfig{}.base_m);
+  EXPECT_DOUBLE_EQ(read.value().error_correlation_m(), 5.0 / 6.0 * GradeConfig{}.base_m);
   std::filesystem::remove(path);
 }
 

@@ -257,6 +257,36 @@ TEST(GradeGnss, MorePassesShrinkTheSigma) {
   EXPECT_LT(sixteen.rms_rad, four.rms_rad);
 }
 
+// The force balance carries a bin's grade error as a Gauss-Markov process along the road, its
+// correlation length GradeProfile::error_correlation_m(): what a cell averages of it must be the
+// error of the cell's mean grade, or the cell's CRR interval is too wide or too narrow.
+TEST(GradeGnss, TheErrorsCorrelationGivesACellsMeanGradeItsError) {
+  const SyntheticRoute r = make_route(kLength_m);
+  constexpr double kCell_m = 500.0;
+  double sn = 0, n = 0;
+  for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+    const GradeProfile g = gnss_profile(r, 4, 300 + seed);
+    const double l = g.error_correlation_m();
+    const double share = 2 * l / kCell_m - 2 * l * l / (kCell_m * kCell_m) * (1 - std::exp(-kCell_m / l));
+    for (double start = 100.0; start + kCell_m <= kLength_m - 100.0; start += kCell_m) {
+      double err = 0, sigma = 0, bins = 0;
+      for (const GradeBin& b : g.bins()) {
+        if (b.s_m < start || b.s_m >= start + kCell_m) continue;
+        err += b.grade_rad - true_grade_rad(b.s_m);
+        sigma += b.grade_sigma_rad;
+        ++bins;
+      }
+      const double z = (err / bins) / (sigma / bins * std::sqrt(share));
+      sn += z * z;
+      ++n;
+    }
+  }
+  const double normalized_rms = std::sqrt(sn / n);
+  std::printf("4 passes, %.0f cells of %.0f m: RMS of the mean grade's error over its sigma %.2f\n", n, kCell_m, normalized_rms);
+  EXPECT_GT(normalized_rms, 0.75);
+  EXPECT_LT(normalized_rms, 1.33);
+}
+
 TEST(GradeGnss, OffRouteFixesAreCountedAndIgnored) {
   const SyntheticRoute r = make_route(kLength_m);
   const auto clean = drives(r, 4, 31);

@@ -72,8 +72,9 @@ struct CrrFilterConfig {
   // roads it stays near its prior and only widens the intervals, as a considered state would.
   bool estimate_mass = true;
   // The grade's error is considered too: a first-order Gauss-Markov process along the road, its
-  // sigma the grade profile's at each place, correlated over the profile's slope window.
-  double grade_error_correlation_m = 60.0;
+  // sigma the grade profile's at each place, its correlation the profile's
+  // (GradeProfile::error_correlation_m; 25 m for the default +-30 m slope).
+  double grade_error_correlation_m = 25.0;
   double gate_nis = 15.13;  // chi-square(1) at 0.9999: beyond it a speed is an outlier
   Nanoseconds max_step{100'000'000};
   Nanoseconds late_window{500'000'000};  // older measurements are counted and dropped
