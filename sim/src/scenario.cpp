@@ -130,6 +130,22 @@ void read_mode(const detail::TomlFields& f, const toml::table& root, Scenario& s
   s.coast = mode == "coast";
 }
 
+void read_stops(const detail::TomlFields& f, const toml::table& root, Scenario& s) {
+  const toml::table* t = root["stop_and_go"].as_table();
+  if (t == nullptr) return;
+  f.only(*t, {"every_m", "crawl_mph", "crawl_m"}, "stop_and_go.");
+  s.stops.every_m = f.required_number(*t, "every_m", "stop_and_go.");
+  s.stops.crawl_mps = f.required_number(*t, "crawl_mph", "stop_and_go.") * kMps_per_mph;
+  s.stops.crawl_m = f.required_number(*t, "crawl_m", "stop_and_go.");
+  if (s.stops.every_m < 100) f.fail(t->get("every_m"), "stop_and_go.every_m", "below 100 m");
+  if (s.stops.crawl_mps < 1.0 || s.stops.crawl_mps >= s.speed_mps) {
+    f.fail(t->get("crawl_mph"), "stop_and_go.crawl_mph", "outside 2.3 mph (first gear at idle) to the set speed");
+  }
+  if (s.stops.crawl_m <= 0 || s.stops.crawl_m >= s.stops.every_m) {
+    f.fail(t->get("crawl_m"), "stop_and_go.crawl_m", "outside 0 to every_m");
+  }
+}
+
 // This truck against its vehicle file: cargo, engine friction, accessories and drag area.
 void read_truck_scales(const detail::TomlFields& f, const toml::table& root, Scenario& s) {
   for (auto [key, value] : {std::pair{"load_scale", &s.load_scale}, std::pair{"engine_friction_scale", &s.engine_friction_scale},
@@ -185,6 +201,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
           "weather",
           "clocks",
           "effects",
+          "stop_and_go",
           "vehicle"},
          "");
   s.name = f.required_text(root, "name", "");
@@ -210,6 +227,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
     s.road_seed = static_cast<std::uint64_t>(*seed->value<std::int64_t>());
   }
   read_truck_scales(f, root, s);
+  if (!s.coast) read_stops(f, root, s);
   read_rates(f, root, s);
   read_weather(f, root, s.weather);
   read_clocks(f, root, s.clocks);

@@ -50,6 +50,16 @@ TruckParams scenario_truck(const Scenario& s) {
   return t;
 }
 
+// The driver's set speed at x: the crawl over the last crawl_m before each stop line, and before it
+// a steady 1 m/s^2 of braking down to the crawl (the driver's, not the cruise control's).
+double set_speed_mps(const Scenario& sc, double x_m) {
+  constexpr double kBraking_mps2 = 1.0;
+  const double into_block = std::fmod(std::max(0.0, x_m - sc.start_m), sc.stops.every_m);
+  const double to_crawl_m = sc.stops.every_m - sc.stops.crawl_m - into_block;
+  if (to_crawl_m <= 0) return sc.stops.crawl_mps;
+  return std::min(sc.speed_mps, std::sqrt(sc.stops.crawl_mps * sc.stops.crawl_mps + 2 * kBraking_mps2 * to_crawl_m));
+}
+
 BusOptions bus_options(const ClockSpec& c) {
   BusOptions o;
   o.rx_latency = c.can_rx_latency;
@@ -318,6 +328,7 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
       const auto step = static_cast<std::size_t>(p.plant.state().t_s / sc.hold.count());
       p.plant.set_hold_rpm(sc.hold_rpm[std::min(step, sc.hold_rpm.size() - 1)]);
     }
+    if (sc.stops.every_m > 0) p.plant.set_cruise_speed(set_speed_mps(sc, p.plant.state().x_m));
     p.plant.step(dt, air);
     const TruckState& s = p.plant.state();
     const Kinematics now = p.kinematics(s);

@@ -80,6 +80,12 @@ def drop_gnss_after_third(rec, _):
     (rec / "gnss.csv").write_text("".join(header + data[: len(data) // 3]))
 
 
+def city_traffic(scenario):
+    """Braking to a crawl before every stop line and back up through the gears at full load."""
+    scenario["speed_mph"] = 25
+    scenario["stop_and_go"] = {"every_m": 500, "crawl_mph": 3, "crawl_m": 60}
+
+
 def efficiency_two_sigma_low(truck):
     d = truck["driveline"]
     d["efficiency"] = round(d["efficiency"] - 2 * d["efficiency_sigma"], 4)
@@ -109,10 +115,11 @@ def cases(count, rng):
         add("engine fan engaged half the time", effects={"fan-engagement": 0.5})
         add("wind gusts 2.5 m/s", effects={"wind-gusts": 2.5})
         add("self-surveyed route, GNSS heights drifting 2 m", effects={"gnss-elevation-bias": 2.0}, route="none")
+        add("stop-and-go city drive (25 mph, a near stop every 500 m)", scenario_edit=city_traffic)
         add("CAN only", recording_edit=drop_gnss)
         add("no weather station", recording_edit=drop_weather)
         add("GNSS lost after a third of the drive", recording_edit=drop_gnss_after_third)
-        for b in (-0.05, 0.05):
+        for b in (-0.07, -0.05, 0.05, 0.07):  # J1939 states no accuracy; makers quote +-5 %, a remapped engine more
             add(f"engine torque scaled {1 + b:.2f}", effects={"torque-bias": b})
     return out[:count]
 

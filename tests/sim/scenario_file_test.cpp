@@ -59,6 +59,12 @@ TEST_F(ScenarioFile, BadValuesAreRejected) {
   EXPECT_EQ(load("name = \"s\"\nspeed_mph = 30\n").error().field, "route");
   EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\nstart_m = 900\n").error().field, "end_m");
   EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30 30\n").error().field, "syntax");
+  const std::string city = "name = \"s\"\nroute = \"r\"\nspeed_mph = 30\n[stop_and_go]\n";
+  EXPECT_EQ(load(city + "every_m = 500\ncrawl_mph = 40\ncrawl_m = 60\n").error().field, "stop_and_go.crawl_mph");
+  EXPECT_EQ(load(city + "every_m = 50\ncrawl_mph = 3\ncrawl_m = 20\n").error().field, "stop_and_go.every_m");
+  EXPECT_EQ(load(city + "every_m = 500\ncrawl_mph = 3\ncrawl_m = 600\n").error().field, "stop_and_go.crawl_m");
+  EXPECT_EQ(load(city + "every_m = 500\ncrawl_mph = 3\n").error().field, "stop_and_go.crawl_m");
+  EXPECT_EQ(load(city + "every_m = 500\ncrawl_mph = 3\ncrawl_m = 60\nlights = 2\n").error().field, "stop_and_go.lights");
 }
 
 TEST_F(ScenarioFile, RouteErrorsNameTheRouteFile) {

@@ -55,6 +55,14 @@ struct Scenario {
   double accessory_scale = 1.0;
   double cda_scale = 1.0;  // and its drag area against the type's (body, mirrors, trailer gap)
   bool coast = false;      // neutral coast-down instead of cruise
+  // City traffic: at a stop line every `every_m` the driver slows to `crawl_mps` for `crawl_m`,
+  // braking down to it and accelerating at full load back to the set speed. A crawl, not a stop:
+  // the plant has no launch clutch, so a stand-still would stall its engine.
+  struct StopAndGo {
+    double every_m = 0;  // 0: none
+    double crawl_mps = 0;
+    double crawl_m = 0;
+  } stops;
   // Rev-hold (an engine-loss calibration): standing in neutral, the governor holds the engine at
   // each of these speeds in turn for `hold`; coast is set, the speed is 0.
   std::vector<double> hold_rpm;
