@@ -20,6 +20,7 @@
 #include "roadload/grade_profile.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
+#include "roadload/torque_scale_consider.hpp"
 #include "roadload/track_route.hpp"
 
 namespace roadload::cli {
@@ -246,6 +247,18 @@ std::optional<std::variant<Road, int>> given_road(const AnalyzeOptions& o) {
   return road;
 }
 
+// The recording through the analyzer in capture-time order. A logger without a receiver of its
+// own: the truck's VP1 places the drive, merged in time order.
+void drive(DriveAnalyzer& analyzer, recording::RecordingReader& reader, const RecordedTrack& track) {
+  const bool from_bus = track.source.rfind("J1939", 0) == 0;
+  std::size_t bus_fix = 0;
+  while (const recording::Record* r = reader.next()) {
+    const CaptureTime t = std::visit([](const auto& s) { return s.t; }, *r);
+    while (from_bus && bus_fix < track.fixes.size() && track.fixes[bus_fix].t <= t) analyzer.push(track.fixes[bus_fix++]);
+    std::visit([&](const auto& s) { analyzer.push(s); }, *r);
+  }
+}
+
 int analyze(const AnalyzeOptions& o) {
   j1939::Database db;
   if (auto rc = load_definitions("analyze", o.dbcs, db)) return *rc;
@@ -267,29 +280,38 @@ int analyze(const AnalyzeOptions& o) {
   Road& road = std::get<Road>(*found);
   auto cfg = configure(o, vehicle, meta, road.default_iri_m_per_km);
   if (const int* rc = std::get_if<int>(&cfg)) return *rc;
-  const double route_length_m = road.geometry.length_m();
-  DriveAnalyzer analyzer(db, road.geometry, road.spans, std::get<AnalyzerConfig>(cfg));
-  if (road.grade) analyzer.set_grade(std::move(*road.grade));
+  std::optional<GradeProfile> grade = std::move(road.grade);
   if (!o.grade_file.empty() || !road.grade_file.empty()) {
-    auto grade = load_grade_file(o.grade_file.empty() ? road.grade_file : o.grade_file, route_length_m);
-    if (auto rc = failed_input(grade)) return *rc;
-    analyzer.set_grade(std::move(grade.value()));
+    auto file = load_grade_file(o.grade_file.empty() ? road.grade_file : o.grade_file, road.geometry.length_m());
+    if (auto rc = failed_input(file)) return *rc;
+    grade = std::move(file.value());
   }
   const PavementGroups groups = pavement_groups(road.cells);
   Accelerometers acc;
-  attach(acc, analyzer, o, vehicle, meta, groups);
-  // A logger without a receiver of its own: the truck's VP1 places the drive, in time order.
-  const bool from_bus = track.source.rfind("J1939", 0) == 0;
-  std::size_t bus_fix = 0;
-  while (const recording::Record* r = reader.value().next()) {
-    const CaptureTime t = std::visit([](const auto& s) { return s.t; }, *r);
-    while (from_bus && bus_fix < track.fixes.size() && track.fixes[bus_fix].t <= t) analyzer.push(track.fixes[bus_fix++]);
-    std::visit([&](const auto& s) { analyzer.push(s); }, *r);
-  }
+  // The torque scale's second run reads the force balance's streams again; its parse errors are the
+  // first run's and are not told twice.
+  bool reread = true;
+  auto run = [&](const AnalyzerConfig& c, TorqueScaleRun which) {
+    DriveAnalyzer analyzer(db, road.geometry, road.spans, c);
+    if (grade) analyzer.set_grade(*grade);
+    if (which == TorqueScaleRun::held) {
+      attach(acc, analyzer, o, vehicle, meta, groups);
+      drive(analyzer, reader.value(), track);
+    } else if (auto again = recording::RecordingReader::open(
+                   o.recording, recording::kCanStream | recording::kGnssStream | recording::kWeatherStream)) {
+      drive(analyzer, again.value(), track);
+    } else {
+      std::fprintf(stderr, "roadload analyze: reading it again: %s\n", again.error().to_string().c_str());
+      reread = false;
+    }
+    analyzer.finish();
+    return DriveAnalysis{analyzer.cells(), analyzer.trip()};
+  };
+  DriveAnalysis analysis = analyse_with_torque_scale(std::get<AnalyzerConfig>(cfg), run);
+  if (!reread) return kExitNoInput;
   for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
-  analyzer.finish();
-  std::vector<CellResult> results = analyzer.cells();
-  TripResult trip = analyzer.trip();
+  std::vector<CellResult>& results = analysis.cells;
+  TripResult& trip = analysis.trip;
   for (const std::string* why : {static_cast<const std::string*>(&road.unplaced), &assumed}) {
     if (!why->empty()) withhold(trip, results, *why);
   }

@@ -30,6 +30,7 @@ double eec3_quantization_sigma_nm(double reference_torque_nm) { return reference
 void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> torque_bias_sigma_nm) {
   Vec x;
   x << speed_mps, config_.truck.crr_prior, config_.truck.cda_prior_m2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0;
+  x(CrrState::torque_scale) = config_.torque_scale_held;
   Mat p = Mat::Zero();
   p(CrrState::speed, CrrState::speed) = 0.25;
   p(CrrState::crr, CrrState::crr) = config_.truck.crr_sigma * config_.truck.crr_sigma;

@@ -143,7 +143,9 @@ VehicleIdentification VehicleIdentifier::result() const {
         "mass: CVW (PGN 65136) not on the bus; `roadload analyze` finds each drive's mass on its grades "
         "(trip.json mass_kg, mass_sigma_kg)");
   }
-  r.not_identified.push_back("body.cda_m2: needs drives at two speeds (`roadload calibrate --aero`)");
+  r.not_identified.push_back(
+      "body.cda_m2: drag shows only beside the road's grade and rolling resistance, so it is fitted on a route: "
+      "`roadload calibrate --aero SLOW FAST --route R` from drives at two speeds");
   return r;
 }
 

@@ -31,6 +31,7 @@
 #include "roadload/sim/scenario.hpp"
 #include "roadload/sim/truth.hpp"
 #include "roadload/tire_crr.hpp"
+#include "roadload/torque_scale_consider.hpp"
 #include "simulated_drive.hpp"
 
 namespace {
@@ -149,17 +150,22 @@ Calibration calibrate(const j1939::Database& db, std::uint64_t seed, const Truck
 void tally(const sim::Scenario& sc, const sim::Simulation& sim, const sim::test::MemorySink& sink, const sim::TruthRecorder& truth,
            const j1939::Database& db, const AnalyzerConfig& cfg, Tally& t) {
   const RouteGeometry route = route_of(sc);
-  DriveAnalyzer analyzer(db, route, sim::test::cell_spans(sc), cfg);
   const PavementGroups groups = sim::test::pavement_groups(sc);
   VibrationAnalysis va(sim::test::axle_layout(sim.metadata()), recording::accelerometers(sim.metadata()), sc.route.cells.size(),
                        groups.cell_group, groups.names.size());
-  analyzer.attach(&va);
-  sim::test::analyze(analyzer, sink, true);
+  // As `roadload analyze` does: the torque scale held exact, then carried by a second run.
+  const DriveAnalysis analysis = analyse_with_torque_scale(cfg, [&](const AnalyzerConfig& c, TorqueScaleRun which) {
+    DriveAnalyzer a(db, route, sim::test::cell_spans(sc), c);
+    if (which == TorqueScaleRun::held) a.attach(&va);
+    sim::test::analyze(a, sink, which == TorqueScaleRun::held);
+    return DriveAnalysis{a.cells(), a.trip()};
+  });
+  const TripResult& trip = analysis.trip;
   DriveAnalyzer bound(db, route, sim::test::cell_spans(sc), nuisance_known(cfg));
   sim::test::analyze(bound, sink);
 
   const auto truths = truth.cells();
-  const auto cells = analyzer.cells();
+  const auto& cells = analysis.cells;
   const auto bounds = bound.cells();
   const double weight_n = sim.plant().truck().total_mass_kg() * 9.80665;
   double sum_true = 0, sum_total = 0;
@@ -189,17 +195,17 @@ void tally(const sim::Scenario& sc, const sim::Simulation& sim, const sim::test:
     ++t.cells;
     ++n;
   }
-  const double trip_err = analyzer.trip().crr - sum_true / static_cast<double>(n);
+  const double trip_err = trip.crr - sum_true / static_cast<double>(n);
   t.trip_se += trip_err * trip_err;
   t.trip_max = std::max(t.trip_max, std::abs(trip_err));
   // The filter's consistency is judged against what it estimates: all the rolling resistance.
-  const double trip_err_total = analyzer.trip().crr - sum_total / static_cast<double>(n);
-  t.trip_nees += trip_err_total * trip_err_total / (analyzer.trip().crr_sigma * analyzer.trip().crr_sigma);
-  t.nis += analyzer.trip().mean_nis;
-  t.nis_band += 1.96 * analyzer.trip().mean_nis_se;
+  const double trip_err_total = trip.crr - sum_total / static_cast<double>(n);
+  t.trip_nees += trip_err_total * trip_err_total / (trip.crr_sigma * trip.crr_sigma);
+  t.nis += trip.mean_nis;
+  t.nis_band += 1.96 * trip.mean_nis_se;
   ++t.runs;
 
-  const FuelBreakdown& f = analyzer.trip().fuel;
+  const FuelBreakdown& f = trip.fuel;
   t.closure_max = std::max(t.closure_max, std::abs(f.closure()));
   const auto rows = sim::breakdown_truth(sim.plant().ledger());
   // Rows below 1 % of the fuel (acceleration, braking on these drives) are judged against 5 % of

@@ -63,6 +63,9 @@ struct CrrFilterConfig {
   // (analyzer_config() sets it).
   double torque_bias_sigma_nm = 0;
   double torque_bias_walk_nm_per_sqrt_s = 0.01;
+  // The torque scale's value, held for the whole drive (a considered state is never updated): 0,
+  // or a prior sigma off for the second run of a consider analysis (torque_scale_consider.hpp).
+  double torque_scale_held = 0;
   // Estimate CdA from the data (drives across speeds) or only consider its prior's uncertainty
   // (one steady speed, where speed ripples would pull it onto any speed-correlated model error).
   // The torque bias is always only considered: one gear cannot tell it from CRR.
