@@ -16,9 +16,13 @@ expect_status 64 "$roadload" route build "$work/x" --out "$work/r.toml" --cell-l
 expect_status 66 "$roadload" route build "$work/no-such-recording" --out "$work/r.toml"
 grep -q "no-such-recording" "$work/err" || fail "missing recording not named: $(cat "$work/err")"
 
-# Three passes over the Mainline at 30 mph; the route comes from them alone.
+# Three passes over the Mainline at 30 mph; the route comes from them alone. No accelerometers:
+# nothing here reads them, and they are most of a simulation's time (under the sanitizers too).
+config=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../config" && pwd)
+sed "s|^route = .*|route = \"$config/routes/mnroad-mainline-westbound.toml\"\naccelerometers = 0|" \
+  "$config/scenarios/mnroad-mainline-30mph.toml" >"$work/m30.toml"
 for seed in 1 2 3; do
-  "$roadload" simulate --scenario mnroad-mainline-30mph --seed $seed --out "$work/rec$seed" \
+  "$roadload" simulate --scenario "$work/m30.toml" --seed $seed --out "$work/rec$seed" \
     $([[ $seed == 1 ]] && echo --truth "$work/truth1") -q || fail "simulate failed"
 done
 expect_status 0 "$roadload" route build "$work/rec1" "$work/rec2" "$work/rec3" --out "$work/own.toml"
