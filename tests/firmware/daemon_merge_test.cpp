@@ -91,14 +91,7 @@ TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
           std::chrono::milliseconds(120)),
       SourceKind::accelerometer, "accel0");
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  // The merge waits for a silent source at most max_merge_wait (1 s of the drive, 200 ms of wall
-  // time here), and then lets its late items go out of order. The stall is 120 ms: under the
-  // sanitizers with other tests beside it, the thread's first read came later than the other
-  // 80 ms allow once in a CI run. A wait of 3 s (within the rings' capacity at the drive's rates)
-  // checks the same waiting with a margin the scheduler does not eat.
-  DaemonSetup setup = daemon_setup(drive, dir);
-  setup.max_merge_wait = std::chrono::seconds(3);
-  Daemon daemon(std::move(setup), std::move(sources), clock);
+  Daemon daemon(daemon_setup(drive, dir), std::move(sources), clock);
   daemon.start();
   wait_for(daemon);
   daemon.stop();
