@@ -27,10 +27,7 @@ CellResult cell_result(const CellSpan& span, const CellTally& tally, std::option
   r.speed_mps = tally.speed_sum_mps / static_cast<double>(tally.samples);
   r.weight_n = limits.weight_n;
   r.roll_force_n = r.crr * limits.weight_n;
-  std::vector<std::string> failures = estimate_failures(r.crr, r.crr_sigma, limits.identified_sigma, limits.identification);
-  failures.insert(failures.end(), limits.drive_failures.begin(), limits.drive_failures.end());
-  r.identified = failures.empty();
-  if (!r.identified) r.reason = "CRR not identified: " + join_reasons(failures);
+  judge_cell(r, limits.identified_sigma, limits.identification, limits.drive_failures);
   return r;
 }
 

@@ -301,13 +301,7 @@ void DriveAnalyzer::finish() {
   trip_.torque_bias_nm = filter_.torque_bias_nm();
   trip_.torque_bias_sigma_nm = std::sqrt(filter_.core().p()(CrrState::torque_bias, CrrState::torque_bias));
   trip_ = trip_so_far();
-  std::vector<std::string> failures;
-  if (usable_steps_.empty()) failures.emplace_back("no usable force balance");
-  for (auto& f : estimate_failures(trip_.crr, trip_.crr_sigma, config_.filter.identified_crr_sigma, config_.identification)) {
-    failures.push_back(std::move(f));
-  }
-  for (auto& f : drive_failures(trip_, config_.identification)) failures.push_back(std::move(f));
-  trip_.not_identified = std::move(failures);
+  trip_.not_identified = trip_failures(trip_, !usable_steps_.empty(), config_.filter.identified_crr_sigma, config_.identification);
   trip_.identified = trip_.not_identified.empty();
 }
 

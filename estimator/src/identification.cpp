@@ -74,6 +74,21 @@ std::vector<std::string> estimate_failures(double crr, double sigma, double max_
   return out;
 }
 
+void judge_cell(CellResult& cell, double max_sigma, const IdentificationLimits& limits, const std::vector<std::string>& drive) {
+  std::vector<std::string> failures = estimate_failures(cell.crr, cell.crr_sigma, max_sigma, limits);
+  failures.insert(failures.end(), drive.begin(), drive.end());
+  cell.identified = failures.empty();
+  cell.reason = cell.identified ? std::string() : "CRR not identified: " + join_reasons(failures);
+}
+
+std::vector<std::string> trip_failures(const TripResult& trip, bool usable, double max_sigma, const IdentificationLimits& limits) {
+  std::vector<std::string> failures;
+  if (!usable) failures.emplace_back("no usable force balance");
+  for (auto& f : estimate_failures(trip.crr, trip.crr_sigma, max_sigma, limits)) failures.push_back(std::move(f));
+  for (auto& f : drive_failures(trip, limits)) failures.push_back(std::move(f));
+  return failures;
+}
+
 std::string join_reasons(const std::vector<std::string>& reasons) {
   std::string s;
   for (const std::string& r : reasons) s += (s.empty() ? "" : "; ") + r;

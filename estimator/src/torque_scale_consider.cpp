@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <string>
-#include <utility>
 
 #include "roadload/identification.hpp"
 
@@ -14,10 +13,7 @@ void widen_cell(CellResult& c, const CellResult& shifted, const AnalyzerConfig& 
   c.crr_sigma = std::hypot(c.crr_sigma, shifted.crr - c.crr);
   c.crr_lo = c.crr - cfg.interval_z * c.crr_sigma;
   c.crr_hi = c.crr + cfg.interval_z * c.crr_sigma;
-  std::vector<std::string> failures = estimate_failures(c.crr, c.crr_sigma, cfg.filter.identified_crr_sigma, cfg.identification);
-  failures.insert(failures.end(), drive.begin(), drive.end());
-  c.identified = failures.empty();
-  c.reason = c.identified ? std::string() : "CRR not identified: " + join_reasons(failures);
+  judge_cell(c, cfg.filter.identified_crr_sigma, cfg.identification, drive);
 }
 
 }  // namespace
@@ -26,15 +22,9 @@ DriveAnalysis widen_by_shift(DriveAnalysis held, const DriveAnalysis& shifted, c
   TripResult& t = held.trip;
   t.crr_sigma = std::hypot(t.crr_sigma, shifted.trip.crr - t.crr);
   t.mass_sigma_kg = std::hypot(t.mass_sigma_kg, shifted.trip.mass_kg - t.mass_kg);
-  const std::vector<std::string> drive = drive_failures(t, cfg.identification);
-  std::vector<std::string> failures;
-  if (t.usable_ticks == 0) failures.emplace_back("no usable force balance");
-  for (auto& f : estimate_failures(t.crr, t.crr_sigma, cfg.filter.identified_crr_sigma, cfg.identification)) {
-    failures.push_back(std::move(f));
-  }
-  failures.insert(failures.end(), drive.begin(), drive.end());
-  t.not_identified = std::move(failures);
+  t.not_identified = trip_failures(t, t.usable_ticks > 0, cfg.filter.identified_crr_sigma, cfg.identification);
   t.identified = t.not_identified.empty();
+  const std::vector<std::string> drive = drive_failures(t, cfg.identification);
   for (std::size_t i = 0; i < held.cells.size() && i < shifted.cells.size(); ++i) {
     widen_cell(held.cells[i], shifted.cells[i], cfg, drive);
   }

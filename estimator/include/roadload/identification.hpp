@@ -45,6 +45,13 @@ std::vector<std::string> drive_failures(const TripResult& trip, const Identifica
 // A CRR estimate's own: its sigma against `max_sigma` and the physical range.
 std::vector<std::string> estimate_failures(double crr, double sigma, double max_sigma, const IdentificationLimits& limits);
 
+// A cell's verdict from its own checks and the drive's (`drive`, drive_failures()): sets
+// `identified` and, when not, `reason`.
+void judge_cell(CellResult& cell, double max_sigma, const IdentificationLimits& limits, const std::vector<std::string>& drive);
+
+// The trip's failures: a force balance with usable ticks, its estimate's checks and the drive's.
+std::vector<std::string> trip_failures(const TripResult& trip, bool usable, double max_sigma, const IdentificationLimits& limits);
+
 // A reason from outside the drive's own checks (the truck assumed, the drive not placed): the trip
 // and every cell are withheld from "identified" with it.
 void withhold(TripResult& trip, std::vector<CellResult>& cells, const std::string& why);
