@@ -91,14 +91,21 @@ bool Daemon::replays_finished() {
   return replays > 0 && ended == replays;
 }
 
+// Delivered through here by every source heard from within `wait`: one that has not come back
+// from a read for longer is hung or starved and stops holding the others back (its late items then
+// go out of order). Silence counts from the daemon's start, not from the age of the stamps: a
+// source's first read may bring items stamped long before it, which the others must wait for.
+template <typename Channel>
+void lower_to_delivered(const Channel& c, CaptureTime now, Nanoseconds wait, CaptureTime& through) {
+  if (now - c.heard_at() <= wait) through = std::min(through, c.delivered_through());
+}
+
 // Items up to here can be merged: every source has delivered what it stamped before it, less the
-// merge delay for stamps that reach their thread late (a FIFO read, a kernel queue), and at most
-// the longest merge wait behind now.
+// merge delay for stamps that reach their thread late (a FIFO read, a kernel queue).
 CaptureTime Daemon::merge_horizon(CaptureTime now) {
   CaptureTime through = CaptureTime::max();
-  sources_.for_each([&](const auto& c) { through = std::min(through, c.delivered_through()); });
-  if (through == CaptureTime::max()) return through;
-  return std::max(now - setup_.max_merge_wait, through - setup_.merge_delay);
+  sources_.for_each([&](const auto& c) { lower_to_delivered(c, now, setup_.max_merge_wait, through); });
+  return through == CaptureTime::max() ? through : through - setup_.merge_delay;
 }
 
 // One file per stream holds several sources (buses, accelerometers), and a recording's streams
@@ -166,9 +173,8 @@ void Daemon::write_loop() {
 // starved CAN thread falls behind, would put the truck ahead of where it is.
 CaptureTime Daemon::can_horizon(CaptureTime now) {
   CaptureTime through = CaptureTime::max();
-  for (const auto& c : sources_.can) through = std::min(through, c->delivered_through());
-  if (through == CaptureTime::max()) return through;
-  return std::max(now - kMaxPlaceWait, through);
+  for (const auto& c : sources_.can) lower_to_delivered(*c, now, kMaxPlaceWait, through);
+  return through;
 }
 
 // The oldest item across every estimator ring, if it is at or before `horizon` (GNSS and weather:

@@ -68,11 +68,12 @@ TEST(DaemonMerge, AStarvedCanThreadChangesNothingTheFilterComputes) {
   EXPECT_EQ(starved.crr_hi, steady.crr_hi);
 }
 
-// The drive has run 1.5 s when the daemon starts, and one accelerometer's thread then waits
-// 120 ms (0.6 s of the drive) before its first read: what it has not delivered yet is older than
-// everything the other sensors hand over meanwhile.
+// The drive has run 6 s when the daemon starts, longer than the merge's wait, and one
+// accelerometer's thread then waits 120 ms (0.6 s of the drive) before its first read: what it has
+// not delivered yet is older than everything the other sensors hand over meanwhile, and older than
+// the wait behind the daemon's clock.
 TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
-  const SimulatedDrive drive(8);
+  const SimulatedDrive drive(12);
   const std::string dir = temp_dir("roadloadd-merge-late-start");
   std::atomic<bool> gate{true};
   const Pace pace = start_pace(drive);
@@ -90,7 +91,7 @@ TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
           std::make_unique<MemorySource<AccelSample>>(std::move(first_sensor), gate, drive.sink.accels.size(), "accel", pace), 0,
           std::chrono::milliseconds(120)),
       SourceKind::accelerometer, "accel0");
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1200));
   Daemon daemon(daemon_setup(drive, dir), std::move(sources), clock);
   daemon.start();
   wait_for(daemon);
@@ -108,6 +109,48 @@ TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
     ASSERT_LE(last, a->t) << "accel.csv row " << rows << ", sensor " << int{a->sensor};
     last = a->t;
     ++rows;
+  }
+  EXPECT_EQ(rows, drive.sink.accels.size());
+  std::filesystem::remove_all(dir);
+}
+
+// An accelerometer thread that hangs before its first read for three of the merge's waits: the
+// others stop waiting for it after one, so the live filter runs meanwhile, and every row it holds
+// is still recorded when it comes back.
+TEST(DaemonMerge, AHungSourceHoldsTheOthersBackOnlyForTheWait) {
+  const SimulatedDrive drive(16);
+  const std::string dir = temp_dir("roadloadd-merge-hung");
+  std::atomic<bool> gate{true};
+  const Pace pace = start_pace(drive);
+  PaceClock clock(pace);
+  DaemonSources sources = memory_sources(drive, pace, gate, 1.0);
+  std::uint8_t first = 255;
+  for (const AccelSample& a : drive.sink.accels) first = std::min(first, a.sensor);
+  std::vector<AccelSample> first_sensor;
+  for (const AccelSample& a : drive.sink.accels) {
+    if (a.sensor == first) first_sensor.push_back(a);
+  }
+  // The wait is one wall second at the test's pace (daemon_setup()).
+  sources.accel.front() = std::make_unique<AccelChannel>(
+      std::make_unique<StallingSource<AccelSample>>(
+          std::make_unique<MemorySource<AccelSample>>(std::move(first_sensor), gate, drive.sink.accels.size(), "accel", pace), 0,
+          std::chrono::milliseconds(3000)),
+      SourceKind::accelerometer, "accel0");
+  Daemon daemon(daemon_setup(drive, dir), std::move(sources), clock);
+  daemon.start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(2200));
+  const LiveEstimate during = daemon.report().estimate;
+  wait_for(daemon);
+  daemon.stop();
+  // 2.2 s of wall time is 11 s of the drive, 6 s past the wait: 80 m at 30 mph.
+  EXPECT_TRUE(during.started);
+  EXPECT_GT(during.s_front_m, 40.0);
+
+  std::size_t rows = 0;
+  for (const auto& segment : std::filesystem::directory_iterator(dir)) {
+    auto reader = recording::RecordingReader::open(segment.path().string(), recording::kAccelStream);
+    ASSERT_TRUE(reader.ok()) << reader.error().to_string();
+    while (const recording::Record* rec = reader.value().next()) rows += std::holds_alternative<AccelSample>(*rec) ? 1 : 0;
   }
   EXPECT_EQ(rows, drive.sink.accels.size());
   std::filesystem::remove_all(dir);

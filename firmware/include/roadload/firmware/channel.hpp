@@ -37,6 +37,7 @@ class Channel {
     // Nothing is delivered before the first read: a replay's items stamped before start() are
     // still to come, and a live device's socket may hold frames stamped before it.
     delivered_through_ns_.store(to_ns(CaptureTime{}), std::memory_order_relaxed);
+    heard_ns_.store(to_ns(clock.now()), std::memory_order_relaxed);
     thread_ = std::thread([this, &stop, &clock] { run(stop, clock); });
   }
   void join() {
@@ -70,6 +71,9 @@ class Channel {
   // device read late, holds this back, and the estimator waits for it rather than take its items
   // out of order. After the end of a replay, the end of time.
   CaptureTime delivered_through() const { return capture_time_from_ns(delivered_through_ns_.load(std::memory_order_acquire)); }
+  // When its last read returned (start() counts as one): a thread that has not come back from a
+  // read for long is hung or starved, however old or new the stamps it delivered.
+  CaptureTime heard_at() const { return capture_time_from_ns(heard_ns_.load(std::memory_order_acquire)); }
 
  private:
   static constexpr std::size_t kBatch = 256;
@@ -87,6 +91,7 @@ class Channel {
       CaptureTime through = n > 0 ? batch[n - 1].t : asked;
       if (n < kBatch && asked > through) through = asked;
       delivered_through_ns_.store(to_ns(through), std::memory_order_release);
+      heard_ns_.store(to_ns(clock.now()), std::memory_order_release);
       if (source_->status().state == io::SourceState::ended) break;
     }
     // On the way out, what the device already holds (frames queued in the socket) is still taken.
@@ -141,6 +146,7 @@ class Channel {
   std::uint64_t bits_seen_ = 0;  // the source thread's own count
   std::atomic<bool> finished_{false};
   std::atomic<std::int64_t> delivered_through_ns_{0};
+  std::atomic<std::int64_t> heard_ns_{0};
   bool feed_estimator_ = true;
   bool replay_ = false;
   std::thread thread_;
