@@ -30,6 +30,19 @@ std::size_t drain(Ring& ring, std::size_t max, Fn&& fn) {
 
 std::int64_t utc_now_ns() { return io::read_clock(CLOCK_REALTIME).count(); }
 
+// A source that lags while it reads (a starved thread catching up, a replay slower than asked)
+// holds the others back only while their rings have room: once one is half full the horizon is
+// lifted, and the lagging source's items go out of order rather than a device's being dropped.
+template <typename RingOf>
+bool any_half_full(DaemonSources& sources, RingOf ring_of) {
+  bool full = false;
+  sources.for_each([&](auto& c) {
+    const auto& ring = ring_of(c);
+    full = full || ring.size() >= ring.capacity() / 2;
+  });
+  return full;
+}
+
 }  // namespace
 
 std::uint32_t can_frame_bits(const CanFrame& f) {
@@ -150,7 +163,9 @@ bool Daemon::write_pending(std::size_t max_items, CaptureTime horizon) {
 void Daemon::write_loop() {
   for (;;) {
     const bool stopping = stop_workers_.load();
-    const bool wrote = write_pending(kWriteBatch, stopping ? CaptureTime::max() : merge_horizon(clock_.now()));
+    const bool lifted = stopping || any_half_full(
+                                        sources_, [](auto& c) -> auto& { return c.to_writer(); });
+    const bool wrote = write_pending(kWriteBatch, lifted ? CaptureTime::max() : merge_horizon(clock_.now()));
     if (recorder_) {
       if (rotate_.exchange(false)) recorder_->end_segment();
       recorder_->tick(clock_.now());
@@ -207,8 +222,10 @@ void Daemon::estimate_loop() {
   for (;;) {
     const bool stopping = stop_workers_.load();
     const CaptureTime now = clock_.now();
-    const CaptureTime horizon = stopping ? CaptureTime::max() : merge_horizon(now);
-    const CaptureTime place_horizon = stopping ? CaptureTime::max() : can_horizon(now);
+    const bool lifted = stopping || any_half_full(
+                                        sources_, [](auto& c) -> auto& { return c.to_estimator(); });
+    const CaptureTime horizon = lifted ? CaptureTime::max() : merge_horizon(now);
+    const CaptureTime place_horizon = lifted ? CaptureTime::max() : can_horizon(now);
     std::size_t n = 0;
     while (n < kWriteBatch && estimate_next(horizon, place_horizon)) ++n;
     // The dynamic power over the last few seconds: spectra need several segments to mean much.

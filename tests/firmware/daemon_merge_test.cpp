@@ -68,31 +68,40 @@ TEST(DaemonMerge, AStarvedCanThreadChangesNothingTheFilterComputes) {
   EXPECT_EQ(starved.crr_hi, steady.crr_hi);
 }
 
-// The drive has run 6 s when the daemon starts, longer than the merge's wait, and one
-// accelerometer's thread then waits 120 ms (0.6 s of the drive) before its first read: what it has
+// The lowest-numbered sensor's samples (memory_sources() gives it the first channel) from a
+// thread that blocks for `stall` of wall time before its first read.
+std::unique_ptr<AccelChannel> late_first_sensor(const SimulatedDrive& drive, const Pace& pace, const std::atomic<bool>& gate,
+                                                std::chrono::milliseconds stall) {
+  std::uint8_t first = 255;
+  for (const AccelSample& a : drive.sink.accels) first = std::min(first, a.sensor);
+  std::vector<AccelSample> samples;
+  for (const AccelSample& a : drive.sink.accels) {
+    if (a.sensor == first) samples.push_back(a);
+  }
+  return std::make_unique<AccelChannel>(
+      std::make_unique<StallingSource<AccelSample>>(
+          std::make_unique<MemorySource<AccelSample>>(std::move(samples), gate, drive.sink.accels.size(), "accel", pace), 0, stall),
+      SourceKind::accelerometer, "accel0");
+}
+
+// The drive has run 2.5 s when the daemon starts, longer than the merge's wait of 1.5 s, and one
+// accelerometer's thread then waits 60 ms (0.3 s of the drive) before its first read: what it has
 // not delivered yet is older than everything the other sensors hand over meanwhile, and older than
 // the wait behind the daemon's clock.
 TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
   const SimulatedDrive drive(12);
   const std::string dir = temp_dir("roadloadd-merge-late-start");
   std::atomic<bool> gate{true};
-  const Pace pace = start_pace(drive);
+  // The drive's clock starts once the daemon is built, however long that takes under the sanitizers.
+  Pace pace = start_pace(drive);
+  pace.start += std::chrono::seconds(2);
   PaceClock clock(pace);
   DaemonSources sources = memory_sources(drive, pace, gate, 1.0);
-  // memory_sources() gives the lowest sensor number the first channel.
-  std::uint8_t first = 255;
-  for (const AccelSample& a : drive.sink.accels) first = std::min(first, a.sensor);
-  std::vector<AccelSample> first_sensor;
-  for (const AccelSample& a : drive.sink.accels) {
-    if (a.sensor == first) first_sensor.push_back(a);
-  }
-  sources.accel.front() = std::make_unique<AccelChannel>(
-      std::make_unique<StallingSource<AccelSample>>(
-          std::make_unique<MemorySource<AccelSample>>(std::move(first_sensor), gate, drive.sink.accels.size(), "accel", pace), 0,
-          std::chrono::milliseconds(120)),
-      SourceKind::accelerometer, "accel0");
-  std::this_thread::sleep_for(std::chrono::milliseconds(1200));
-  Daemon daemon(daemon_setup(drive, dir), std::move(sources), clock);
+  sources.accel.front() = late_first_sensor(drive, pace, gate, std::chrono::milliseconds(60));
+  DaemonSetup setup = daemon_setup(drive, dir);
+  setup.max_merge_wait = std::chrono::duration_cast<Nanoseconds>(std::chrono::duration<double>(1.5));
+  Daemon daemon(std::move(setup), std::move(sources), clock);
+  std::this_thread::sleep_until(pace.start + std::chrono::milliseconds(500));
   daemon.start();
   wait_for(daemon);
   daemon.stop();
@@ -115,8 +124,8 @@ TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
 }
 
 // An accelerometer thread that hangs before its first read for three of the merge's waits: the
-// others stop waiting for it after one, so the live filter runs meanwhile, and every row it holds
-// is still recorded when it comes back.
+// others stop waiting for it after one (or once one of their rings is half full), so the live
+// filter runs meanwhile, and every row it holds is still recorded when it comes back.
 TEST(DaemonMerge, AHungSourceHoldsTheOthersBackOnlyForTheWait) {
   const SimulatedDrive drive(16);
   const std::string dir = temp_dir("roadloadd-merge-hung");
@@ -124,18 +133,8 @@ TEST(DaemonMerge, AHungSourceHoldsTheOthersBackOnlyForTheWait) {
   const Pace pace = start_pace(drive);
   PaceClock clock(pace);
   DaemonSources sources = memory_sources(drive, pace, gate, 1.0);
-  std::uint8_t first = 255;
-  for (const AccelSample& a : drive.sink.accels) first = std::min(first, a.sensor);
-  std::vector<AccelSample> first_sensor;
-  for (const AccelSample& a : drive.sink.accels) {
-    if (a.sensor == first) first_sensor.push_back(a);
-  }
   // The wait is one wall second at the test's pace (daemon_setup()).
-  sources.accel.front() = std::make_unique<AccelChannel>(
-      std::make_unique<StallingSource<AccelSample>>(
-          std::make_unique<MemorySource<AccelSample>>(std::move(first_sensor), gate, drive.sink.accels.size(), "accel", pace), 0,
-          std::chrono::milliseconds(3000)),
-      SourceKind::accelerometer, "accel0");
+  sources.accel.front() = late_first_sensor(drive, pace, gate, std::chrono::milliseconds(3000));
   Daemon daemon(daemon_setup(drive, dir), std::move(sources), clock);
   daemon.start();
   std::this_thread::sleep_for(std::chrono::milliseconds(2200));

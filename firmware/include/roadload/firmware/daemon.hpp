@@ -74,9 +74,9 @@ struct DaemonSetup {
   // once every source has delivered what it stamped up to this long after them, so streams with
   // different latencies, and threads the scheduler delays, merge in order.
   Nanoseconds merge_delay{200'000'000};
-  // A source that stops delivering (a hung driver, a starved thread) holds the others back for at
-  // most this long, within a ring's capacity (two seconds of a 4 kHz accelerometer); then its late
-  // items go out of order.
+  // A source that stops delivering (a hung driver, a starved thread) holds the others back until
+  // its thread has not come back from a read for this long, or until another's ring is half full
+  // (a second of a 4 kHz accelerometer); then its late items go out of order.
   Nanoseconds max_merge_wait{1'000'000'000};
   // A replay faster than real time: the estimator sees every stamp mapped back onto the
   // recording's timeline, so the force balance keeps its real time steps. The recorder keeps the
