@@ -54,6 +54,8 @@ constexpr const char* kHelp =
     "                  type's value and spread); a measured value, for example `roadload calibrate --aero`\n"
     "  --cda-torque-correlation R  between that CdA's error and the flywheel torque's (-1..1; what\n"
     "                  `roadload calibrate --aero` prints: its CdA took up the engine-loss table's error)\n"
+    "  --cda-per-torque-scale M2  how that CdA moves with the ECU's torque scale (what `roadload calibrate\n"
+    "                  --aero` prints): the scale's second run moves CdA with it\n"
     "  --grade FILE    grade and its sigma from FILE (`roadload grade`) instead of the route's survey\n"
     "  --engine-losses FILE  the engine's friction + accessories by engine speed (`roadload calibrate`)\n"
     "                  instead of EEC3's whole percent; engine speeds outside it are not used\n"
@@ -70,7 +72,7 @@ constexpr const char* kHelp =
 struct AnalyzeOptions {
   std::string recording, route, out, truth_dir, grade_file, losses_file, vehicle;
   double survey_sigma = 0;
-  std::optional<double> mass, cda_m2, cda_sigma_m2, cda_torque_correlation;
+  std::optional<double> mass, cda_m2, cda_sigma_m2, cda_torque_correlation, cda_per_torque_scale_m2;
   std::vector<std::string> dbcs;
   bool quiet = false, estimate_cda = false;
 };
@@ -91,6 +93,8 @@ std::variant<AnalyzeOptions, int> parse(Args args) {
       o.cda_sigma_m2 = *cs;
     } else if (auto cr = opt.real("--cda-torque-correlation", -1, 1)) {
       o.cda_torque_correlation = *cr;
+    } else if (auto ps = opt.real("--cda-per-torque-scale", -100, 100)) {
+      o.cda_per_torque_scale_m2 = *ps;
     } else if (auto g = opt.value("--grade")) {
       o.grade_file = *g;
     } else if (auto l = opt.value("--engine-losses")) {
@@ -137,6 +141,7 @@ std::variant<AnalyzerConfig, int> configure(const AnalyzeOptions& o, const Vehic
   if (o.cda_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_m2;
   if (o.cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *o.cda_sigma_m2;
   if (o.cda_torque_correlation) cfg.filter.truck.cda_torque_bias_correlation = *o.cda_torque_correlation;
+  if (o.cda_per_torque_scale_m2) cfg.filter.truck.cda_per_torque_scale_m2 = *o.cda_per_torque_scale_m2;
   cfg.survey_elevation_sigma_m = o.survey_sigma;
   cfg.roughness_iri_m_per_km = default_iri_m_per_km;
   if (!o.losses_file.empty()) {
@@ -191,10 +196,9 @@ struct Road {
   RouteGeometry geometry;
   std::vector<CellDef> cells;  // a route file's, with their pavements; none for a traced road
   std::vector<CellSpan> spans;
-  std::optional<GradeProfile> grade;  // a traced road's, from the same fixes
+  std::optional<GradeProfile> grade;  // a traced road's, from the same fixes, or the route's own
   double default_iri_m_per_km = AnalyzerConfig{}.roughness_iri_m_per_km;
-  std::string grade_file;  // the route's own grade profile, which --grade overrides
-  std::string unplaced;    // why the drive has no road, when it has none
+  std::string unplaced;  // why the drive has no road, when it has none
 };
 
 // Without a route the drive's own GNSS traces one, its grade from that one pass (so wide, honest
@@ -243,7 +247,7 @@ std::optional<std::variant<Road, int>> given_road(const AnalyzeOptions& o) {
   road.spans = cell_spans(route.file.cells);
   road.cells = std::move(route.file.cells);
   road.default_iri_m_per_km = route.file.default_iri_m_per_km;
-  road.grade_file = route.file.grade_file;
+  road.grade = std::move(route.grade);
   return road;
 }
 
@@ -281,8 +285,8 @@ int analyze(const AnalyzeOptions& o) {
   auto cfg = configure(o, vehicle, meta, road.default_iri_m_per_km);
   if (const int* rc = std::get_if<int>(&cfg)) return *rc;
   std::optional<GradeProfile> grade = std::move(road.grade);
-  if (!o.grade_file.empty() || !road.grade_file.empty()) {
-    auto file = load_grade_file(o.grade_file.empty() ? road.grade_file : o.grade_file, road.geometry.length_m());
+  if (!o.grade_file.empty()) {
+    auto file = load_grade_file(o.grade_file, road.geometry.length_m());
     if (auto rc = failed_input(file)) return *rc;
     grade = std::move(file.value());
   }

@@ -26,6 +26,7 @@ Parsed<std::vector<CellResult>> analyse(const std::string& path, const j1939::Da
   auto reader = recording::RecordingReader::open(path);
   if (!reader) return reader.error();
   DriveAnalyzer analyzer(db, route.geometry, cells, cfg);
+  if (route.grade) analyzer.set_grade(*route.grade);
   std::optional<VibrationAnalysis> vibration;
   const recording::LayoutResult layout = recording::axle_layout(reader.value().metadata(), vehicle, path + "/meta.toml");
   if (layout.layout) {
@@ -115,9 +116,10 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
     recording::LineBuilder line;
     line.num(fit.cda_m2, 4).sep().num(fit.sigma_m2, 4).sep().num(fit.statistical_m2, 4).sep().num(fit.torque_m2, 4).sep();
     line.num(static_cast<std::int64_t>(fit.cells)).sep().num(fit.chi2_per_dof, 3).sep().num(fit.residual_correlation, 3).sep();
-    line.num(fit.torque_bias_correlation, 3);
+    line.num(fit.torque_bias_correlation, 3).sep().num(fit.cda_per_torque_scale_m2, 3);
     out.value().write(
-        "cda_m2,cda_sigma_m2,statistical_m2,torque_m2,cells,chi2_per_dof,residual_correlation,cda_torque_correlation\n");
+        "cda_m2,cda_sigma_m2,statistical_m2,torque_m2,cells,chi2_per_dof,residual_correlation,cda_torque_correlation,"
+        "cda_per_torque_scale_m2\n");
     out.value().write(line.finish());
     if (auto err = out.value().close()) {
       std::fprintf(stderr, "roadload calibrate: %s\n", err->to_string().c_str());
@@ -128,8 +130,10 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
       "CdA %.3f +- %.3f m^2 (cells' scatter %.3f, flywheel torque %.3f) from %zu cells, chi2/dof %.2f, neighbours' "
       "correlation %.2f; prior %.2f\n",
       fit.cda_m2, fit.sigma_m2, fit.statistical_m2, fit.torque_m2, fit.cells, fit.chi2_per_dof, fit.residual_correlation, prior_m2);
-  std::printf("roadload analyze ... --engine-losses %s --cda %.4f --cda-sigma %.4f --cda-torque-correlation %.3f\n",
-              o.engine_losses.c_str(), fit.cda_m2, fit.sigma_m2, fit.torque_bias_correlation);
+  std::printf(
+      "roadload analyze ... --engine-losses %s --cda %.4f --cda-sigma %.4f --cda-torque-correlation %.3f "
+      "--cda-per-torque-scale %.3f\n",
+      o.engine_losses.c_str(), fit.cda_m2, fit.sigma_m2, fit.torque_bias_correlation, fit.cda_per_torque_scale_m2);
   return kExitOk;
 }
 

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "roadload/definitions.hpp"
+#include "roadload/grade_file.hpp"
 #include "roadload/recording/metadata_vehicle.hpp"
 #include "roadload/vehicle_file.hpp"
 
@@ -114,7 +115,16 @@ std::variant<LoadedRoute, int> load_route(std::string_view command, const std::s
                  route.value().source_file.c_str());
     return kExitDataErr;
   }
-  return LoadedRoute{std::move(route.value()), std::move(*geometry)};
+  LoadedRoute loaded{std::move(route.value()), std::move(*geometry), std::nullopt};
+  if (!loaded.file.grade_file.empty()) {
+    auto grade = load_grade_file(loaded.file.grade_file, loaded.geometry.length_m());
+    if (!grade) {
+      std::fprintf(stderr, "roadload %.*s: %s\n", n, command.data(), grade.error().to_string().c_str());
+      return grade.error().line > 0 ? kExitDataErr : kExitNoInput;
+    }
+    loaded.grade = std::move(grade.value());
+  }
+  return loaded;
 }
 
 std::variant<Vehicle, int> load_vehicle(std::string_view command, const std::string& name_or_path) {

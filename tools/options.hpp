@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "roadload/grade_profile.hpp"
 #include "roadload/j1939/database.hpp"
 #include "roadload/recording/metadata.hpp"
 #include "roadload/route_file.hpp"
@@ -59,9 +60,12 @@ std::optional<int> load_definitions(std::string_view command, const std::vector<
 
 // A route file or built-in route name with its geometry; on failure the error is printed as above
 // and the exit code returned (66: no such route, 65: too few points).
+// A route and, when its file names one (`grade`), its own grade profile with the profile's sigma:
+// every command that runs the force balance on the route weighs its grade the same way.
 struct LoadedRoute {
   RouteFile file;
   RouteGeometry geometry;
+  std::optional<GradeProfile> grade;
 };
 std::variant<LoadedRoute, int> load_route(std::string_view command, const std::string& name);
 

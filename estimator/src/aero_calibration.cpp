@@ -12,9 +12,12 @@ AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::
   held.estimate_cda = false;
   held.filter.truck.cda_sigma_m2 = 1e-6;
   held.filter.truck.engine_losses = base.filter.truck.engine_losses.shifted(0.0, 1e-6);
-  // The mass held at its prior too: estimated, it would move with each trial CdA and take up part
-  // of the drag the two speeds are compared for.
-  held.filter.estimate_mass = false;
+  // As `roadload analyze` runs first: the torque scale held exact (its sigma is carried by a second
+  // run there, torque_scale_consider.hpp) and the mass estimated, so the CdA found is the one at
+  // which analyze's own cells agree across speeds. The mass moves little with each trial CdA now
+  // that the route's grade comes with its sigma; held at a declared mass a few percent off, the
+  // grade's force was fitted as drag (CdA 16 % high on one new-road seed).
+  held.filter.truck.torque_scale_sigma = 0;
   AeroDrive d;
   d.held = analyze(held);
   AnalyzerConfig cda = held;
@@ -23,6 +26,11 @@ AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::
   AnalyzerConfig torque = held;
   torque.filter.truck.engine_losses = base.filter.truck.engine_losses.shifted(-1.0, 1e-6);
   d.torque = analyze(torque);
+  if (base.filter.truck.torque_scale_sigma > 0) {
+    AnalyzerConfig scale = held;
+    scale.filter.torque_scale_held = d.scale_step = base.filter.truck.torque_scale_sigma;
+    d.scale = analyze(scale);
+  }
   return d;
 }
 
@@ -35,7 +43,7 @@ AeroCalibration fit_cda(std::span<const AeroPair> pairs, double cda_prior_m2, do
   AeroCalibration out;
   // Per cell: the two drives' CRR differ by D (c - CdA) at the prior c, where D is the difference
   // of their sensitivities to CdA.
-  double swdd = 0, swdx = 0, swta = 0, swtb = 0;
+  double swdd = 0, swdx = 0, swta = 0, swtb = 0, swsd = 0;
   struct Cell {
     double x, d, w;
     bool first;  // of its pair: no neighbour before it along the road
@@ -45,6 +53,7 @@ AeroCalibration fit_cda(std::span<const AeroPair> pairs, double cda_prior_m2, do
     const AeroDrive& a = *pair.slow;
     const AeroDrive& b = *pair.fast;
     const std::size_t n = std::min({a.held.size(), b.held.size(), a.cda.size(), b.cda.size(), a.torque.size(), b.torque.size()});
+    const bool scaled = a.scale_step > 0 && b.scale_step > 0 && a.scale.size() >= n && b.scale.size() >= n;
     bool first = true;
     for (std::size_t i = 0; i < n; ++i) {
       if (a.held[i].samples == 0 || b.held[i].samples == 0 || a.cda[i].samples == 0 || b.cda[i].samples == 0) continue;
@@ -59,6 +68,10 @@ AeroCalibration fit_cda(std::span<const AeroPair> pairs, double cda_prior_m2, do
       swdx += w * d * x;
       swta += w * (a.torque[i].crr - a.held[i].crr) * d;
       swtb += w * (b.torque[i].crr - b.held[i].crr) * d;
+      if (scaled && a.scale[i].samples > 0 && b.scale[i].samples > 0) {
+        const double per_scale = (a.scale[i].crr - a.held[i].crr) / a.scale_step - (b.scale[i].crr - b.held[i].crr) / b.scale_step;
+        swsd += w * per_scale * d;
+      }
       cells.push_back({x, d, w, first});
       first = false;
     }
@@ -88,6 +101,9 @@ AeroCalibration fit_cda(std::span<const AeroPair> pairs, double cda_prior_m2, do
   // A flywheel torque bias b (true less computed, the same engine-loss map in both drives) lowers
   // each drive's CRR by its sensitivity times b, so the fit carries CdA + b (swta - swtb) / swdd.
   out.cda_per_torque_bias_m2_per_nm = (swta - swtb) / swdd;
+  // Assumed one unit of torque scale off, each cell's disagreement would move by its sensitivity
+  // to it, and the fitted CdA with it: the drag of a torque the ECU over- or understates.
+  out.cda_per_torque_scale_m2 = -swsd / swdd;
   out.torque_m2 = torque_sigma_nm * std::abs(out.cda_per_torque_bias_m2_per_nm);
   out.sigma_m2 = std::hypot(out.statistical_m2, out.torque_m2);
   // The filter's covariance is of the truth about the estimate: CdA less the fit is -k b.

@@ -224,6 +224,7 @@ AnalyzerConfig calibrated_config(const Calibration& cal) {
   c.filter.truck.cda_prior_m2 = cal.aero.cda_m2;
   c.filter.truck.cda_sigma_m2 = cal.aero.sigma_m2;
   c.filter.truck.cda_torque_bias_correlation = cal.aero.torque_bias_correlation;
+  c.filter.truck.cda_per_torque_scale_m2 = cal.aero.cda_per_torque_scale_m2;
   return c;
 }
 

@@ -196,7 +196,8 @@ def aero_options(path):
     """The CdA options `calibrate --aero --out` wrote."""
     row = next(csv.DictReader(open(path)))
     opts = ["--cda", row["cda_m2"], "--cda-sigma", row["cda_sigma_m2"]]
-    return opts + ["--cda-torque-correlation", row["cda_torque_correlation"]]
+    return opts + ["--cda-torque-correlation", row["cda_torque_correlation"],
+                   "--cda-per-torque-scale", row["cda_per_torque_scale_m2"]]
 
 
 if __name__ == "__main__":

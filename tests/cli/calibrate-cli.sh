@@ -43,17 +43,21 @@ expect_status 64 "$roadload" calibrate --aero "$work/m30" "$work/m64" "$work/m30
 expect_status 64 "$roadload" calibrate --aero "$work/m30" "$work/m64" --route $route --route $route --engine-losses "$work/losses.csv"
 expect_status 0 "$roadload" calibrate --aero "$work/m30" "$work/m64" --route $route --engine-losses "$work/losses.csv" \
   --out "$work/aero.csv"
-read -r cda sigma rho < <(awk -F, 'NR == 2 { print $1, $2, $8 }' "$work/aero.csv")
+read -r cda sigma rho per_scale < <(awk -F, 'NR == 2 { print $1, $2, $8, $9 }' "$work/aero.csv")
 # The simulated truck's CdA is 6.2 m^2; two speeds pin it to a few hundredths.
 awk -v c="$cda" -v s="$sigma" 'BEGIN { e = c - 6.2; if (e < 0) e = -e; exit !(s > 0.005 && s < 0.1 && e < 3 * s) }' ||
   fail "CdA $cda +- $sigma against the truck's 6.2"
 # At 30 mph the truck is in a lower gear than at 64: a flywheel torque bias weighs more there, and
 # the fit reads it as more drag, so the truth about the fit and the bias are anti-correlated.
 awk -v r="$rho" 'BEGIN { exit !(r < -0.1 && r >= -1) }' || fail "CdA's correlation with the torque bias: $rho"
+# The fit reads the drag of the torque the ECU reports: a torque scale s off moves it by about s
+# times the CdA itself, the rolling resistance's share being the same at both speeds.
+awk -v k="$per_scale" 'BEGIN { exit !(k > 3 && k < 9) }' || fail "CdA per unit of torque scale: $per_scale"
 
 "$roadload" simulate --scenario mnroad-mainline-30mph --seed 6 --out "$work/drive" --truth "$work/truth" -q || fail "simulate failed"
 expect_status 0 "$roadload" analyze "$work/drive" --route $route --out "$work/res" --truth "$work/truth" \
-  --engine-losses "$work/losses.csv" --cda "$cda" --cda-sigma "$sigma" --cda-torque-correlation "$rho" -q
+  --engine-losses "$work/losses.csv" --cda "$cda" --cda-sigma "$sigma" --cda-torque-correlation "$rho" \
+  --cda-per-torque-scale "$per_scale" -q
 rmse=$(sed -n 's/^analyze: CRR against the truth: RMSE \([0-9.]*\) over.*/\1/p' "$work/err")
 tire=$(sed -n "s/^analyze: tires' CRR .* against the truth: RMSE \([0-9.]*\) over.*/\1/p" "$work/err")
 # The tractive force's scale (the ECU's torque, the driveline's efficiency) stays uncalibrated and

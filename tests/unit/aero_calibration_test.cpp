@@ -23,7 +23,10 @@ struct DriveSpec {
   double correlation = 0;       // of neighbouring cells' errors
   double torque_per_nm = 2e-5;  // CRR per N m of flywheel torque (the gear's)
   double torque_bias_nm = 0;    // true less computed flywheel torque
+  double crr_per_scale = 0;     // CRR per unit of the ECU's torque scale; 0: no scale run
 };
+
+constexpr double kScaleStep = 0.04;
 
 AeroDrive drive(const DriveSpec& spec, std::mt19937& rng) {
   std::normal_distribution<double> gauss(0.0, 1.0);
@@ -44,6 +47,12 @@ AeroDrive drive(const DriveSpec& spec, std::mt19937& rng) {
     d.held.push_back(held);
     d.cda.push_back(cda);
     d.torque.push_back(torque);
+    if (spec.crr_per_scale != 0) {
+      CellResult scale = held;
+      scale.crr += spec.crr_per_scale * kScaleStep;
+      d.scale.push_back(scale);
+      d.scale_step = kScaleStep;
+    }
   }
   return d;
 }
@@ -146,6 +155,19 @@ TEST(AeroCalibration, ATorqueBiasMovesTheFittedCdaAsItsSensitivitySays) {
   const AeroCalibration same = fit_cda(drive(slow, rng), drive(fast, rng), kPrior, 1.0);
   EXPECT_NEAR(same.cda_m2, kTrueCda, 1e-4);
   EXPECT_NEAR(same.torque_m2, 0.0, 1e-9);
+}
+
+// A torque the ECU overstates by s is read as s more of the whole road load, drag and rolling
+// resistance alike: only the drag differs between the speeds, so the fit moves by s times CdA.
+TEST(AeroCalibration, TheFittedCdaFollowsTheTorqueScaleByItsDragShare) {
+  std::mt19937 rng(13);
+  DriveSpec slow{.drag_per_m2 = kSlow, .noise = 1e-9, .stated_sigma = 5e-5, .crr_per_scale = 0.005 + kSlow * kTrueCda};
+  DriveSpec fast{.drag_per_m2 = kFast, .noise = 1e-9, .stated_sigma = 5e-5, .crr_per_scale = 0.005 + kFast * kTrueCda};
+  const AeroCalibration fit = fit_cda(drive(slow, rng), drive(fast, rng), kPrior, 1.0);
+  EXPECT_NEAR(fit.cda_per_torque_scale_m2, kTrueCda, 1e-6);
+  // Without the scale's run nothing is claimed about it.
+  const AeroCalibration unscaled = fit_cda(drive(29, kSlow, 5e-5, rng), drive(29, kFast, 5e-5, rng), kPrior, 1.0);
+  EXPECT_EQ(unscaled.cda_per_torque_scale_m2, 0.0);
 }
 
 TEST(AeroCalibration, OneSpeedCannotTellDragFromRollingResistance) {

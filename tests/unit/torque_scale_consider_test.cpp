@@ -67,10 +67,13 @@ TEST(TorqueScaleConsider, ADriveThatFailsItsChecksStaysNotIdentified) {
 TEST(TorqueScaleConsider, TheSecondRunHoldsTheScaleOneSigmaOffAndTheFirstHoldsItExact) {
   AnalyzerConfig cfg;
   cfg.filter.truck.torque_scale_sigma = 0.04;
-  std::vector<double> sigmas, held;
+  cfg.filter.truck.cda_prior_m2 = 6.0;
+  cfg.filter.truck.cda_per_torque_scale_m2 = 5.0;  // a calibrated CdA moves with the scale
+  std::vector<double> sigmas, held, cda;
   analyse_with_torque_scale(cfg, [&](const AnalyzerConfig& c, TorqueScaleRun) {
     sigmas.push_back(c.filter.truck.torque_scale_sigma);
     held.push_back(c.filter.torque_scale_held);
+    cda.push_back(c.filter.truck.cda_prior_m2);
     return DriveAnalysis{{}, good_trip(0.0055, 30000)};
   });
   ASSERT_EQ(sigmas.size(), 2u);
@@ -78,6 +81,8 @@ TEST(TorqueScaleConsider, TheSecondRunHoldsTheScaleOneSigmaOffAndTheFirstHoldsIt
   EXPECT_EQ(sigmas[1], 0.0);
   EXPECT_EQ(held[0], 0.0);
   EXPECT_EQ(held[1], 0.04);
+  EXPECT_EQ(cda[0], 6.0);
+  EXPECT_DOUBLE_EQ(cda[1], 6.2);
 
   cfg.filter.truck.torque_scale_sigma = 0;
   int runs = 0;

@@ -18,13 +18,15 @@ struct AeroDrive {
   std::vector<CellResult> held;    // CdA and the flywheel torque held at the prior
   std::vector<CellResult> cda;     // CdA + kCdaStep_m2
   std::vector<CellResult> torque;  // flywheel torque + 1 N m
+  std::vector<CellResult> scale;   // the ECU's torque scale held `scale_step` off (none when 0)
+  double scale_step = 0;
 };
 
 inline constexpr double kCdaStep_m2 = 0.5;
 
 // Runs `analyze` (a whole drive through a DriveAnalyzer with the given configuration) the three
-// ways. `base` carries the engine-loss calibration, without which the two drives' flywheel torques
-// carry EEC3's rounding at two engine speeds, and that would be fitted as drag.
+// ways, and a fourth with the torque scale one sigma off when the truck's has a sigma. `base` carries the engine-loss calibration,
+// without which the two drives' flywheel torques carry EEC3's rounding at two engine speeds, and that would be fitted as drag.
 AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze);
 
 struct AeroCalibration {
@@ -34,6 +36,7 @@ struct AeroCalibration {
   double residual_correlation = 0;           // lag one along the road, 0-0.9 (negative taken as 0)
   double cda_per_torque_bias_m2_per_nm = 0;  // how the fitted CdA follows a flywheel torque bias
   double torque_bias_correlation = 0;        // of the fitted CdA's error with that bias's
+  double cda_per_torque_scale_m2 = 0;        // how the fitted CdA follows the ECU's torque scale
   std::size_t cells = 0;
 };
 

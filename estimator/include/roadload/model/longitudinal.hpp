@@ -26,6 +26,10 @@ struct TruckModel {
   // Between CdA's error and the flywheel torque bias's: a CdA calibrated from two speeds took up
   // the engine-loss calibration's error, which the same truck carries into every later drive.
   double cda_torque_bias_correlation = 0.0;
+  // How such a CdA moves with the ECU's torque scale: it was fitted to the drag of the torque the
+  // ECU reports, so a scale error is partly in it too. The torque scale's second run
+  // (torque_scale_consider.hpp) moves CdA with the scale by this much per unit of scale.
+  double cda_per_torque_scale_m2 = 0.0;
   // The ECU's indicated torque (EEC1 against SPN 544) and the driveline's efficiency are known to
   // a share each, one sigma of a scale error (the vehicle file's torque_scale_sigma, and its
   // efficiency_sigma over the efficiency); the mass to its sigma (a scale ticket, a declared cargo).
