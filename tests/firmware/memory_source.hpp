@@ -18,8 +18,11 @@ struct Pace {
   std::chrono::steady_clock::time_point start;
   CaptureTime drive_start{};
   double speedup = 20;
+  // When set, the drive's clock starts at what this points to instead: a test can build its
+  // daemon first and start the drive after, however long the build takes.
+  const std::chrono::steady_clock::time_point* start_at = nullptr;
   CaptureTime now() const {
-    const auto wall = std::chrono::steady_clock::now() - start;
+    const auto wall = std::chrono::steady_clock::now() - (start_at != nullptr ? *start_at : start);
     return drive_start + Nanoseconds{static_cast<std::int64_t>(static_cast<double>(wall.count()) * speedup)};
   }
 };
