@@ -25,8 +25,9 @@ struct AeroDrive {
 inline constexpr double kCdaStep_m2 = 0.5;
 
 // Runs `analyze` (a whole drive through a DriveAnalyzer with the given configuration) the three
-// ways, and a fourth with the torque scale one sigma off when the truck's has a sigma. `base` carries the engine-loss calibration,
-// without which the two drives' flywheel torques carry EEC3's rounding at two engine speeds, and that would be fitted as drag.
+// ways, and a fourth with the torque scale one sigma off when the truck's has a sigma. `base`
+// carries the engine-loss calibration, without which the two drives' flywheel torques carry
+// EEC3's rounding at two engine speeds, and that would be fitted as drag.
 AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze);
 
 struct AeroCalibration {
