@@ -155,6 +155,13 @@ std::vector<CellDef> fixed_cells(double length_m, double cell_length_m) {
   return cells;
 }
 
+// The cells' mean length: the grade's error is measured over what the cells average it over.
+double mean_cell_length_m(const std::vector<CellDef>& cells, double fallback_m) {
+  double sum_m = 0;
+  for (const CellDef& c : cells) sum_m += c.end_m - c.start_m;
+  return cells.empty() || !(sum_m > 0) ? fallback_m : sum_m / static_cast<double>(cells.size());
+}
+
 int build(const Options& o) {
   j1939::Database db;
   if (auto rc = load_definitions("route", {}, db)) return *rc;
@@ -184,8 +191,6 @@ int build(const Options& o) {
     std::fprintf(stderr, "roadload route: the longest pass traces no line\n");
     return kExitDataErr;
   }
-  const GradeProfile grade = GradeProfile::from_gnss(*geometry, gnss, o.grade);
-  set_heights(route.points, *geometry, grade);
   if (o.sections.empty()) {
     route.cells = fixed_cells(geometry->length_m(), o.cell_length_m);
   } else {
@@ -193,6 +198,10 @@ int build(const Options& o) {
     if (const int* rc = std::get_if<int>(&cells)) return *rc;
     route.cells = std::move(std::get<std::vector<CellDef>>(cells));
   }
+  GradeConfig grade_cfg = o.grade;
+  grade_cfg.correlation_block_m = mean_cell_length_m(route.cells, grade_cfg.correlation_block_m);
+  const GradeProfile grade = GradeProfile::from_gnss(*geometry, gnss, grade_cfg);
+  set_heights(route.points, *geometry, grade);
   const std::filesystem::path out(o.out);
   const std::filesystem::path grade_path = out.parent_path() / (out.stem().string() + ".grade.csv");
   route.grade_file = grade_path.filename().string();

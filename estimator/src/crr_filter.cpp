@@ -47,7 +47,9 @@ void CrrFilter::start(CaptureTime t, double speed_mps, std::optional<double> tor
   core_.reset(x, p);
   core_.set_consider(CrrState::cda, !config_.estimate_cda);
   core_.set_consider(CrrState::torque_bias, true);
-  core_.set_consider(CrrState::grade_error, true);
+  // The grade error is estimated: it lasts tens of metres, so the speed it has just bent tells
+  // what it does next. Only considered, it widened the intervals but left its share in the CRR
+  // (docs/journal.md, 2026-11-26).
   core_.set_consider(CrrState::torque_scale, true);
   core_.set_consider(CrrState::efficiency_scale, true);
   core_.set_consider(CrrState::mass_scale, !config_.estimate_mass);

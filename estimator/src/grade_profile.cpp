@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "roadload/grade_error_scale.hpp"
 #include "roadload/running_stats.hpp"
 
 namespace roadload {
@@ -177,8 +178,9 @@ void fill_elevation(GradeBin& bin, const std::vector<std::vector<double>>& heigh
 }
 
 // Bin k's grade from the passes' slopes; returns their scatter for the pooled standard error.
+// Each pass's slope goes to slopes_by_pass[pass][k] (left NaN where the pass has none).
 Scatter fill_grade(std::vector<GradeBin>& bins, const std::vector<std::vector<double>>& heights_m, std::size_t k,
-                   const GradeConfig& cfg) {
+                   const GradeConfig& cfg, std::vector<std::vector<double>>& slopes_by_pass) {
   GradeBin& bin = bins[k];
   bin.grade_rad = kNaN;
   bin.grade_sigma_rad = kNaN;
@@ -186,8 +188,11 @@ Scatter fill_grade(std::vector<GradeBin>& bins, const std::vector<std::vector<do
   if (w.size() < kMinWindowBins) return {};
   const std::vector<double> weights = slope_weights_per_m(bins, w);
   std::vector<double> slopes;
-  for (const auto& pass : heights_m) {
-    if (auto b = pass_slope(pass, w, weights)) slopes.push_back(*b);
+  for (std::size_t p = 0; p < heights_m.size(); ++p) {
+    if (auto b = pass_slope(heights_m[p], w, weights)) {
+      slopes.push_back(*b);
+      slopes_by_pass[p][k] = *b;
+    }
   }
   bin.passes = slopes.size();
   if (slopes.size() < std::max<std::size_t>(cfg.min_passes, 1)) return {};
@@ -257,11 +262,14 @@ GradeProfile GradeProfile::from_gnss(const RouteGeometry& route, std::span<const
   }
   g.passes_ = heights_m.size();
   std::vector<Scatter> slope_scatter(g.bins_.size());
+  std::vector<std::vector<double>> slopes_by_pass(heights_m.size(), std::vector<double>(g.bins_.size(), kNaN));
   for (std::size_t k = 0; k < g.bins_.size(); ++k) {
     fill_elevation(g.bins_[k], heights_m, k);
-    slope_scatter[k] = fill_grade(g.bins_, heights_m, k, cfg);
+    slope_scatter[k] = fill_grade(g.bins_, heights_m, k, cfg, slopes_by_pass);
   }
   pool_grade_sigma(g.bins_, slope_scatter, cfg);
+  const GradeErrorScaleConfig scale{cfg.bin_m, cfg.correlation_block_m};
+  if (auto l = measured_grade_error_correlation_m(slopes_by_pass, scale)) g.error_correlation_m_ = *l;
   return g;
 }
 
@@ -280,7 +288,8 @@ double GradeProfile::interpolate(double s_m, double GradeBin::*field) const {
   return bins_[k].*field + w * (bins_[k + 1].*field - bins_[k].*field);
 }
 
-std::optional<GradeProfile> GradeProfile::from_bins(double route_length_m, std::vector<GradeBin> bins, double base_m) {
+std::optional<GradeProfile> GradeProfile::from_bins(double route_length_m, std::vector<GradeBin> bins, double base_m,
+                                                    double error_correlation_m) {
   if (bins.size() < 2) return std::nullopt;
   GradeConfig cfg;
   cfg.bin_m = bins[1].s_m - bins[0].s_m;
@@ -292,7 +301,12 @@ std::optional<GradeProfile> GradeProfile::from_bins(double route_length_m, std::
     if (std::abs(g.bins_[k].s_m - bins[k].s_m) > 0.05 * cfg.bin_m) return std::nullopt;
   }
   g.bins_ = std::move(bins);
+  if (error_correlation_m >= cfg.bin_m && std::isfinite(error_correlation_m)) g.error_correlation_m_ = error_correlation_m;
   return g;
+}
+
+double GradeProfile::error_correlation_m() const {
+  return std::isnan(error_correlation_m_) ? 5.0 / 6.0 * cfg_.base_m : error_correlation_m_;
 }
 
 double GradeProfile::grade_rad(double s_m) const { return interpolate(s_m, &GradeBin::grade_rad); }

@@ -189,8 +189,8 @@ TEST(CrrEstimation, GnssGradeSigmaWidensTheIntervalsHonestly) {
   const double coverage = static_cast<double>(inside) / cells;
   std::printf("GNSS grade from 4 passes: mean CRR sigma %.5f (survey %.5f), coverage %.0f %%\n", sigma / cells, survey_sigma / cells,
               100 * coverage);
-  EXPECT_GT(sigma, 1.5 * survey_sigma);
-  EXPECT_GE(coverage, 0.75);
+  EXPECT_GT(sigma, 1.1 * survey_sigma);
+  EXPECT_GE(coverage, 0.8);
 }
 
 // The trip's sigma is that of its average: the part every cell shares (CdA's prior: 0.6 m^2 is

@@ -18,17 +18,18 @@ namespace {
 constexpr std::string_view kColumns[] = {"s_m", "elevation_m", "elevation_sigma_m", "grade_pct", "grade_sigma_pct", "passes"};
 
 constexpr std::string_view kBaseKey = "# slope_base_m = ";
+constexpr std::string_view kCorrelationKey = "# error_correlation_m = ";
 
-// The slopes' +-base from the file's comment (files written before it carry none: the default's).
-double slope_base_m(const std::string& path) {
+// A value from the file's leading comments; files written before a key existed carry none.
+std::optional<double> header_value(const std::string& path, std::string_view key) {
   std::ifstream in(path);
   std::string line;
   while (std::getline(in, line) && !line.empty() && line[0] == '#') {
-    if (line.rfind(kBaseKey, 0) != 0) continue;
-    const auto v = recording::parse_f64(std::string_view(line).substr(kBaseKey.size()));
+    if (line.rfind(key, 0) != 0) continue;
+    const auto v = recording::parse_f64(std::string_view(line).substr(key.size()));
     if (v && *v > 0 && *v < 1e4) return *v;
   }
-  return GradeConfig{}.base_m;
+  return std::nullopt;
 }
 
 std::optional<double> field(std::string_view text) {
@@ -60,7 +61,9 @@ Parsed<GradeProfile> load_grade_file(const std::string& path, double route_lengt
     bins.push_back(b);
   }
   if (csv.value().error()) return *csv.value().error();
-  auto profile = GradeProfile::from_bins(route_length_m, std::move(bins), slope_base_m(path));
+  const double base_m = header_value(path, kBaseKey).value_or(GradeConfig{}.base_m);
+  const double correlation_m = header_value(path, kCorrelationKey).value_or(std::numeric_limits<double>::quiet_NaN());
+  auto profile = GradeProfile::from_bins(route_length_m, std::move(bins), base_m, correlation_m);
   if (!profile) {
     return ParseError{path, 0, "s_m", "bins are not evenly spaced along this route (" + std::to_string(route_length_m) + " m long)"};
   }
@@ -73,6 +76,11 @@ std::optional<ParseError> write_grade_file(const std::string& path, const GradeP
   recording::LineBuilder base;
   base.num(profile.config().base_m, 1);
   csv.value().write(std::string(kBaseKey) + std::string(base.finish()));
+  if (const double l = profile.measured_error_correlation_m(); std::isfinite(l)) {
+    recording::LineBuilder correlation;
+    correlation.num(l, 1);
+    csv.value().write(std::string(kCorrelationKey) + std::string(correlation.finish()));
+  }
   csv.value().write("s_m,elevation_m,elevation_sigma_m,grade_pct,grade_sigma_pct,passes\n");
   recording::LineBuilder line;
   for (const GradeBin& b : profile.bins()) {

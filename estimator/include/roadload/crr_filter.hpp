@@ -74,9 +74,9 @@ struct CrrFilterConfig {
   // sin(grade), the rolling resistance by far less, so hills tell the mass from the CRR. On flat
   // roads it stays near its prior and only widens the intervals, as a considered state would.
   bool estimate_mass = true;
-  // The grade's error is considered too: a first-order Gauss-Markov process along the road, its
-  // sigma the grade profile's at each place, its correlation the profile's
-  // (GradeProfile::error_correlation_m; 25 m for the default +-30 m slope).
+  // The grade's error is estimated, within its prior: a first-order Gauss-Markov process along
+  // the road, its sigma the grade profile's at each place, its correlation the profile's
+  // (GradeProfile::error_correlation_m: measured from the passes, or bounded by the slope's base).
   double grade_error_correlation_m = 25.0;
   double gate_nis = 15.13;  // chi-square(1) at 0.9999: beyond it a speed is an outlier
   Nanoseconds max_step{100'000'000};

@@ -42,6 +42,9 @@ struct GradeConfig {
   // A slope's standard error where the passes give no scatter (one pass): what a GNSS height error
   // makes of a slope over the base. NaN: none, such bins have no standard error and no grade.
   double pass_slope_sigma = std::numeric_limits<double>::quiet_NaN();
+  // The length over which the grade error's correlation is measured (grade_error_scale.hpp):
+  // about a cell's, since the cells' means are what it must get right.
+  double correlation_block_m = 600.0;
 };
 
 // One recording's fixes in time order, and the antenna's height above the road it stands on.
@@ -76,8 +79,10 @@ class GradeProfile {
   static GradeProfile from_gnss(const RouteGeometry& route, std::span<const GnssTrack> tracks, const GradeConfig& cfg = {});
   // A profile written earlier (`roadload grade`): nothing when the bins are not this route's
   // bins at their own spacing (another route, or edited by hand). `base_m`: the slopes' +-base.
+  // `error_correlation_m`: the one measured when it was built (NaN: none, the bound below).
   static std::optional<GradeProfile> from_bins(double route_length_m, std::vector<GradeBin> bins,
-                                               double base_m = GradeConfig{}.base_m);
+                                               double base_m = GradeConfig{}.base_m,
+                                               double error_correlation_m = std::numeric_limits<double>::quiet_NaN());
 
   // Linear between bin centres; NaN off the route or where a bin involved has no value.
   double grade_rad(double s_m) const;
@@ -91,13 +96,15 @@ class GradeProfile {
   const GradeConfig& config() const { return cfg_; }
   double length_m() const { return length_m_; }
   // The correlation length of a Gauss-Markov process standing in for the grade's error along the
-  // road, chosen so a cell's mean carries the error the cell's mean grade has. A GNSS height
-  // error wanders like a random walk (diffusion D per metre) over the +-base window: the slope
-  // fitted over it has variance 3 D / (5 base), a cell of length L's mean slope D / L, and the
+  // road, chosen so a cell's mean carries the error the cell's mean grade has. Built from GNSS
+  // passes: measured from their scatter (grade_error_scale.hpp). Otherwise a bound: a GNSS height
+  // error that wanders like a random walk (diffusion D per metre) over the +-base window gives a
+  // slope of variance 3 D / (5 base), a cell of length L a mean slope of variance D / L, and the
   // process gives that mean 2 l sigma^2 / L, so l = 5 base / 6. White height noise adds to a
-  // bin's sigma and nothing to a cell's mean, so this is the longest honest length (the
-  // windows' overlap, 2 base, made cells' intervals 1.7 times too wide on four GNSS passes).
-  double error_correlation_m() const { return 5.0 / 6.0 * cfg_.base_m; }
+  // bin's sigma and nothing to a cell's mean, so that is the longest honest length.
+  double error_correlation_m() const;
+  // NaN unless measured from passes or read from a profile file that recorded it.
+  double measured_error_correlation_m() const { return error_correlation_m_; }
 
  private:
   GradeProfile(const GradeConfig& cfg, double length_m);
@@ -108,6 +115,7 @@ class GradeProfile {
   std::vector<GradeBin> bins_;
   GnssFixCounts fixes_;
   std::size_t passes_ = 0;
+  double error_correlation_m_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace roadload
