@@ -70,10 +70,10 @@ void print_against_truth(const char* what, const std::vector<CellResult>& cells,
 void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth,
                 const VibrationAnalysis* vibration) {
   std::fprintf(stderr,
-               "analyze: trip CRR %.5f +- %.5f (%s), CdA %.2f m^2, mass %.0f +- %.0f kg, %zu of %zu ticks usable, mean NIS "
-               "%.2f +- %.2f\n",
+               "analyze: trip CRR %.5f +- %.5f (%s), CdA %.2f m^2, mass %.0f +- %.0f kg, %zu of %zu ticks usable (%zu coasting), "
+               "mean NIS %.2f +- %.2f\n",
                trip.crr, trip.crr_sigma, trip.identified ? "identified" : "NOT identified", trip.cda_m2, trip.mass_kg,
-               trip.mass_sigma_kg, trip.usable_ticks, trip.ticks, trip.mean_nis, 1.96 * trip.mean_nis_se);
+               trip.mass_sigma_kg, trip.usable_ticks, trip.ticks, trip.coasting_ticks, trip.mean_nis, 1.96 * trip.mean_nis_se);
   for (const std::string& why : trip.not_identified) std::fprintf(stderr, "analyze: not identified: %s\n", why.c_str());
   const FuelBreakdown& f = trip.fuel;
   std::fprintf(stderr,

@@ -159,7 +159,7 @@ void DriveAnalyzer::tick(CaptureTime t, double wheel_speed_mps) {
   live_ = {t, true, wheel_speed_mps, s_front, cell, now.crr, 0, 0, false, nullptr, in.usable};
   live_.crr_lo = live_.crr - config_.interval_z * now.sigma;
   live_.crr_hi = live_.crr + config_.interval_z * now.sigma;
-  count(in, why, upd);
+  count(in, why, upd, tr.coasting);
   live_.not_identified = live_failure();
   live_.identified = live_.not_identified == nullptr;
 }
@@ -178,10 +178,11 @@ const char* DriveAnalyzer::live_failure() const {
   return nullptr;
 }
 
-void DriveAnalyzer::count(const model::ForceInputs& in, Unusable why, const ekf::UpdateResult& update) {
+void DriveAnalyzer::count(const model::ForceInputs& in, Unusable why, const ekf::UpdateResult& update, bool coasting) {
   ++trip_.ticks;
   if (in.usable) {
     ++trip_.usable_ticks;
+    if (coasting) ++trip_.coasting_ticks;
   } else {
     ++trip_.unusable[static_cast<std::size_t>(why)];
   }

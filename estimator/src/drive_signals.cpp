@@ -81,8 +81,44 @@ const char* to_string(Unusable u) {
   return "?";
 }
 
+namespace {
+
+bool on(const Reading& r) { return r.seen && r.value > 0.5; }
+
+// Below this the tires' rolling resistance is not yet the rolling one (a truck standing in
+// neutral at a light would teach the filter that CRR is zero).
+constexpr double kMinCoastSpeed_mps = 1.0;
+
+// In neutral with the clutch released and no shift under way, rolling: the gearbox passes no
+// torque, so the wheels feel only the road, the air and the grade (the truck coasting).
+bool coasting_in_neutral(const DriveSignals& s, CaptureTime t, Nanoseconds stale_after) {
+  const Reading& gear = s.get(Quantity::current_gear);
+  const Reading& wheel = s.get(Quantity::wheel_speed_mps);
+  return gear.seen && t - gear.t <= stale_after && gear.value == 0 && !on(s.get(Quantity::shift_in_process)) &&
+         !on(s.get(Quantity::clutch_switch)) && wheel.seen && wheel.value > kMinCoastSpeed_mps;
+}
+
+}  // namespace
+
 TractionEstimate traction(const DriveSignals& s, const model::TruckModel& truck, CaptureTime t, Nanoseconds stale_after) {
   TractionEstimate out;
+  if (coasting_in_neutral(s, t, stale_after)) {
+    const Reading& wheel = s.get(Quantity::wheel_speed_mps);
+    const Reading& ref = s.get(Quantity::reference_torque_nm);
+    const Reading& act = s.get(Quantity::actual_torque_pct);
+    if (ref.seen && act.seen) {
+      // The engine's own losses, for the fuel breakdown; nothing reaches the flywheel's output.
+      out.indicated_nm = act.value / 100.0 * ref.value;
+      out.friction_nm = s.get(Quantity::friction_torque_pct).seen ? s.get(Quantity::friction_torque_pct).value / 100.0 * ref.value
+                                                                  : 0.0;
+      out.parasitic_nm = out.indicated_nm - out.friction_nm;
+    }
+    out.coasting = true;
+    out.effective_mass_kg = model::effective_mass_kg(truck, 0.0);
+    if (wheel.seen && t - wheel.t > stale_after) out.reason = Unusable::stale;
+    if (on(s.get(Quantity::brake_switch))) out.reason = Unusable::braking;
+    return out;
+  }
   const Reading& ref = s.get(Quantity::reference_torque_nm);
   const Reading& act = s.get(Quantity::actual_torque_pct);
   if (!ref.seen) {
@@ -133,9 +169,9 @@ TractionEstimate traction(const DriveSignals& s, const model::TruckModel& truck,
   out.tractive_n = model::tractive_force_n(truck, out.flywheel_nm, out.gear_ratio);
   out.effective_mass_kg = model::effective_mass_kg(truck, out.gear_ratio);
   out.wheel_force_per_flywheel_nm = model::wheel_force_per_flywheel_nm(truck, out.gear_ratio);
-  if (s.get(Quantity::brake_switch).seen && s.get(Quantity::brake_switch).value > 0.5) {
+  if (on(s.get(Quantity::brake_switch))) {
     out.reason = Unusable::braking;
-  } else if ((s.get(Quantity::shift_in_process).seen && s.get(Quantity::shift_in_process).value > 0.5) ||
+  } else if (on(s.get(Quantity::shift_in_process)) ||
              (s.get(Quantity::driveline_engaged).seen && s.get(Quantity::driveline_engaged).value < 0.5)) {
     out.reason = Unusable::declutched;
   }

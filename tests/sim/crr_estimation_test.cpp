@@ -30,12 +30,8 @@ void expect_nis_in_band(const Score& s) {
 // considered scales' priors, which this truck does not realise, keep NIS below 1.
 Score estimate(const char* scenario, std::uint64_t seed, bool exact_truck = false) {
   const j1939::Database db = test::core_database();
-  Scenario sc = test::builtin(scenario);
-  sc.accelerometers = 0;
-  Simulation sim(sc, seed, db);
-  test::MemorySink sink;
-  TruthRecorder truth(sim.route(), sim.plant().truck());
-  sim.run(sink, &truth);
+  const Scenario sc = test::builtin(scenario);
+  const test::DriveWithTruth drive = test::drive_with_truth(sc, seed, db);
 
   auto route = RouteGeometry::build(sc.route.points);
   EXPECT_TRUE(route.has_value());
@@ -46,10 +42,10 @@ Score estimate(const char* scenario, std::uint64_t seed, bool exact_truck = fals
     cfg.filter.truck.mass_sigma_kg = 0;
   }
   DriveAnalyzer analyzer(db, *route, test::cell_spans(sc), cfg);
-  test::analyze(analyzer, sink);
+  test::analyze(analyzer, drive.sink);
 
   Score s;
-  const auto truths = truth.cells();
+  const auto& truths = drive.cells;
   double sum_true = 0;
   std::size_t inside = 0;
   for (std::size_t i = 0; i < truths.size(); ++i) {

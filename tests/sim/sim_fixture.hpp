@@ -36,4 +36,19 @@ inline MemorySink drive_without_accelerometers(Scenario sc, std::uint64_t seed, 
   return sink;
 }
 
+// The scenario driven into memory without its accelerometers, with the plant's truth per cell.
+struct DriveWithTruth {
+  MemorySink sink;
+  std::vector<CellTruth> cells;
+};
+inline DriveWithTruth drive_with_truth(Scenario sc, std::uint64_t seed, const j1939::Database& db) {
+  sc.accelerometers = 0;
+  Simulation sim(sc, seed, db);
+  DriveWithTruth d;
+  TruthRecorder truth(sim.route(), sim.plant().truck());
+  sim.run(d.sink, &truth);
+  d.cells = truth.cells();
+  return d;
+}
+
 }  // namespace roadload::sim::test

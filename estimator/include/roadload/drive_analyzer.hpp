@@ -105,7 +105,7 @@ class DriveAnalyzer {
   void add_ripple(model::ForceInputs& in, int cell, double speed_mps, double step_m) const;
   void place_axles(CaptureTime t, double s_front_m, double grade_rad, double speed_mps);
   PowerInterval power_since_last_tick(double dt_s, const TractionEstimate& tr, double wheel_speed_mps);
-  void count(const model::ForceInputs& in, Unusable why, const ekf::UpdateResult& update);
+  void count(const model::ForceInputs& in, Unusable why, const ekf::UpdateResult& update, bool coasting);
   // Variance of the CRR change as axles cross cell boundaries between two front-axle positions.
   double crr_jump_variance(double from_front_m, double to_front_m) const;
   // The smoothed state at a smoother step (the filter's own after the last prediction).

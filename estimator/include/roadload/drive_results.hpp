@@ -43,6 +43,7 @@ struct CellResult {
 
 struct TripResult {
   std::size_t ticks = 0, usable_ticks = 0;
+  std::size_t coasting_ticks = 0;                      // of the usable, in neutral: the road's load without the engine
   std::array<std::size_t, kUnusableCount> unusable{};  // ticks by Unusable
   double crr = 0, crr_sigma = 0, cda_m2 = 0, torque_bias_nm = 0, torque_bias_sigma_nm = 0;
   // The mass the drive's grades and accelerations tell, with its standard error (the declared

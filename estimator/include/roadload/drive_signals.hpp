@@ -114,11 +114,17 @@ struct TractionEstimate {
   // (EEC3; with an engine-loss calibration, friction is the calibrated losses less EEC3's
   // parasitic share), and what is left at the flywheel.
   double indicated_nm = 0, friction_nm = 0, parasitic_nm = 0, flywheel_nm = 0;
+  // In neutral, clutch released (ETC2 current gear 0): no tractive force and none of the engine's
+  // inertia, so the force balance holds without the engine's torque, its scale or the
+  // driveline's efficiency. The engine's torques then go to its friction and its loads
+  // (EEC3's friction, the rest parasitic); none reaches the flywheel's output.
+  bool coasting = false;
   Unusable reason = Unusable::none;
 };
 
 // Tractive force at the wheels from the latest signals at time t (model/longitudinal.hpp). The gear
-// ratio is ETC2's, or inferred from engine speed over wheel speed when ETC2 is absent.
+// ratio is ETC2's, or inferred from engine speed over wheel speed when ETC2 is absent; none in
+// neutral (coasting).
 TractionEstimate traction(const DriveSignals& s, const model::TruckModel& truck, CaptureTime t,
                           Nanoseconds stale_after = Nanoseconds{500'000'000});
 

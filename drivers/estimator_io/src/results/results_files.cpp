@@ -77,7 +77,8 @@ std::optional<ParseError> write_trip_json(const std::string& path, const TripRes
   for (std::size_t i = 0; i < trip.not_identified.size(); ++i) json << (i ? ", " : "") << json_quote(trip.not_identified[i]);
   json << "],\n  \"cda_m2\": " << n(trip.cda_m2) << ",\n  \"mass_kg\": " << n(trip.mass_kg)
        << ",\n  \"mass_sigma_kg\": " << n(trip.mass_sigma_kg) << ",\n  \"ticks\": " << trip.ticks
-       << ",\n  \"usable_ticks\": " << trip.usable_ticks << ",\n  \"unusable\": {";
+       << ",\n  \"usable_ticks\": " << trip.usable_ticks << ",\n  \"coasting_ticks\": " << trip.coasting_ticks
+       << ",\n  \"unusable\": {";
   for (std::size_t i = 1; i < trip.unusable.size(); ++i) {
     json << (i > 1 ? ", " : "") << json_quote(to_string(static_cast<Unusable>(i))) << ": " << trip.unusable[i];
   }
