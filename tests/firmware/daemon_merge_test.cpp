@@ -100,9 +100,12 @@ std::unique_ptr<AccelChannel> late_first_sensor(const SimulatedDrive& drive, con
 }
 
 // The drive has run 2 s when the daemon starts, longer than the merge's wait of 1.5 s, and one
-// accelerometer's thread then waits 60 ms (0.3 s of the drive) before its first read: what it has
-// not delivered yet is older than everything the other sensors hand over meanwhile, and older than
-// the wait behind the daemon's clock. The others' backlog stays under half their rings (3.4 s).
+// accelerometer's thread then waits 60 ms before its first read: what it has not delivered yet is
+// older than everything the other sensors hand over meanwhile, and older than the wait behind the
+// daemon's clock. The others' backlog stays under half their rings (3.4 s). The drive runs at
+// twice real time here, not five times: the wait is then 0.75 s of wall time for the late thread's
+// first read, which a loaded machine's scheduler (two sanitized tests on two cores) may delay well
+// past its 60 ms; at five times, 0.3 s was not always enough in CI.
 TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
   const SimulatedDrive drive(12, kAccelerometers);
   const std::string dir = temp_dir("roadloadd-merge-late-start");
@@ -110,6 +113,7 @@ TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
   // The drive's clock starts once the daemon is built, however long that takes under the sanitizers.
   auto drive_clock = std::chrono::steady_clock::now() + std::chrono::hours(1);
   Pace pace = start_pace(drive);
+  pace.speedup = 2;
   pace.start_at = &drive_clock;
   PaceClock clock(pace);
   DaemonSources sources = memory_sources(drive, pace, gate, 1.0);
@@ -118,7 +122,7 @@ TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
   setup.max_merge_wait = std::chrono::duration_cast<Nanoseconds>(std::chrono::duration<double>(1.5));
   Daemon daemon(std::move(setup), std::move(sources), clock);
   // No thread runs yet: the clock is set before any reads it.
-  drive_clock = std::chrono::steady_clock::now() - std::chrono::milliseconds(400);
+  drive_clock = std::chrono::steady_clock::now() - std::chrono::milliseconds(1000);
   daemon.start();
   wait_for(daemon);
   daemon.stop();
