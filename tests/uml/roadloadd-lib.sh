@@ -31,6 +31,25 @@ last_status_field() {
   echo "${line%%[,\}]*}"
 }
 
+# Waits until the daemon's status counts N items read, or the count has not moved for 3 s; at most 60 s.
+wait_status_items() {
+  local dir=$1 n=$2 i items last=-1 still=0
+  for ((i = 0; i < 600; i++)); do
+    items=$(last_status_field "$dir" items)
+    ((items >= n)) && return 0
+    if ((items == last)); then ((++still >= 30)) && return 0; else still=0; fi
+    last=$items
+    sleep 0.1
+  done
+}
+
+# Frames the kernel's per-CPU receive backlogs dropped since boot (second column of softnet_stat).
+softnet_dropped() {
+  local total=0 _ dropped _rest
+  while read -r _ dropped _rest; do total=$((total + 16#$dropped)); done </proc/net/softnet_stat
+  echo "$total"
+}
+
 # The frames of a candump -L log without their stamps and interface: ID#DATA, one per line.
 frames_of() {
   cut -d' ' -f3 "$@"

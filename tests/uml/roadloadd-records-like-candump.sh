@@ -28,6 +28,10 @@ trap 'kill -KILL "${daemon:-}" "${dump:-}" 2>/dev/null || true; [[ -n ${ROADLOAD
 awk -v n="$frames" 'BEGIN { for (i = 0; i < n; i++) printf "(%d.%06d) can0 %08X#%08X%08X\n", 1000 + int(i * 26 / 1e6), (i * 26) % 1000000, 419299328 + i % 65536, i, i * 7 % 4294967296 }' >"$work/sent.log"
 # Room for a few seconds of traffic in the kernel's queues while UML's one CPU runs the sender.
 sysctl -qw net.core.rmem_max=67108864
+# vcan hands each frame to the receive backlog, whose default 1,000 overflows in the moments the
+# host takes UML's CPU away; a frame dropped there reaches no socket, candump's nor the daemon's.
+sysctl -qw net.core.netdev_max_backlog=100000
+backlog_dropped_before=$(softnet_dropped)
 printf '[[can]]\ninterface = "vcan0"\nreceive_buffer_kib = 65536\n' >"$work/roadloadd.toml"
 start_daemon "$work" --config "$work/roadloadd.toml"
 # candump at the lowest priority: under UML it needs two system calls per frame, and the daemon and
@@ -36,7 +40,9 @@ nice -n 19 candump -L -r 67108864 vcan0 >"$work/candump.log" &
 dump=$!
 wait_listening "$dump"
 "$roadload" replay "$work/sent.log" --iface vcan0 --rate 1 2>"$work/replay.err" || die "roadload replay failed: $(cat "$work/replay.err")"
-sleep 1.5
+# Stopped once it has read them all, or has read nothing more for a few status lines: on a loaded
+# host the daemon may still be catching up when the sender is done.
+wait_status_items "$work" "$frames"
 stop_and_wait "$dump"
 stop_daemon || die "roadloadd exited with status $? ($(cat "$work/daemon.err"))"
 
@@ -44,8 +50,12 @@ recorded=("$work"/rec/*/can.log)
 [[ -f ${recorded[0]} ]] || die "roadloadd wrote no can.log"
 got=$(cat "${recorded[@]}" | wc -l)
 seen=$(wc -l <"$work/candump.log")
-cmp -s <(frames_of "$work/sent.log") <(cat "${recorded[@]}" | frames_of) ||
-  die "roadloadd recorded $got frames that differ from the $frames sent (candump has $seen)"
+if ! cmp -s <(frames_of "$work/sent.log") <(cat "${recorded[@]}" | frames_of); then
+  die "roadloadd recorded $got frames that differ from the $frames sent (candump has $seen);" \
+    "it counted $(last_status_field "$work" items) read, $(last_status_field "$work" dropped) dropped by its socket," \
+    "$(last_status_field "$work" ring_dropped) by its ring, $(last_status_field "$work" lines_lost) lost on disk;" \
+    "the kernel's receive backlog dropped $(($(softnet_dropped) - backlog_dropped_before))"
+fi
 # candump reads one frame per system call and falls behind under UML; what it did record must be
 # in the daemon's recording, in the same order.
 awk 'NR == FNR { c[++n] = $0; next } j < n && $0 == c[j + 1] { j++ } END { exit !(j == n) }' \
