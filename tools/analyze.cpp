@@ -56,6 +56,9 @@ constexpr const char* kHelp =
     "                  `roadload calibrate --aero` prints: its CdA took up the engine-loss table's error)\n"
     "  --cda-per-torque-scale M2  how that CdA moves with the ECU's torque scale (what `roadload calibrate\n"
     "                  --aero` prints): the scale's second run moves CdA with it\n"
+    "  --torque-scale K [--torque-scale-sigma S]  the ECU's torque scale (true = EEC1's x (1 + K)) and its\n"
+    "                  standard error, as `roadload calibrate --torque-scale` measures them (default: 0 and\n"
+    "                  the vehicle file's prior sigma); the CdA moves with K as --cda-per-torque-scale says\n"
     "  --grade FILE    grade and its sigma from FILE (`roadload grade`) instead of the route's survey\n"
     "  --engine-losses FILE  the engine's friction + accessories by engine speed (`roadload calibrate`)\n"
     "                  instead of EEC3's whole percent; engine speeds outside it are not used\n"
@@ -73,6 +76,7 @@ struct AnalyzeOptions {
   std::string recording, route, out, truth_dir, grade_file, losses_file, vehicle;
   double survey_sigma = 0;
   std::optional<double> mass, cda_m2, cda_sigma_m2, cda_torque_correlation, cda_per_torque_scale_m2;
+  std::optional<double> torque_scale, torque_scale_sigma;
   std::vector<std::string> dbcs;
   bool quiet = false, estimate_cda = false;
 };
@@ -95,6 +99,10 @@ std::variant<AnalyzeOptions, int> parse(Args args) {
       o.cda_torque_correlation = *cr;
     } else if (auto ps = opt.real("--cda-per-torque-scale", -100, 100)) {
       o.cda_per_torque_scale_m2 = *ps;
+    } else if (auto ts = opt.real("--torque-scale", -0.5, 0.5)) {
+      o.torque_scale = *ts;
+    } else if (auto tss = opt.real("--torque-scale-sigma", 0, 0.5)) {
+      o.torque_scale_sigma = *tss;
     } else if (auto g = opt.value("--grade")) {
       o.grade_file = *g;
     } else if (auto l = opt.value("--engine-losses")) {
@@ -142,6 +150,12 @@ std::variant<AnalyzerConfig, int> configure(const AnalyzeOptions& o, const Vehic
   if (o.cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *o.cda_sigma_m2;
   if (o.cda_torque_correlation) cfg.filter.truck.cda_torque_bias_correlation = *o.cda_torque_correlation;
   if (o.cda_per_torque_scale_m2) cfg.filter.truck.cda_per_torque_scale_m2 = *o.cda_per_torque_scale_m2;
+  if (o.torque_scale_sigma) cfg.filter.truck.torque_scale_sigma = *o.torque_scale_sigma;
+  if (o.torque_scale) {
+    // A CdA measured at a scale of 0 (calibrate --aero) is the drag of the torque the ECU states.
+    cfg.filter.torque_scale_held = *o.torque_scale;
+    cfg.filter.truck.cda_prior_m2 += cfg.filter.truck.cda_per_torque_scale_m2 * *o.torque_scale;
+  }
   cfg.survey_elevation_sigma_m = o.survey_sigma;
   cfg.roughness_iri_m_per_km = default_iri_m_per_km;
   if (!o.losses_file.empty()) {

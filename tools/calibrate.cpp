@@ -38,13 +38,29 @@ constexpr const char* kHelp =
     "fitted as drag. More pairs (the road's other direction on its own route, another day) give one\n"
     "CdA from all their cells: give one --route per pair, in order, or one for every pair.\n"
     "Prints the CdA with its standard error as `roadload analyze` options; --out writes them as CSV.\n\n"
+    "usage: roadload calibrate --torque-scale POWERED COAST [POWERED COAST ...] --route ROUTE [--route ROUTE ...]\n"
+    "                          --engine-losses FILE [--cda M2 --cda-sigma M2 --cda-per-torque-scale M2]\n"
+    "                          [--out FILE]\n\n"
+    "Measures the ECU's torque scale (EEC1's indicated torque against the engine's true one; J1939 states\n"
+    "it to a few percent) from a powered drive and a coast-down in neutral over the same cells. The\n"
+    "coast-down's CRR owes nothing to the engine's torque; the powered drive's moves with the scale by the\n"
+    "tractive force over the weight, so the scale at which each cell's CRRs agree is the ECU's. Coast from\n"
+    "cruise speed in neutral (ETC2 current gear 0) over the cells the powered drive crossed; `roadload\n"
+    "simulate --scenario coast-down-65mph` drives one. The drag both drives meet at other speeds passes\n"
+    "CdA's error into the scale: give the CdA `--aero` measured, with its sigma and its slope per unit of\n"
+    "scale, and the two are solved together. Prints the scale with its standard error as `roadload\n"
+    "analyze` options; --out writes them as CSV.\n\n"
     "  --out FILE        write FILE: rpm,loss_nm,sigma_nm,eec3_loss_nm,hold_s,samples, one line per hold\n"
-    "  --route R         (--aero) route file or built-in route name: the cells both drives cross;\n"
+    "  --route R         (--aero, --torque-scale) route file or built-in route name: the cells both\n"
+    "                    drives cross;\n"
     "                    repeatable, one per pair\n"
-    "  --engine-losses FILE  (--aero) the engine-loss table of the same truck\n"
-    "  --cda M2          (--aero) the prior both drives are analysed with (default: the vehicle file's);\n"
-    "                    the fit does not depend on it beyond linearity\n"
-    "  --vehicle V       (--aero) vehicle file or built-in name (default: the one each recording carries)\n"
+    "  --engine-losses FILE  (--aero, --torque-scale) the engine-loss table of the same truck\n"
+    "  --cda M2          (--aero, --torque-scale) the CdA the drives are analysed with (default: the vehicle\n"
+    "                    file's); the CdA fit does not depend on it beyond linearity\n"
+    "  --cda-sigma M2    (--torque-scale) that CdA's standard error, carried into the scale's\n"
+    "  --cda-per-torque-scale M2  (--torque-scale) how that CdA moves with the scale, as --aero prints\n"
+    "                    it: the scale and the CdA are then solved together\n"
+    "  --vehicle V       (--aero, --torque-scale) vehicle file or built-in name (default: the one each recording carries)\n"
     "  --dbc FILE        load FILE after the built-in definitions; repeatable\n"
     "  -q, --quiet       no table on standard output\n"
     "  -h, --help        this text\n";
@@ -78,7 +94,7 @@ int run_calibrate(Args args) {
   OptionParser opt("calibrate", args);
   std::vector<std::string> recordings, dbcs;
   std::string out;
-  bool quiet = false, aero = false;
+  bool quiet = false, aero = false, scale = false;
   AeroOptions ao;
   while (opt.more()) {
     if (opt.help(kHelp)) return kExitOk;
@@ -86,12 +102,18 @@ int run_calibrate(Args args) {
       quiet = true;
     } else if (opt.flag("--aero")) {
       aero = true;
+    } else if (opt.flag("--torque-scale")) {
+      scale = true;
     } else if (auto r = opt.value("--route")) {
       ao.routes.emplace_back(*r);
     } else if (auto l = opt.value("--engine-losses")) {
       ao.engine_losses = *l;
     } else if (auto c = opt.real("--cda", 0.5, 30)) {
       ao.cda_prior_m2 = *c;
+    } else if (auto cs = opt.real("--cda-sigma", 0.0001, 10)) {
+      ao.cda_sigma_m2 = *cs;
+    } else if (auto ps = opt.real("--cda-per-torque-scale", -100, 100)) {
+      ao.cda_per_torque_scale_m2 = *ps;
     } else if (auto v = opt.value("--vehicle")) {
       ao.vehicle = *v;
     } else if (auto f = opt.value("--out")) {
@@ -106,20 +128,25 @@ int run_calibrate(Args args) {
   }
   if (opt.failed()) return kExitUsage;
   if (recordings.empty()) return opt.fail("a recording is required");
-  if (aero && ao.routes.empty()) return opt.fail("--aero needs --route");
-  if (aero && recordings.size() % 2 != 0) return opt.fail("--aero takes drives in pairs, one at each of two speeds");
-  if (aero && ao.routes.size() != 1 && ao.routes.size() != recordings.size() / 2) {
-    return opt.fail("--aero takes one --route, or one per pair of drives");
+  if (aero && scale) return opt.fail("--aero and --torque-scale are separate calibrations");
+  const char* mode = aero ? "--aero" : "--torque-scale";
+  const char* pair = aero ? "one at each of two speeds" : "a powered drive and then a coast-down";
+  if ((aero || scale) && ao.routes.empty()) return opt.fail(std::string(mode) + " needs --route");
+  if ((aero || scale) && recordings.size() % 2 != 0) return opt.fail(std::string(mode) + " takes drives in pairs, " + pair);
+  if ((aero || scale) && ao.routes.size() != 1 && ao.routes.size() != recordings.size() / 2) {
+    return opt.fail(std::string(mode) + " takes one --route, or one per pair of drives");
   }
-  if (aero && ao.engine_losses.empty()) return opt.fail("--aero needs --engine-losses (roadload calibrate, standing)");
-  if (!aero && out.empty()) return opt.fail("--out is required");
+  if ((aero || scale) && ao.engine_losses.empty()) {
+    return opt.fail(std::string(mode) + " needs --engine-losses (roadload calibrate, standing)");
+  }
+  if (!aero && !scale && out.empty()) return opt.fail("--out is required");
 
   j1939::Database db;
   if (auto rc = load_definitions("calibrate", dbcs, db)) return *rc;
-  if (aero) {
+  if (aero || scale) {
     ao.recordings = recordings;
     ao.out = out;
-    return run_calibrate_aero(ao, db);
+    return aero ? run_calibrate_aero(ao, db) : run_calibrate_torque_scale(ao, db);
   }
   EngineLossFrames cal(db);
   for (const std::string& r : recordings) {

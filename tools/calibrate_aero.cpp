@@ -43,7 +43,7 @@ Parsed<std::vector<CellResult>> analyse(const std::string& path, const j1939::Da
 
 // One drive analysed the three ways the fit needs; an exit code when it cannot be.
 std::variant<int, AeroDrive> aero_drive(const std::string& path, const AeroOptions& o, const j1939::Database& db,
-                                        const LoadedRoute& route, const model::EngineLossMap& losses, double& prior_m2) {
+                                        const LoadedRoute& route, const model::EngineLossMap& losses, CalibrationDrives& out) {
   auto meta = recording::RecordingReader::open(path);
   if (!meta) {
     std::fprintf(stderr, "roadload calibrate: %s\n", meta.error().to_string().c_str());
@@ -59,7 +59,11 @@ std::variant<int, AeroDrive> aero_drive(const std::string& path, const AeroOptio
   cfg.filter.truck.engine_losses = losses;
   cfg.roughness_iri_m_per_km = route.file.default_iri_m_per_km;
   if (o.cda_prior_m2) cfg.filter.truck.cda_prior_m2 = *o.cda_prior_m2;
-  prior_m2 = cfg.filter.truck.cda_prior_m2;
+  if (o.cda_sigma_m2) cfg.filter.truck.cda_sigma_m2 = *o.cda_sigma_m2;
+  if (o.scale_step > 0) cfg.filter.truck.torque_scale_sigma = o.scale_step;
+  out.cda_prior_m2 = cfg.filter.truck.cda_prior_m2;
+  out.cda_sigma_m2 = cfg.filter.truck.cda_sigma_m2;
+  out.torque_sigma_nm = losses.sigma_nm();
   const std::vector<CellSpan> cells = cell_spans(route.file.cells);
   std::optional<ParseError> failed;
   AeroDrive d = analyse_for_aero(cfg, [&](const AnalyzerConfig& c) {
@@ -77,7 +81,22 @@ std::variant<int, AeroDrive> aero_drive(const std::string& path, const AeroOptio
 
 }  // namespace
 
-int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
+int write_fit_csv(const std::string& path, const char* header, std::string_view row) {
+  auto out = recording::OutputFile::create(path);
+  if (!out) {
+    std::fprintf(stderr, "roadload calibrate: %s\n", out.error().to_string().c_str());
+    return kExitCantCreate;
+  }
+  out.value().write(header);
+  out.value().write(row);
+  if (auto err = out.value().close()) {
+    std::fprintf(stderr, "roadload calibrate: %s\n", err->to_string().c_str());
+    return kExitCantCreate;
+  }
+  return kExitOk;
+}
+
+std::variant<int, CalibrationDrives> calibration_drives(const AeroOptions& o, const j1939::Database& db) {
   auto losses = load_engine_loss_file(o.engine_losses);
   if (!losses) {
     std::fprintf(stderr, "roadload calibrate: %s\n", losses.error().to_string().c_str());
@@ -89,17 +108,24 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
     if (const int* rc = std::get_if<int>(&loaded)) return *rc;
     routes.push_back(std::move(std::get<LoadedRoute>(loaded)));
   }
-  std::vector<AeroDrive> drives;
-  double prior_m2 = 0;
+  CalibrationDrives out;
   for (std::size_t k = 0; k < o.recordings.size(); ++k) {
     const LoadedRoute& route = routes[routes.size() == 1 ? 0 : k / 2];
-    auto d = aero_drive(o.recordings[k], o, db, route, losses.value(), prior_m2);
+    auto d = aero_drive(o.recordings[k], o, db, route, losses.value(), out);
     if (const int* rc = std::get_if<int>(&d)) return *rc;
-    drives.push_back(std::move(std::get<AeroDrive>(d)));
+    out.drives.push_back(std::move(std::get<AeroDrive>(d)));
   }
+  return out;
+}
+
+int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
+  auto analysed = calibration_drives(o, db);
+  if (const int* rc = std::get_if<int>(&analysed)) return *rc;
+  const std::vector<AeroDrive>& drives = std::get<CalibrationDrives>(analysed).drives;
+  const double prior_m2 = std::get<CalibrationDrives>(analysed).cda_prior_m2;
   std::vector<AeroPair> pairs;
   for (std::size_t k = 0; k + 1 < drives.size(); k += 2) pairs.push_back({&drives[k], &drives[k + 1]});
-  const AeroCalibration fit = fit_cda(pairs, prior_m2, losses.value().sigma_nm());
+  const AeroCalibration fit = fit_cda(pairs, prior_m2, std::get<CalibrationDrives>(analysed).torque_sigma_nm);
   if (fit.cells == 0) {
     std::fprintf(stderr,
                  "roadload calibrate: %s and %s: fewer than two cells estimated in both, or speeds too close to tell "
@@ -108,23 +134,15 @@ int run_calibrate_aero(const AeroOptions& o, const j1939::Database& db) {
     return kExitDataErr;
   }
   if (!o.out.empty()) {
-    auto out = recording::OutputFile::create(o.out);
-    if (!out) {
-      std::fprintf(stderr, "roadload calibrate: %s\n", out.error().to_string().c_str());
-      return kExitCantCreate;
-    }
     recording::LineBuilder line;
     line.num(fit.cda_m2, 4).sep().num(fit.sigma_m2, 4).sep().num(fit.statistical_m2, 4).sep().num(fit.torque_m2, 4).sep();
     line.num(static_cast<std::int64_t>(fit.cells)).sep().num(fit.chi2_per_dof, 3).sep().num(fit.residual_correlation, 3).sep();
     line.num(fit.torque_bias_correlation, 3).sep().num(fit.cda_per_torque_scale_m2, 3);
-    out.value().write(
-        "cda_m2,cda_sigma_m2,statistical_m2,torque_m2,cells,chi2_per_dof,residual_correlation,cda_torque_correlation,"
-        "cda_per_torque_scale_m2\n");
-    out.value().write(line.finish());
-    if (auto err = out.value().close()) {
-      std::fprintf(stderr, "roadload calibrate: %s\n", err->to_string().c_str());
-      return kExitCantCreate;
-    }
+    const int rc = write_fit_csv(o.out,
+                                 "cda_m2,cda_sigma_m2,statistical_m2,torque_m2,cells,chi2_per_dof,residual_correlation,"
+                                 "cda_torque_correlation,cda_per_torque_scale_m2\n",
+                                 line.finish());
+    if (rc != kExitOk) return rc;
   }
   std::printf(
       "CdA %.3f +- %.3f m^2 (cells' scatter %.3f, flywheel torque %.3f) from %zu cells, chi2/dof %.2f, neighbours' "

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "roadload/residual_scatter.hpp"
+
 namespace roadload {
 
 AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze) {
@@ -28,7 +30,8 @@ AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::
   d.torque = analyze(torque);
   if (base.filter.truck.torque_scale_sigma > 0) {
     AnalyzerConfig scale = held;
-    scale.filter.torque_scale_held = d.scale_step = base.filter.truck.torque_scale_sigma;
+    d.scale_step = base.filter.truck.torque_scale_sigma;
+    scale.filter.torque_scale_held = base.filter.torque_scale_held + d.scale_step;
     d.scale = analyze(scale);
   }
   return d;
@@ -79,25 +82,16 @@ AeroCalibration fit_cda(std::span<const AeroPair> pairs, double cda_prior_m2, do
   // Below one sigma of a cell per m^2 of CdA in total, drag and rolling resistance stay confounded.
   if (cells.size() < 2 || swdd < 1.0) return out;
   const double shift = swdx / swdd;  // c - CdA
-  double chi2 = 0, lag1 = 0, previous = 0;
-  for (const Cell& c : cells) {
-    const double z = std::sqrt(c.w) * (c.x - c.d * shift);
-    chi2 += z * z;
-    lag1 += c.first ? 0.0 : z * previous;
-    previous = z;
-  }
+  std::vector<Residual> residuals;
+  for (const Cell& c : cells) residuals.push_back({std::sqrt(c.w) * (c.x - c.d * shift), c.first});
+  const ResidualScatter scatter = residual_scatter(residuals);
   out.cells = cells.size();
-  out.chi2_per_dof = chi2 / static_cast<double>(cells.size() - 1);
+  out.chi2_per_dof = scatter.chi2_per_dof;
   out.cda_m2 = cda_prior_m2 - shift;
   // The cells' sigmas overstate how far the two drives disagree (chi2/dof near 0.13 on the
-  // simulated Mainline, where the fitted CdA's errors then matched the scatter's sigma). So
-  // the scatter sizes the statistical sigma, widened as for AR(1) noise where neighbouring cells'
-  // residuals are correlated along the road (their estimates share smoothed data). The lag-one
-  // estimate is biased low by (1 + 4 r) / n over n cells (Kendall), put back here.
-  const double r = chi2 > 0 ? lag1 / chi2 : 0.0;
-  out.residual_correlation = std::clamp(r + (1.0 + 4.0 * r) / static_cast<double>(cells.size()), 0.0, 0.9);
-  const double widening = (1.0 + out.residual_correlation) / (1.0 - out.residual_correlation);
-  out.statistical_m2 = std::sqrt(out.chi2_per_dof * widening / swdd);
+  // simulated Mainline, where the fitted CdA's errors then matched the scatter's sigma).
+  out.residual_correlation = scatter.correlation;
+  out.statistical_m2 = scatter.sigma(swdd);
   // A flywheel torque bias b (true less computed, the same engine-loss map in both drives) lowers
   // each drive's CRR by its sensitivity times b, so the fit carries CdA + b (swta - swtb) / swdd.
   out.cda_per_torque_bias_m2_per_nm = (swta - swtb) / swdd;

@@ -246,14 +246,17 @@ PowerInterval DriveAnalyzer::power_since_last_tick(double dt_s, const TractionEs
   power.fuel_rate_lph = fuel.seen ? fuel.value : 0.0;
   if (!fuel.seen) ++trip_.no_fuel_rate;
   power.engine_speed_rpm = feed_.get(Quantity::engine_speed_rpm).value;
-  power.indicated_nm = tr.indicated_nm;
+  // At the torque scale the filter holds (calibrate --torque-scale): the work the resistances are
+  // fitted to, so the breakdown closes on the same force balance.
+  const double scale = config_.filter.torque_scale_held;
+  power.indicated_nm = tr.indicated_nm * (1.0 + scale);
   power.friction_nm = tr.friction_nm;
   power.parasitic_nm = tr.parasitic_nm;
   power.engaged = tr.reason != Unusable::declutched;
   power.braking = tr.reason == Unusable::braking;
   power.attributable = tr.reason != Unusable::no_reference_torque && tr.reason != Unusable::no_torque &&
                        tr.reason != Unusable::no_gear && tr.reason != Unusable::stale;
-  power.tractive_n = tr.tractive_n;
+  power.tractive_n = tr.tractive_n + scale * tr.indicated_nm * tr.wheel_force_per_flywheel_nm;
   power.speed_from_mps = last_speed_mps_;
   power.speed_to_mps = wheel_speed_mps;
   power.effective_mass_kg = tr.effective_mass_kg > 0 ? tr.effective_mass_kg : config_.filter.truck.mass_kg;

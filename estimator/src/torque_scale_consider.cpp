@@ -38,7 +38,7 @@ DriveAnalysis analyse_with_torque_scale(const AnalyzerConfig& cfg,
   AnalyzerConfig held = cfg;
   held.filter.truck.torque_scale_sigma = 0;
   AnalyzerConfig shifted = held;
-  shifted.filter.torque_scale_held = sigma;
+  shifted.filter.torque_scale_held = cfg.filter.torque_scale_held + sigma;
   shifted.filter.truck.cda_prior_m2 += cfg.filter.truck.cda_per_torque_scale_m2 * sigma;
   DriveAnalysis nominal = analyze(held, TorqueScaleRun::held);  // first: a reader may be read once
   return widen_by_shift(std::move(nominal), analyze(shifted, TorqueScaleRun::shifted), held);
