@@ -66,12 +66,15 @@ std::variant<int, AeroDrive> aero_drive(const std::string& path, const AeroOptio
   out.torque_sigma_nm = losses.sigma_nm();
   const std::vector<CellSpan> cells = cell_spans(route.file.cells);
   std::optional<ParseError> failed;
-  AeroDrive d = analyse_for_aero(cfg, [&](const AnalyzerConfig& c) {
-    auto r = analyse(path, db, route, cells, c, vehicle);
-    if (r) return std::move(r.value());
-    failed = r.error();
-    return std::vector<CellResult>{};
-  });
+  AeroDrive d = analyse_for_aero(
+      cfg,
+      [&](const AnalyzerConfig& c) {
+        auto r = analyse(path, db, route, cells, c, vehicle);
+        if (r) return std::move(r.value());
+        failed = r.error();
+        return std::vector<CellResult>{};
+      },
+      o.runs);
   if (failed) {
     std::fprintf(stderr, "roadload calibrate: %s\n", failed->to_string().c_str());
     return failed->line > 0 ? kExitDataErr : kExitNoInput;

@@ -22,6 +22,7 @@ struct AeroOptions {
   std::optional<double> cda_per_torque_scale_m2;  // --torque-scale: the --aero fit's coupling
   // The step of the torque scale's run; 0: the vehicle's prior sigma, and no such run without one.
   double scale_step = 0;
+  AeroRuns runs = AeroRuns::standard;
 };
 
 // The recordings, each analysed the ways the calibrations need, on its pair's route; with the

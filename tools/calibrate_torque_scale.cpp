@@ -20,10 +20,11 @@ constexpr double kDefaultScaleStep = 0.05;
 int write_fit(const std::string& path, const TorqueScaleCalibration& fit) {
   recording::LineBuilder line;
   line.num(fit.scale, 5).sep().num(fit.sigma, 5).sep().num(fit.statistical, 5).sep().num(fit.cda, 5).sep().num(fit.torque, 5).sep();
+  line.num(fit.mass, 5).sep();
   line.num(static_cast<std::int64_t>(fit.cells)).sep().num(fit.chi2_per_dof, 3).sep().num(fit.residual_correlation, 3).sep();
   line.num(fit.scale_per_cda_m2, 5).sep().num(fit.scale_per_torque_nm, 6).sep().num(fit.cda_shift_m2, 4);
   return write_fit_csv(path,
-                       "torque_scale,torque_scale_sigma,statistical,cda,torque,cells,chi2_per_dof,residual_correlation,"
+                       "torque_scale,torque_scale_sigma,statistical,cda,torque,mass,cells,chi2_per_dof,residual_correlation,"
                        "scale_per_cda_m2,scale_per_torque_nm,cda_shift_m2\n",
                        line.finish());
 }
@@ -33,6 +34,7 @@ int write_fit(const std::string& path, const TorqueScaleCalibration& fit) {
 int run_calibrate_torque_scale(const AeroOptions& options, const j1939::Database& db) {
   AeroOptions o = options;
   if (!(o.scale_step > 0)) o.scale_step = kDefaultScaleStep;
+  o.runs = AeroRuns::with_mass;
   auto analysed = calibration_drives(o, db);
   if (const int* rc = std::get_if<int>(&analysed)) return *rc;
   const CalibrationDrives& d = std::get<CalibrationDrives>(analysed);
@@ -62,9 +64,9 @@ int run_calibrate_torque_scale(const AeroOptions& options, const j1939::Database
     if (const int rc = write_fit(o.out, fit); rc != kExitOk) return rc;
   }
   std::printf(
-      "torque scale %+.4f +- %.4f (cells' scatter %.4f, CdA %.4f, flywheel torque %.4f) from %zu cells, chi2/dof %.2f, "
-      "neighbours' correlation %.2f; CdA %.2f +- %.2f m^2 held\n",
-      fit.scale, fit.sigma, fit.statistical, fit.cda, fit.torque, fit.cells, fit.chi2_per_dof, fit.residual_correlation,
+      "torque scale %+.4f +- %.4f (cells' scatter %.4f, CdA %.4f, flywheel torque %.4f, mass %.4f) from %zu cells, "
+      "chi2/dof %.2f, neighbours' correlation %.2f; CdA %.2f +- %.2f m^2 held\n",
+      fit.scale, fit.sigma, fit.statistical, fit.cda, fit.torque, fit.mass, fit.cells, fit.chi2_per_dof, fit.residual_correlation,
       d.cda_prior_m2, d.cda_sigma_m2);
   if (o.cda_per_torque_scale_m2) {
     std::printf("CdA at that scale %.3f m^2 (%.3f at a scale of 0, %+.3f per unit of scale)\n", d.cda_prior_m2 + fit.cda_shift_m2,

@@ -7,7 +7,8 @@
 
 namespace roadload {
 
-AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze) {
+AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze,
+                           AeroRuns runs) {
   // Held: CdA's prior sigma and the torque calibration's sigma near zero, so that each cell's
   // sigma is its own noise, not the common part this calibration is about.
   AnalyzerConfig held = base;
@@ -33,6 +34,11 @@ AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::
     d.scale_step = base.filter.truck.torque_scale_sigma;
     scale.filter.torque_scale_held = base.filter.torque_scale_held + d.scale_step;
     d.scale = analyze(scale);
+  }
+  if (runs == AeroRuns::with_mass && base.filter.truck.mass_sigma_kg > 0) {
+    AnalyzerConfig mass = held;
+    mass.filter.truck.mass_kg += base.filter.truck.mass_sigma_kg;
+    d.mass = analyze(mass);
   }
   return d;
 }

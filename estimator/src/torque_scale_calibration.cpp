@@ -20,7 +20,7 @@ TorqueScaleCalibration fit_torque_scale(std::span<const ScalePair> pairs, double
   TorqueScaleCalibration out;
   // Per cell: the powered drive's CRR less the coasting one's is x at scale 0 and x + s k at
   // scale k, s the difference of their sensitivities to the scale (the coast's is near 0).
-  double sss = 0, ssx = 0, ssc = 0, sst = 0;
+  double sss = 0, ssx = 0, ssc = 0, sst = 0, ssm = 0;
   struct Cell {
     double x, s, w;
     bool first;
@@ -44,6 +44,9 @@ TorqueScaleCalibration fit_torque_scale(std::span<const ScalePair> pairs, double
       ssx += w * s * x;
       ssc += w * s * (per_step(p.cda, p.held, i, kCdaStep_m2) - per_step(c.cda, c.held, i, kCdaStep_m2));
       sst += w * s * (per_step(p.torque, p.held, i, 1.0) - per_step(c.torque, c.held, i, 1.0));
+      if (p.mass.size() > i && c.mass.size() > i) {
+        ssm += w * s * (per_step(p.mass, p.held, i, 1.0) - per_step(c.mass, c.held, i, 1.0));
+      }
       cells.push_back({x, s, w, first});
       first = false;
     }
@@ -64,7 +67,8 @@ TorqueScaleCalibration fit_torque_scale(std::span<const ScalePair> pairs, double
   out.scale_per_torque_nm = -sst / sss;
   out.cda = cda_sigma_m2 * std::abs(out.scale_per_cda_m2);
   out.torque = torque_sigma_nm * std::abs(out.scale_per_torque_nm);
-  out.sigma = std::sqrt(out.statistical * out.statistical + out.cda * out.cda + out.torque * out.torque);
+  out.mass = std::abs(ssm / sss);  // the mass run is one sigma up already
+  out.sigma = std::sqrt(out.statistical * out.statistical + out.cda * out.cda + out.torque * out.torque + out.mass * out.mass);
   return out;
 }
 
@@ -79,6 +83,7 @@ TorqueScaleCalibration with_aero_coupling(TorqueScaleCalibration fit, double cda
   fit.statistical *= gain;
   fit.cda *= gain;
   fit.torque *= gain;
+  fit.mass *= gain;
   fit.cda_shift_m2 = cda_per_torque_scale_m2 * fit.scale;
   return fit;
 }

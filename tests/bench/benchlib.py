@@ -65,12 +65,15 @@ def run_checked(cmd, what):
     return r
 
 
-def bench_args(doc, count_flag, default, prefix):
-    """ROADLOAD_BIN, a count and --keep DIR: the arguments and the work folder (kept when given)."""
+def bench_args(doc, count_flag, default, prefix, switches=()):
+    """ROADLOAD_BIN, a count, --keep DIR and the bench's own on/off `switches` (name, help): the
+    arguments and the work folder (kept when given)."""
     ap = argparse.ArgumentParser(description=doc.splitlines()[0])
     ap.add_argument("roadload")
     ap.add_argument(count_flag, type=int, default=default)
     ap.add_argument("--keep")
+    for name, text in switches:
+        ap.add_argument(name, action="store_true", help=text)
     a = ap.parse_args()
     work = pathlib.Path(a.keep or tempfile.mkdtemp(prefix=prefix))
     work.mkdir(parents=True, exist_ok=True)

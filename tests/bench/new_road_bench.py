@@ -18,7 +18,13 @@ and the per-cell CRR is scored against the simulator's truth (the tires' CRR plu
 and tires' dissipation over v m g, what the force balance measures): RMSE and coverage of the 90 %
 intervals, calibrated and not; the identified values beside the truth.
 
-usage: new_road_bench.py ROADLOAD_BIN [--seeds N] [--keep DIR]
+With --coast, each way also has a coast-down in neutral from 60 mph, and the calibration adds
+
+  roadload calibrate --torque-scale SLOW COAST SLOW COAST --route EAST --route WEST --cda ...
+
+whose scale (printed beside the ECU's) the calibrated analyses hold.
+
+usage: new_road_bench.py ROADLOAD_BIN [--seeds N] [--keep DIR] [--coast]
 """
 import csv
 import datetime
@@ -117,7 +123,8 @@ def vehicle_figures(identified, truth_vehicle, truth_mass_kg, masses):
 
 
 def main():
-    a, work = bench_args(__doc__, "--seeds", 10, "new-road-bench.")
+    a, work = bench_args(__doc__, "--seeds", 10, "new-road-bench.",
+                         [("--coast", "add a coast-down each way and calibrate the ECU's torque scale from it")])
     rl = a.roadload
     totals = {"cal": {"all": [], "identified": []}, "uncal": {"all": [], "identified": []}}
     vehicles_ok = 0
@@ -144,6 +151,12 @@ def main():
                 run_checked([rl, "simulate", "--scenario", d / f"{name}.toml", "--seed", seed * 1000 + w * 100 + mph, "--out", d / name,
                              "--truth", d / f"{name}.truth", "-q"], f"simulate {name}")
                 drives[name] = (way, mph)
+            if a.coast:
+                sc = scenario(f"{way}-coast", CONFIG / "routes" / f"{ROAD}-{way}.toml", seed, d / "truck-true.toml", scales, effects,
+                              wind, speed_mph=max(SPEEDS_MPH), start_m=100, end_m=4600, mode="coast")
+                write_toml(d / f"{way}-coast.toml", sc)
+                run_checked([rl, "simulate", "--scenario", d / f"{way}-coast.toml", "--seed", seed * 1000 + w * 100 + 99, "--out",
+                             d / f"{way}-coast", "-q"], f"simulate {way}-coast")
         # Each drive its own seed: two drives sharing one would share their GNSS's height errors,
         # mirrored along the road, and the route's heights would keep them (a bowl, not noise).
         recs = [d / n for n in drives]
@@ -163,6 +176,21 @@ def main():
         run_checked([rl, "calibrate", "--aero", *pairs, *route_args, "--engine-losses", d / "losses.csv",
                      "--vehicle", d / "truck.toml", "--out", d / "cda.csv"], "calibrate --aero")
         cda = aero_options(d / "cda.csv")
+        scale_text = ""
+        if a.coast:
+            # Each way's slow drive beside its coast-down, with the CdA --aero measured and its slope.
+            coast_pairs = [pairs[0], d / "eastbound-coast", pairs[2], d / "westbound-coast"]
+            aero = next(csv.DictReader(open(d / "cda.csv")))
+            run_checked([rl, "calibrate", "--torque-scale", *coast_pairs, *route_args, "--engine-losses", d / "losses.csv",
+                         "--vehicle", d / "truck.toml", "--cda", aero["cda_m2"], "--cda-sigma", aero["cda_sigma_m2"],
+                         "--cda-per-torque-scale", aero["cda_per_torque_scale_m2"], "--out", d / "scale.csv"], "calibrate --torque-scale")
+            row = next(csv.DictReader(open(d / "scale.csv")))
+            cda += ["--torque-scale", row["torque_scale"], "--torque-scale-sigma", row["torque_scale_sigma"]]
+            # The fitted scale also takes up the driveline's efficiency against the vehicle file's.
+            nominal = tomllib.loads((d / "truck.toml").read_text())["driveline"]["efficiency"]
+            scale_text = (f"; torque scale {float(row['torque_scale']):+.4f} +- {float(row['torque_scale_sigma']):.4f} "
+                          f"(ECU {1 / (1 + effects['torque-bias']) - 1:+.4f}, efficiency "
+                          f"{truck['driveline']['efficiency'] / nominal - 1:+.4f} of the file's)")
         truth_mass, masses = None, []
         for name, (way, mph) in drives.items():
             truth_toml = tomllib.loads((d / f"{name}.truth" / "truth.toml").read_text())
@@ -180,7 +208,7 @@ def main():
         vehicles_ok += ok
         cda_true = 5.8 * scales["cda_scale"]
         print(f"seed {seed:2d}: {text}; CdA {cda[1]} +- {cda[3]} (truth {cda_true:.2f}); "
-              f"torque {1 + effects['torque-bias']:.3f}, efficiency {truck['driveline']['efficiency']:.3f}", flush=True)
+              f"torque {1 + effects['torque-bias']:.3f}, efficiency {truck['driveline']['efficiency']:.3f}{scale_text}", flush=True)
     for kind, label in (("cal", "calibrated"), ("uncal", "uncalibrated")):
         t = totals[kind]
         goal = "rmse<=0.00025, coverage 80-97 %" if kind == "cal" else "coverage >=80 %"

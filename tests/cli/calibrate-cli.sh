@@ -61,7 +61,7 @@ awk -v k="$per_scale" 'BEGIN { exit !(k > 3 && k < 9) }' || fail "CdA per unit o
 
 expect_status 0 "$roadload" calibrate --torque-scale "$work/m30" "$work/coast" --route $route --engine-losses "$work/losses.csv" \
   --cda "$cda" --cda-sigma "$sigma" --cda-per-torque-scale "$per_scale" --out "$work/scale.csv"
-read -r scale scale_sigma shift < <(awk -F, 'NR == 2 { print $1, $2, $11 }' "$work/scale.csv")
+read -r scale scale_sigma shift < <(awk -F, 'NR == 2 { print $1, $2, $12 }' "$work/scale.csv")
 awk -v k="$scale" -v s="$scale_sigma" 'BEGIN { e = k + 0.047619; if (e < 0) e = -e; exit !(s > 0.0005 && s < 0.01 && e < 3 * s) }' ||
   fail "torque scale $scale +- $scale_sigma against the ECU's -0.0476"
 # The simulated truck's CdA is 6.2 m^2: two speeds and the coast-down pin it to a few hundredths.

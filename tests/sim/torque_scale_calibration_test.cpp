@@ -58,7 +58,8 @@ std::vector<CellResult> analyse(const Drive& d, const AnalyzerConfig& cfg, const
 AeroDrive for_calibration(const Drive& d, const j1939::Database& db) {
   AnalyzerConfig cfg = test::analyzer_config(d.sc);
   cfg.filter.truck.torque_scale_sigma = 0.05;
-  return analyse_for_aero(cfg, [&](const AnalyzerConfig& c) { return analyse(d, c, db); });
+  return analyse_for_aero(
+      cfg, [&](const AnalyzerConfig& c) { return analyse(d, c, db); }, AeroRuns::with_mass);
 }
 
 // RMS of the cells' CRR less their truth, over the cells estimated.
@@ -86,9 +87,10 @@ TEST(TorqueScaleFromCoastDown, ACoastDownBesideAPoweredDriveFindsTheScale) {
   const TorqueScaleCalibration fit = fit_torque_scale(pairs, cda_sigma_m2, torque_sigma_nm);
   const double truth = 1.0 / (1.0 + kBias) - 1.0;
   std::printf(
-      "torque scale %+.4f +- %.4f (scatter %.4f, CdA %.4f for %.2f m^2, torque %.4f for %.1f N m) over %zu cells, chi2/dof "
-      "%.2f; truth %+.4f\n",
-      fit.scale, fit.sigma, fit.statistical, fit.cda, cda_sigma_m2, fit.torque, torque_sigma_nm, fit.cells, fit.chi2_per_dof, truth);
+      "torque scale %+.4f +- %.4f (scatter %.4f, CdA %.4f for %.2f m^2, torque %.4f for %.1f N m, mass %.4f) over %zu cells, "
+      "chi2/dof %.2f; truth %+.4f\n",
+      fit.scale, fit.sigma, fit.statistical, fit.cda, cda_sigma_m2, fit.torque, torque_sigma_nm, fit.mass, fit.cells,
+      fit.chi2_per_dof, truth);
   ASSERT_GE(fit.cells, 6u);
   EXPECT_NEAR(fit.scale, truth, 2.5 * fit.sigma);
   EXPECT_LT(fit.sigma, 0.03);

@@ -20,6 +20,7 @@ struct Spec {
   double drag_per_m2 = 0;    // CRR per m^2 of CdA at the drive's speed
   double cda_error_m2 = 0;   // true less held
   double noise = 1e-4;
+  double per_mass_sigma = 0;  // CRR per sigma of the mass's prior; 0: no mass run
 };
 
 AeroDrive drive(const Spec& spec, std::mt19937& rng) {
@@ -40,6 +41,11 @@ AeroDrive drive(const Spec& spec, std::mt19937& rng) {
     d.scale.push_back(scale);
     d.cda.push_back(cda);
     d.torque.push_back(torque);
+    if (spec.per_mass_sigma != 0) {
+      CellResult mass = held;
+      mass.crr += spec.per_mass_sigma;
+      d.mass.push_back(mass);
+    }
   }
   return d;
 }
@@ -99,6 +105,18 @@ TEST(TorqueScaleCalibration, SolvedWithTheAeroFitBothComeOutTheTrucks) {
   EXPECT_NEAR(joint.sigma, alone.sigma / (1 - alone.scale_per_cda_m2 * kPerScale), 1e-12);
   // A coupling that cancels the scale's own slope leaves nothing to solve.
   EXPECT_EQ(with_aero_coupling(alone, 1.0 / alone.scale_per_cda_m2).cells, 0u);
+}
+
+// A coast-down's CRR is its deceleration less the drag over the mass: a heavier prior takes less
+// drag off it (0.0083 of the weight at 60 mph, 5 % of mass: -0.0004), a powered drive's barely moves.
+TEST(TorqueScaleCalibration, TheMassPriorsSigmaPassesIntoTheScales) {
+  std::mt19937 rng(9);
+  const AeroDrive p = drive({.crr_per_scale = kPoweredScale, .drag_per_m2 = kPoweredDrag, .per_mass_sigma = 0.00005}, rng);
+  const AeroDrive c = drive({.drag_per_m2 = kCoastDrag, .per_mass_sigma = -0.0004}, rng);
+  const ScalePair pairs[] = {{&p, &c}};
+  const TorqueScaleCalibration fit = fit_torque_scale(pairs, 0.0, 0.0);
+  EXPECT_NEAR(fit.mass, 0.00045 / kPoweredScale, 1e-9);
+  EXPECT_NEAR(fit.sigma, std::hypot(fit.statistical, fit.mass), 1e-12);
 }
 
 TEST(TorqueScaleCalibration, TwoDrivesThatMoveAlikeTellNothing) {

@@ -19,16 +19,23 @@ struct AeroDrive {
   std::vector<CellResult> cda;     // CdA + kCdaStep_m2
   std::vector<CellResult> torque;  // flywheel torque + 1 N m
   std::vector<CellResult> scale;   // the ECU's torque scale held `scale_step` off (none when 0)
+  std::vector<CellResult> mass;    // the mass's prior one sigma up (AeroRuns::with_mass)
   double scale_step = 0;
 };
+
+// The CdA fit needs no mass run: each drive estimates its mass. The torque scale's does: a
+// coast-down meets the drag over the mass, and its mass is barely told by the drive.
+enum class AeroRuns { standard, with_mass };
 
 inline constexpr double kCdaStep_m2 = 0.5;
 
 // Runs `analyze` (a whole drive through a DriveAnalyzer with the given configuration) the three
-// ways, and a fourth with the torque scale one sigma off when the truck's has a sigma. `base`
+// ways, a fourth with the torque scale one sigma off when the truck's has a sigma, and a fifth
+// with the mass's prior one sigma up when asked and the truck's mass has a sigma. `base`
 // carries the engine-loss calibration, without which the two drives' flywheel torques carry
 // EEC3's rounding at two engine speeds, and that would be fitted as drag.
-AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze);
+AeroDrive analyse_for_aero(const AnalyzerConfig& base, const std::function<std::vector<CellResult>(const AnalyzerConfig&)>& analyze,
+                           AeroRuns runs = AeroRuns::standard);
 
 struct AeroCalibration {
   double cda_m2 = 0, sigma_m2 = 0;

@@ -21,9 +21,11 @@ struct TorqueScaleCalibration {
   // The truck's tractive force is EEC1's indicated torque times (1 + scale): the value `roadload
   // analyze --torque-scale` holds.
   double scale = 0, sigma = 0;
-  double statistical = 0, cda = 0, torque = 0;  // the parts of sigma: cells' scatter, CdA, flywheel torque
-  double scale_per_cda_m2 = 0;                  // how the fit follows an error of the CdA both drives held
-  double scale_per_torque_nm = 0;               // and of the flywheel torque (the engine-loss table)
+  // The parts of sigma: cells' scatter, CdA, flywheel torque, and the mass's prior (each drive's
+  // own, one sigma up in both: the same truck, the same declared load).
+  double statistical = 0, cda = 0, torque = 0, mass = 0;
+  double scale_per_cda_m2 = 0;     // how the fit follows an error of the CdA both drives held
+  double scale_per_torque_nm = 0;  // and of the flywheel torque (the engine-loss table)
   double chi2_per_dof = 0, residual_correlation = 0;
   std::size_t cells = 0;
   // Where the CdA held came from a fit at a scale of 0 (calibrate --aero), its own value at the
@@ -34,8 +36,9 @@ struct TorqueScaleCalibration {
 // Weighted least squares over the cells each pair's drives both estimated. `cda_sigma_m2` and
 // `torque_sigma_nm` are the sigmas of the CdA and the flywheel torque both drives were analysed
 // with: the drives meet the drag and the engine's losses at other speeds and loads, so their
-// errors pass into the scale. Nothing (cells 0) when fewer than two cells are shared or a 10 %
-// scale would move them by less than one cell's sigma in all.
+// errors pass into the scale; so does the mass, where the drives have a mass run (a coast-down's
+// CRR is its deceleration less the drag over the mass, which its own drive barely tells). Nothing (cells 0) when fewer than two cells
+// are shared or a 10 % scale would move them by less than one cell's sigma in all.
 TorqueScaleCalibration fit_torque_scale(std::span<const ScalePair> pairs, double cda_sigma_m2, double torque_sigma_nm);
 
 // The CdA both drives held was fitted from two speeds at a scale of 0, and moves with the scale by
