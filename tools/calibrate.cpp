@@ -88,6 +88,52 @@ void print_holds(const std::vector<EngineLossHold>& holds) {
   }
 }
 
+// The drive-pair calibrations' own rules; a usage exit when one is broken.
+std::optional<int> check_pairs(OptionParser& opt, bool aero, std::size_t recordings, const AeroOptions& ao) {
+  const std::string mode = aero ? "--aero" : "--torque-scale";
+  const char* pair = aero ? "one at each of two speeds" : "a powered drive and then a coast-down";
+  if (ao.routes.empty()) return opt.fail(mode + " needs --route");
+  if (recordings % 2 != 0) return opt.fail(mode + " takes drives in pairs, " + pair);
+  if (ao.routes.size() != 1 && ao.routes.size() != recordings / 2)
+    return opt.fail(mode + " takes one --route, or one per pair of drives");
+  if (ao.engine_losses.empty()) return opt.fail(mode + " needs --engine-losses (roadload calibrate, standing)");
+  return std::nullopt;
+}
+
+// The engine-loss table from standing holds.
+int run_engine_losses(const std::vector<std::string>& recordings, const std::string& out, bool quiet, const j1939::Database& db) {
+  EngineLossFrames cal(db);
+  for (const std::string& r : recordings) {
+    if (auto rc = read_recording(r, cal)) return *rc;
+  }
+  const std::vector<EngineLossHold> holds = cal.finish();
+  if (holds.empty()) {
+    std::fprintf(stderr,
+                 "roadload calibrate: %s: no steady engine speed standing in neutral (%" PRIu64 " EEC1 readings, %" PRIu64
+                 " standing in neutral, %" PRIu64 " before EC1's reference torque): nothing written\n",
+                 recordings.front().c_str(), cal.readings, cal.standing, cal.no_reference);
+    return kExitDataErr;
+  }
+  if (holds.size() > model::EngineLossMap::kCapacity) {
+    std::fprintf(stderr, "roadload calibrate: %zu holds, more than the %zu engine speeds a table keeps\n", holds.size(),
+                 model::EngineLossMap::kCapacity);
+    return kExitDataErr;
+  }
+  if (auto err = write_engine_loss_file(out, holds)) {
+    std::fprintf(stderr, "roadload calibrate: %s\n", err->to_string().c_str());
+    return kExitCantCreate;
+  }
+  if (!quiet) print_holds(holds);
+  if (std::isnan(holds.front().point.friction_nm)) {
+    std::fprintf(stderr,
+                 "roadload calibrate: EEC3's friction steps fewer than three times over these speeds: the accessories "
+                 "keep EEC3's parasitic share\n");
+  }
+  std::fprintf(stderr, "roadload calibrate: %zu engine speeds from %.0f to %.0f rpm, torque to %s %% -> %s\n", holds.size(),
+               holds.front().point.rpm, holds.back().point.rpm, cal.whole_percent ? "whole" : "1/8", out.c_str());
+  return kExitOk;
+}
+
 }  // namespace
 
 int run_calibrate(Args args) {
@@ -129,55 +175,18 @@ int run_calibrate(Args args) {
   if (opt.failed()) return kExitUsage;
   if (recordings.empty()) return opt.fail("a recording is required");
   if (aero && scale) return opt.fail("--aero and --torque-scale are separate calibrations");
-  const char* mode = aero ? "--aero" : "--torque-scale";
-  const char* pair = aero ? "one at each of two speeds" : "a powered drive and then a coast-down";
-  if ((aero || scale) && ao.routes.empty()) return opt.fail(std::string(mode) + " needs --route");
-  if ((aero || scale) && recordings.size() % 2 != 0) return opt.fail(std::string(mode) + " takes drives in pairs, " + pair);
-  if ((aero || scale) && ao.routes.size() != 1 && ao.routes.size() != recordings.size() / 2) {
-    return opt.fail(std::string(mode) + " takes one --route, or one per pair of drives");
+  if (aero || scale) {
+    if (auto rc = check_pairs(opt, aero, recordings.size(), ao)) return *rc;
+  } else if (out.empty()) {
+    return opt.fail("--out is required");
   }
-  if ((aero || scale) && ao.engine_losses.empty()) {
-    return opt.fail(std::string(mode) + " needs --engine-losses (roadload calibrate, standing)");
-  }
-  if (!aero && !scale && out.empty()) return opt.fail("--out is required");
 
   j1939::Database db;
   if (auto rc = load_definitions("calibrate", dbcs, db)) return *rc;
-  if (aero || scale) {
-    ao.recordings = recordings;
-    ao.out = out;
-    return aero ? run_calibrate_aero(ao, db) : run_calibrate_torque_scale(ao, db);
-  }
-  EngineLossFrames cal(db);
-  for (const std::string& r : recordings) {
-    if (auto rc = read_recording(r, cal)) return *rc;
-  }
-  const std::vector<EngineLossHold> holds = cal.finish();
-  if (holds.empty()) {
-    std::fprintf(stderr,
-                 "roadload calibrate: %s: no steady engine speed standing in neutral (%" PRIu64 " EEC1 readings, %" PRIu64
-                 " standing in neutral, %" PRIu64 " before EC1's reference torque): nothing written\n",
-                 recordings.front().c_str(), cal.readings, cal.standing, cal.no_reference);
-    return kExitDataErr;
-  }
-  if (holds.size() > model::EngineLossMap::kCapacity) {
-    std::fprintf(stderr, "roadload calibrate: %zu holds, more than the %zu engine speeds a table keeps\n", holds.size(),
-                 model::EngineLossMap::kCapacity);
-    return kExitDataErr;
-  }
-  if (auto err = write_engine_loss_file(out, holds)) {
-    std::fprintf(stderr, "roadload calibrate: %s\n", err->to_string().c_str());
-    return kExitCantCreate;
-  }
-  if (!quiet) print_holds(holds);
-  if (std::isnan(holds.front().point.friction_nm)) {
-    std::fprintf(stderr,
-                 "roadload calibrate: EEC3's friction steps fewer than three times over these speeds: the accessories "
-                 "keep EEC3's parasitic share\n");
-  }
-  std::fprintf(stderr, "roadload calibrate: %zu engine speeds from %.0f to %.0f rpm, torque to %s %% -> %s\n", holds.size(),
-               holds.front().point.rpm, holds.back().point.rpm, cal.whole_percent ? "whole" : "1/8", out.c_str());
-  return kExitOk;
+  if (!aero && !scale) return run_engine_losses(recordings, out, quiet, db);
+  ao.recordings = recordings;
+  ao.out = out;
+  return aero ? run_calibrate_aero(ao, db) : run_calibrate_torque_scale(ao, db);
 }
 
 }  // namespace roadload::cli
