@@ -37,6 +37,22 @@ assert g["residual_after"] < 0.3 * g["residual_before"], (g["residual_before"], 
 PY
 head -1 "$work/f.csv" | grep -qx "run,channel,where,half,real,model,sigma,z,after" || fail "features CSV header"
 
+# A road no built-in scenario drives, by a truck of the recording's own vehicle file: no --model,
+# the model drives the road the drive's GNSS traces. One pass's heights and a road of unknown
+# pavement are not a model to blame effects on: the places are ranked, no effect is named.
+config=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../config" && pwd)
+printf 'name = "county"\nroute = "%s"\nvehicle = "%s"\nspeed_mph = 40\nstart_m = 100\nduration_s = 90\n' \
+  "$config/routes/example-county-road-eastbound.toml" "$config/vehicles/tractor-53ft-18speed.toml" >"$work/county.toml"
+expect_status 0 "$roadload" simulate --scenario "$work/county.toml" --seed 22 --out "$work/county" -q
+expect_status 0 "$roadload" gap --real "$work/county" --noise-runs 3 --jobs 2 --json "$work/county.json" -q
+grep -q "model traced (route traced from county)" "$work/out" || fail "the county drive's model: $(head -3 "$work/out")"
+grep -q "^where the gap lies" "$work/out" || fail "no diagnosis of the county drive: $(cat "$work/out")"
+grep -q "^effect: none named: county: the model's road is traced" "$work/out" ||
+  fail "an effect named on a traced road: $(grep -A2 '^effect' "$work/out")"
+python3 -c 'import json, sys; g = json.load(open(sys.argv[1])); sys.exit(1 if g["unmatched"] or not g["withheld"] or g["effect"] else 0)' \
+  "$work/county.json" ||
+  fail "the county drive's sensors did not all meet the model's: $(grep -A9 '^not compared' "$work/out")"
+
 # A damaged recording is refused with its file and line, not diagnosed.
 cp -r "$work/rec" "$work/bad"
 sed -i '20s/.*/(12.5) can0 not-a-frame/' "$work/bad/can.log"

@@ -5,10 +5,12 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include <unistd.h>
 
 #include "roadload/definitions.hpp"
+#include "roadload/gap/engine.hpp"
 #include "roadload/gap/resimulate.hpp"
 #include "roadload/sim/recording_sink.hpp"
 #include "roadload/sim/simulation.hpp"
@@ -30,6 +32,19 @@ class GapFeatures : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
+  // The scenario's drive written to dir_ as a recording, its metadata changed by `edit` first.
+  template <typename Edit>
+  void write_recording(Edit&& edit) {
+    sim::Simulation simulation(scenario_, 5, db_);
+    recording::Metadata meta = simulation.metadata();
+    edit(meta);
+    auto writer = recording::RecordingWriter::create(dir_.string(), meta);
+    ASSERT_TRUE(writer) << writer.error().to_string();
+    sim::RecordingSink sink(writer.value());
+    simulation.run(sink, nullptr);
+    ASSERT_FALSE(writer.value().close());
+  }
+
   j1939::Database db_;
   sim::Scenario scenario_;
   std::filesystem::path dir_;
@@ -38,14 +53,7 @@ class GapFeatures : public ::testing::Test {
 TEST_F(GapFeatures, ARecordingAndItsSimulationInMemoryGiveTheSameFeatures) {
   const RunLayout layout = layout_for(scenario_.route);
   const RecordedRun memory = simulate_run(scenario_, 5, db_, layout);
-  {
-    sim::Simulation simulation(scenario_, 5, db_);
-    auto writer = recording::RecordingWriter::create(dir_.string(), simulation.metadata());
-    ASSERT_TRUE(writer) << writer.error().to_string();
-    sim::RecordingSink sink(writer.value());
-    simulation.run(sink, nullptr);
-    ASSERT_FALSE(writer.value().close());
-  }
+  write_recording([](recording::Metadata&) {});
   const auto disk = read_run(dir_.string(), db_, layout, scenario_.vehicle);
   ASSERT_TRUE(disk) << disk.error().to_string();
   const auto& a = memory.features.features;
@@ -68,6 +76,43 @@ TEST_F(GapFeatures, ARecordingAndItsSimulationInMemoryGiveTheSameFeatures) {
   EXPECT_NEAR(c.air_temp_c, scenario_.weather.air_temp_c, 0.5);
   EXPECT_FALSE(c.wind_trace.empty());
   EXPECT_TRUE(c.have_fix);
+}
+
+// A logger names its sensors as its installer did; the diagnosis matches them to the model's by
+// where they are mounted.
+TEST_F(GapFeatures, SensorsMeetTheModelsByMountingPositionWhateverTheirNames) {
+  const RunLayout layout = layout_for(scenario_.route);
+  scenario_.duration = Seconds{20.0};
+  const RecordedRun memory = simulate_run(scenario_, 5, db_, layout);
+  write_recording([](recording::Metadata& meta) {
+    for (std::size_t i = 0; i < meta.sensors.size(); ++i) meta.sensors[i].name = "logger-ch" + std::to_string(i);
+  });
+  const auto disk = read_run(dir_.string(), db_, layout, scenario_.vehicle);
+  ASSERT_TRUE(disk) << disk.error().to_string();
+  std::set<std::string> a, b;
+  for (const Feature& f : memory.features.features) a.insert(f.channel);
+  for (const Feature& f : disk.value().features.features) b.insert(f.channel);
+  EXPECT_EQ(a, b);
+  EXPECT_TRUE(a.contains("psd_db:tractor-front-axle-left"));
+}
+
+TEST(GapUnmatched, ChannelsOnOneSideOnlyAreNamedWithTheSideThatHasThem) {
+  RealRun run;
+  run.label = "drive";
+  for (const char* c : {"torque_nm", "psd_db:tractor-front-axle-left", "psd_db:trailer-axle9-left"}) {
+    run.recorded.features.features.push_back({c, "cell 1", 0, 1.0});
+  }
+  ModelLibrary lib;
+  lib.labels = {"drive"};
+  for (const char* c : {"torque_nm", "psd_db:tractor-front-axle-left", "psd_db:tractor-drive1-axle-left"}) {
+    lib.keys.push_back({"drive", c, "cell 1", 0});
+  }
+  const std::vector<UnmatchedChannel> u = unmatched_channels({run}, lib);
+  ASSERT_EQ(u.size(), 2u);
+  EXPECT_EQ(u[0].channel, "psd_db:trailer-axle9-left");
+  EXPECT_TRUE(u[0].recording_only);
+  EXPECT_EQ(u[1].channel, "psd_db:tractor-drive1-axle-left");
+  EXPECT_FALSE(u[1].recording_only);
 }
 
 TEST_F(GapFeatures, TheReSimulationTakesSpeedWeatherAndMassFromTheRecording) {

@@ -22,7 +22,7 @@ std::vector<RealRun> drive(const BenchCase& c, const BenchDay& day, const j1939:
   }
   std::vector<RecordedRun> recorded = simulate_all(tasks, db, jobs);
   std::vector<RealRun> runs;
-  for (std::size_t r = 0; r < recorded.size(); ++r) runs.push_back({kLabels[r % 2], day.models[r], std::move(recorded[r])});
+  for (std::size_t r = 0; r < recorded.size(); ++r) runs.push_back({kLabels[r % 2], day.models[r], std::move(recorded[r]), {}});
   return runs;
 }
 

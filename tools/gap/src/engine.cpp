@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "roadload/gap/parallel.hpp"
@@ -41,6 +42,28 @@ Eigen::VectorXd aligned(const std::vector<RealRun>& runs, const ModelLibrary& li
   }
   return v;
 }
+
+}  // namespace
+
+std::vector<UnmatchedChannel> unmatched_channels(const std::vector<RealRun>& runs, const ModelLibrary& lib) {
+  std::vector<UnmatchedChannel> out;
+  for (std::size_t r = 0; r < runs.size() && r < lib.labels.size(); ++r) {
+    std::set<std::string> real, model;
+    for (const Feature& f : runs[r].recorded.features.features) real.insert(f.channel);
+    for (const FeatureKey& k : lib.keys) {
+      if (k.run == lib.labels[r]) model.insert(k.channel);
+    }
+    for (const std::string& c : real) {
+      if (!model.contains(c)) out.push_back({lib.labels[r], c, true});
+    }
+    for (const std::string& c : model) {
+      if (!real.contains(c)) out.push_back({lib.labels[r], c, false});
+    }
+  }
+  return out;
+}
+
+namespace {
 
 // Magnitudes the library simulates and a fit may take: the catalog's realistic range, widened by
 // a quarter, reaching zero for an effect that cannot be negative.
@@ -267,6 +290,11 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
   p.candidates = candidates(lib, model, yaw);
   say(options, "fitting " + std::to_string(p.candidates.size()) + " candidate effects and their pairs");
   g.diagnosis = diagnose(p, options.rule);
+  for (const RealRun& run : runs) {
+    if (run.caveat.empty()) continue;
+    g.withheld += (g.withheld.empty() ? "" : "; ") + run.label + ": " + run.caveat;
+  }
+  if (!g.withheld.empty()) g.diagnosis.chosen.reset();
 
   g.null_chi2_mean = lib.null_chi2_mean;
   g.null_chi2_sd = lib.null_chi2_sd;
@@ -281,6 +309,7 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
     after_z = (real - g.after).cwiseQuotient(lib.sigma);
   }
   held_out(g, after_z);
+  g.unmatched = unmatched_channels(runs, lib);
   return g;
 }
 

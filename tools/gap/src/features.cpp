@@ -31,6 +31,16 @@ double behind_front_m(const recording::SensorInfo& s, const Vehicle& v) {
   return 0.0;
 }
 
+// A sensor's channel is named by where it is mounted (the recording format states it), so a
+// recording's sensors meet the model's whatever their names; by its name where no position is
+// given, and by its order among sensors sharing a position.
+std::string sensor_key(const recording::SensorInfo& info, const std::vector<std::string>& taken) {
+  const std::string base = info.position.empty() ? info.name : info.position;
+  std::string key = base;
+  for (int n = 2; std::find(taken.begin(), taken.end(), key) != taken.end(); ++n) key = base + "#" + std::to_string(n);
+  return key;
+}
+
 // Means over a bin plus the spread of its one-second means: slow wander and gust-like variation.
 struct BinChannel {
   double sum = 0, n = 0;
@@ -144,11 +154,13 @@ FeatureExtractor::FeatureExtractor(const j1939::Database& db, const RunLayout& l
   s_->ccvs1 = pgn_of("CCVS1");
   s_->fd1 = pgn_of("FD1");
   const Vehicle vehicle = recording::vehicle_from_metadata(base, meta);
+  std::vector<std::string> keys;
   for (const auto& info : meta.sensors) {
     if (info.kind != "accelerometer" || info.id < 0 || info.id > 255 || info.rate_hz < 20) continue;
     SensorSpectra& sp = s_->sensors.emplace_back();
     sp.id = static_cast<std::uint8_t>(info.id);
-    sp.name = info.name;
+    sp.name = sensor_key(info, keys);
+    keys.push_back(sp.name);
     sp.behind_m = behind_front_m(info, vehicle);
     sp.config = {info.rate_hz, nperseg_for(info.rate_hz), nperseg_for(info.rate_hz) / 2};
     sp.ring = std::make_unique<spectra::SegmentRing>(sp.config);

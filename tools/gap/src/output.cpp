@@ -52,7 +52,9 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
     std::fprintf(out, "  best pair: %s + %s, gain %.1f\n", g.problem.candidates[f.effects[0]].name.c_str(),
                  g.problem.candidates[f.effects[1]].name.c_str(), f.gain);
   }
-  if (!d.chosen) {
+  if (!g.withheld.empty()) {
+    std::fprintf(out, "\neffect: none named: %s\n", g.withheld.c_str());
+  } else if (!d.chosen) {
     std::fprintf(out, "\neffect: none: no candidate explains the gap significantly\n");
   } else {
     const Fit& f = *d.chosen;
@@ -69,6 +71,11 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
     std::fprintf(out, "  %-24s %5zu %8.2f %8.2f\n", c.channel.c_str(), c.features, c.before, c.after);
   }
   std::fprintf(out, "  %-24s %5zu %8.2f %8.2f\n", "overall", g.held_out, g.residual_before, g.residual_after);
+  if (!g.unmatched.empty()) std::fprintf(out, "\nnot compared (sensors matched by mounting position):\n");
+  for (const UnmatchedChannel& u : g.unmatched) {
+    std::fprintf(out, "  %-22s %-32s %s\n", u.run.c_str(), u.channel.c_str(),
+                 u.recording_only ? "the model's truck has no sensor there" : "the recording has no sensor there");
+  }
 }
 
 std::string result_json(const GapResult& g, const std::vector<std::string>& run_lines) {
@@ -116,6 +123,13 @@ std::string result_json(const GapResult& g, const std::vector<std::string>& run_
     j << (i ? "," : "") << "\n    {\"name\": " << results::json_quote(g.problem.candidates[f.effects[0]].name)
       << ", \"gain\": " << json_number(f.gain) << ", \"magnitude\": " << json_number(f.magnitude[0])
       << ", \"plausibility\": " << json_number(f.plausibility) << "}";
+  }
+  j << "\n  ],\n  \"withheld\": " << (g.withheld.empty() ? std::string("null") : results::json_quote(g.withheld));
+  j << ",\n  \"unmatched\": [";
+  for (std::size_t i = 0; i < g.unmatched.size(); ++i) {
+    const UnmatchedChannel& u = g.unmatched[i];
+    j << (i ? "," : "") << "\n    {\"run\": " << results::json_quote(u.run) << ", \"channel\": " << results::json_quote(u.channel)
+      << ", \"only_in\": " << results::json_quote(u.recording_only ? "recording" : "model") << "}";
   }
   j << "\n  ],\n  \"runs\": [";
   for (std::size_t i = 0; i < run_lines.size(); ++i) j << (i ? ", " : "") << results::json_quote(run_lines[i]);

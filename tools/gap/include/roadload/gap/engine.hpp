@@ -34,6 +34,9 @@ struct RealRun {
   std::string label;
   sim::Scenario model;
   RecordedRun recorded;
+  // Why the model of this run cannot be trusted to name an effect (its road traced from the drive
+  // itself); empty when it can. The diagnosis still says where the gap lies.
+  std::string caveat;
 };
 
 struct ModelLibrary {
@@ -69,6 +72,15 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
 // and mass near enough that the responses and the noise floor carry over.
 bool library_serves(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims);
 
+// A channel one side has and the other lacks, in one run: a recording's sensor at a position where
+// the model's truck has none is left out of the comparison; a model sensor the recording lacks
+// leaves its features missing. Either way the user is told, not left to wonder at a short list.
+struct UnmatchedChannel {
+  std::string run, channel;
+  bool recording_only = false;  // else the model's only
+};
+std::vector<UnmatchedChannel> unmatched_channels(const std::vector<RealRun>& runs, const ModelLibrary& lib);
+
 struct ChannelResidual {
   std::string channel;
   std::size_t features = 0;
@@ -85,6 +97,8 @@ struct GapResult {
   double chi2_before = 0, chi2_after = 0;          // held-out half
   double null_chi2_mean = 0, null_chi2_sd = 0;     // the library's, for the same half
   std::size_t held_out = 0;                        // valid held-out features
+  std::vector<UnmatchedChannel> unmatched;
+  std::string withheld;  // why no effect is named although one may fit: the runs' caveats
 };
 
 GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options);

@@ -36,8 +36,10 @@ struct RunLayout {
 };
 
 struct Feature {
-  std::string channel;  // torque_nm, fuel_lph, speed_mps, gnss_alt_m, torque_sd_nm, speed_sd_mps, fan_rpm, psd_db:<sensor>
-  std::string where;    // a cell id, "road", or "<pavement> <lo>-<hi> Hz"
+  // torque_nm, fuel_lph, speed_mps, gnss_alt_m, torque_sd_nm, speed_sd_mps, fan_rpm, psd_db:<position>
+  // (the sensor's mounting position, its name where the recording gives none)
+  std::string channel;
+  std::string where;  // a cell id, "road", or "<pavement> <lo>-<hi> Hz"
   std::uint8_t half = 0;
   double value = 0;  // NaN when the run never saw it
 };

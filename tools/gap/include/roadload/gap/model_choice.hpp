@@ -1,6 +1,7 @@
 #pragma once
 // Which model scenario a recording is compared with: the one the user names, or the built-in
-// scenario whose route the drive's first GNSS fix lies on and whose set speed is nearest.
+// scenario whose route the drive's first GNSS fix lies on and whose set speed is nearest, or, on
+// a road no built-in scenario drives, a cruise on the road the drive's own GNSS traces.
 #include <optional>
 #include <string>
 
