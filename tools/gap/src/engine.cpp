@@ -1,9 +1,11 @@
 #include "roadload/gap/engine.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <set>
 #include <tuple>
 
@@ -107,10 +109,28 @@ void add_candidate(sim::Scenario& s, sim::Effect e, double magnitude) {
   }
 }
 
-std::vector<RecordedRun> simulate_all(const std::vector<SimTask>& tasks, const j1939::Database& db, unsigned jobs) {
+std::vector<RecordedRun> simulate_all(const std::vector<SimTask>& tasks, const j1939::Database& db, unsigned jobs,
+                                      const std::function<void(const std::string&)>& progress) {
+  using Clock = std::chrono::steady_clock;
+  constexpr std::chrono::seconds kEvery{5};
   std::vector<RecordedRun> out(tasks.size());
-  parallel_for(tasks.size(), jobs,
-               [&](std::size_t i) { out[i] = simulate_run(tasks[i].scenario, tasks[i].seed, db, *tasks[i].layout); });
+  std::mutex mutex;
+  std::size_t done = 0;
+  const Clock::time_point start = Clock::now();
+  Clock::time_point said = start;
+  parallel_for(tasks.size(), jobs, [&](std::size_t i) {
+    out[i] = simulate_run(tasks[i].scenario, tasks[i].seed, db, *tasks[i].layout);
+    if (!progress) return;
+    std::lock_guard lock(mutex);
+    ++done;
+    const Clock::time_point now = Clock::now();
+    if (now - said < kEvery || done == tasks.size()) return;
+    said = now;
+    const double elapsed_s = std::chrono::duration<double>(now - start).count();
+    const double left_s = elapsed_s / static_cast<double>(done) * static_cast<double>(tasks.size() - done);
+    progress("  simulated " + std::to_string(done) + " of " + std::to_string(tasks.size()) + ", about " +
+             std::to_string(static_cast<long>(std::lround(left_s))) + " s left");
+  });
   return out;
 }
 
@@ -153,7 +173,7 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
     }
   }
   say(options, "library: " + std::to_string(noise_drives.size()) + " noise drives");
-  const std::vector<RecordedRun> noise = simulate_all(noise_drives, db, options.jobs);
+  const std::vector<RecordedRun> noise = simulate_all(noise_drives, db, options.jobs, options.progress);
   for (std::size_t k = 0; k < options.noise_runs; ++k) {
     for (std::size_t r = 0; r < n_runs; ++r) {
       const RecordedRun& drive = noise[k * n_runs + r];
@@ -169,7 +189,7 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
   }
   say(options,
       "library: " + std::to_string(tasks.size()) + " simulations (baseline, the noise drives' re-simulations, 2 per effect)");
-  const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs);
+  const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs, options.progress);
   auto group = [&](std::size_t g) {
     return std::vector<RecordedRun>(sims.begin() + static_cast<std::ptrdiff_t>(g * n_runs),
                                     sims.begin() + static_cast<std::ptrdiff_t>((g + 1) * n_runs));

@@ -109,6 +109,8 @@ struct SimTask {
   std::uint64_t seed = 1;
   const RunLayout* layout = nullptr;
 };
-std::vector<RecordedRun> simulate_all(const std::vector<SimTask>& tasks, const j1939::Database& db, unsigned jobs);
+// With `progress`, a line at most every 5 s: how many are done and about how long the rest takes.
+std::vector<RecordedRun> simulate_all(const std::vector<SimTask>& tasks, const j1939::Database& db, unsigned jobs,
+                                      const std::function<void(const std::string&)>& progress = {});
 
 }  // namespace roadload::gap
