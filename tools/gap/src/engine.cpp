@@ -1,15 +1,11 @@
 #include "roadload/gap/engine.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
-#include <mutex>
 #include <set>
 #include <tuple>
-
-#include "roadload/gap/parallel.hpp"
 
 namespace roadload::gap {
 namespace {
@@ -107,31 +103,6 @@ void add_candidate(sim::Scenario& s, sim::Effect e, double magnitude) {
       return;
     default: s.effects.set(e, magnitude);
   }
-}
-
-std::vector<RecordedRun> simulate_all(const std::vector<SimTask>& tasks, const j1939::Database& db, unsigned jobs,
-                                      const std::function<void(const std::string&)>& progress) {
-  using Clock = std::chrono::steady_clock;
-  constexpr std::chrono::seconds kEvery{5};
-  std::vector<RecordedRun> out(tasks.size());
-  std::mutex mutex;
-  std::size_t done = 0;
-  const Clock::time_point start = Clock::now();
-  Clock::time_point said = start;
-  parallel_for(tasks.size(), jobs, [&](std::size_t i) {
-    out[i] = simulate_run(tasks[i].scenario, tasks[i].seed, db, *tasks[i].layout);
-    if (!progress) return;
-    std::lock_guard lock(mutex);
-    ++done;
-    const Clock::time_point now = Clock::now();
-    if (now - said < kEvery || done == tasks.size()) return;
-    said = now;
-    const double elapsed_s = std::chrono::duration<double>(now - start).count();
-    const double left_s = elapsed_s / static_cast<double>(done) * static_cast<double>(tasks.size() - done);
-    progress("  simulated " + std::to_string(done) + " of " + std::to_string(tasks.size()) + ", about " +
-             std::to_string(static_cast<long>(std::lround(left_s))) + " s left");
-  });
-  return out;
 }
 
 std::vector<sim::Scenario> resimulations(const std::vector<RealRun>& runs) {
