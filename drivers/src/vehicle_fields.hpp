@@ -27,6 +27,7 @@ inline constexpr NumberField<EngineDescription> kEngine[] = {
     {"friction_a_pct", &EngineDescription::friction_a_pct, 0, 100},
     {"friction_b_pct", &EngineDescription::friction_b_pct, 0, 100},
     {"friction_c_pct", &EngineDescription::friction_c_pct, 0, 100},
+    {"friction_sigma", &EngineDescription::friction_sigma, 0, 1},
     {"torque_scale_sigma", &EngineDescription::torque_scale_sigma, 0, 0.5},
 };
 

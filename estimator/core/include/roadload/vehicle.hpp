@@ -55,6 +55,8 @@ struct EngineDescription {
   std::vector<double> full_load_rpm, full_load_fraction;
   // Motoring friction, a + b n + c n^2 in % of the reference, n in thousands of rpm.
   double friction_a_pct = 0, friction_b_pct = 0, friction_c_pct = 0;
+  // How far one engine of the type may be from that friction, as a share of it (wear, oil, build).
+  double friction_sigma = 0;
   // How far the ECU's torque (EEC1 against SPN 544) may be from the flywheel's, as a share: one
   // sigma of a scale error. J1939 states no accuracy; makers quote a few percent.
   double torque_scale_sigma = 0;
