@@ -12,6 +12,7 @@
 #include "roadload/gap/engine.hpp"
 #include "roadload/gap/model_choice.hpp"
 #include "roadload/gap/output.hpp"
+#include "roadload/route_file.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -31,6 +32,8 @@ constexpr const char* kHelp =
     "                      or none: the built-in scenario whose route the drive's first GNSS fix lies\n"
     "                      on and whose speed is nearest, else a cruise on the road the drive's own\n"
     "                      GNSS traces (gnss.csv; cells of 250 m, the heights of that one pass)\n"
+    "  --route R           route file or built-in route name the runs drove (your own GNSS or GIS\n"
+    "                      sections): the model cruises it from where each drive starts\n"
     "  --vehicle V         vehicle file or built-in name the model drives (default: the one each\n"
     "                      recording carries, else the scenario's)\n"
     "  --holdout H         what the fit never sees: cells (every other cell, default) or runs\n"
@@ -50,7 +53,7 @@ constexpr const char* kHelp =
 
 int run_diagnosis(OptionParser& opt) {
   std::vector<std::string> reals, models;
-  std::string json, features, vehicle_name;
+  std::string json, features, vehicle_name, route_name;
   gap::GapOptions options;
   options.jobs = default_jobs();
   bool quiet = false;
@@ -64,6 +67,8 @@ int run_diagnosis(OptionParser& opt) {
       models.emplace_back(*m);
     } else if (auto v = opt.value("--vehicle")) {
       vehicle_name = *v;
+    } else if (auto rt = opt.value("--route")) {
+      route_name = *rt;
     } else if (auto j = opt.value("--json")) {
       json = *j;
     } else if (auto f = opt.value("--features")) {
@@ -82,6 +87,7 @@ int run_diagnosis(OptionParser& opt) {
   if (opt.failed()) return kExitUsage;
   if (reals.empty()) return opt.fail("--real is required (a recording folder)");
   if (models.size() > 1 && models.size() != reals.size()) return opt.fail("give one --model for all runs or one per --real");
+  if (!models.empty() && !route_name.empty()) return opt.fail("--model and --route: give one (a scenario names its own route)");
   if (options.holdout == gap::Holdout::runs && reals.size() < 2) return opt.fail("--holdout runs needs at least two --real");
   if (!quiet) options.progress = [](const std::string& line) { std::fprintf(stderr, "gap: %s\n", line.c_str()); };
 
@@ -100,7 +106,7 @@ int run_diagnosis(OptionParser& opt) {
   std::vector<std::string> run_lines;
   for (std::size_t i = 0; i < reals.size(); ++i) {
     const std::string model_name = models.empty() ? std::string() : models[models.size() == 1 ? 0 : i];
-    auto run = gap::load_real_run(reals[i], model_name, db, vehicle);
+    auto run = gap::load_real_run(reals[i], model_name, db, vehicle, route_name.empty() ? std::string() : resolve_route(route_name));
     if (!run) {
       std::fprintf(stderr, "roadload gap: %s\n", run.error().to_string().c_str());
       return run.error().line > 0 ? kExitDataErr : kExitNoInput;

@@ -1,5 +1,6 @@
 // roadload gap bench: the diagnosis tried blind on drives with hidden effects.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -13,7 +14,7 @@ namespace roadload::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: roadload gap bench [--cases N] [--seed S] [--effects A,B,...] [--jobs N]\n\n"
+    "usage: roadload gap bench [--cases N] [--seed S] [--effects A,B,...] [--model-truck] [--jobs N]\n\n"
     "Simulates test days of the MnROAD truck (the Mainline at 30 mph at 8 C in a south-west wind,\n"
     "then at 64 mph at 22 C in a west wind)\n"
     "with effects the diagnosis is not told: one at a random magnitude within its range, two at once\n"
@@ -26,6 +27,9 @@ constexpr const char* kHelp =
     "  --seed S        seed of the draw (default 1)\n"
     "  --effects LIST  effects to draw from, comma-separated, or \"all\" (default: every effect the\n"
     "                  features can see; the others are listed with why)\n"
+    "  --model-truck   every case drives the model's own truck (default: each case a truck drawn\n"
+    "                  from the vehicle file's spreads of mass, CdA, engine friction and driveline\n"
+    "                  efficiency, whose recovery is scored)\n"
     "  --jobs N        simulations at once (default: the number of CPUs)\n"
     "  -h, --help      this text\n";
 
@@ -58,6 +62,8 @@ std::optional<int> parse(OptionParser& opt, gap::BenchPlan& plan, gap::GapOption
       plan.seed = static_cast<std::uint64_t>(*s);
     } else if (auto j = opt.number("--jobs", 1, 256)) {
       options.jobs = static_cast<unsigned>(*j);
+    } else if (opt.flag("--model-truck")) {
+      plan.draw_trucks = false;
     } else if (auto list = opt.value("--effects")) {
       if (auto bad = parse_effects(*list, plan.effects)) {
         return opt.fail("--effects: unknown effect '" + *bad + "' (roadload simulate --list-effects)");
@@ -77,6 +83,25 @@ void print_case(std::size_t i, const gap::CaseOutcome& o) {
   std::printf("%4zu  %-48s %-44s %8.1f %7s %s\n", i + 1, gap::describe_effects(o.truth.effects).c_str(),
               gap::named_effects(o).c_str(), d.singles.empty() ? 0.0 : d.singles.front().gain, shrink,
               o.named_right ? "" : "  <- wrong");
+  // The truck: each parameter's truth and fit in its prior sigmas, off the model's value.
+  std::string truck;
+  for (std::size_t j = 0; j < o.nominal_truth.size(); ++j) {
+    const gap::NominalColumn& c = o.result.problem.nominal[j];
+    char text[96];
+    std::snprintf(text, sizeof text, "  %s %+.1f -> %+.1f%s", c.name.c_str(), (o.nominal_truth[j] - c.value) / c.sigma,
+                  d.nominal.shift_sigma[j], o.nominal_covered[j] ? "" : "!");
+    truck += text;
+  }
+  if (!truck.empty()) std::printf("      truck (sigmas, true -> fitted; ! outside the interval):%s\n", truck.c_str());
+  const double linear_truck = gap::fit_nominal(o.result.problem, {}, {}).chi2_half1_after;
+  const double linear_after = d.chosen
+                                  ? gap::fit_nominal(o.result.problem, d.chosen->effects, d.chosen->magnitude_half0).chi2_half1_after
+                                  : linear_truck;
+  std::printf(
+      "      held-out chi-square: %.0f as modelled, %.0f (%.0f) with the truck fitted, %.0f (%.0f) with the effect; in "
+      "brackets: linear; noise drives %.0f +- %.0f\n",
+      o.result.chi2_raw, o.result.chi2_before, linear_truck, o.result.chi2_after, linear_after, o.result.null_chi2_mean,
+      o.result.null_chi2_sd);
   std::fflush(stdout);
 }
 
@@ -86,6 +111,20 @@ void print_score(const gap::BenchScore& score, std::size_t libraries) {
     std::printf("  %-30s", row.c_str());
     for (const auto& [col, n] : cols) std::printf(" %s:%d", col.c_str(), n);
     std::printf("\n");
+  }
+  std::printf("\nnominal truck recovered (fitted on half 0; the drawn truck's true values):\n");
+  std::size_t covered = 0, total = 0;
+  for (const auto& r : score.nominal) {
+    const double n = static_cast<double>(std::max<std::size_t>(1, r.cases));
+    std::printf("  %-22s inside its 90 %% interval %zu/%zu (%.0f %%), RMS error %.4g %s (prior's %.4g)\n", r.name.c_str(), r.covered,
+                r.cases, 100.0 * static_cast<double>(r.covered) / n, std::sqrt(r.error_ss / n), r.unit.c_str(),
+                std::sqrt(r.prior_ss / n));
+    covered += r.covered;
+    total += r.cases;
+  }
+  if (total > 0) {
+    std::printf("  %-22s %zu/%zu (%.1f %%; goal 80-97 %%)\n", "all parameters", covered, total,
+                100.0 * static_cast<double>(covered) / static_cast<double>(total));
   }
   std::printf("\ntop-1 %zu/%zu; shrink over %zu visible effect cases; false alarms %zu/%zu null runs; %zu model libraries\n",
               score.right, score.cases, score.visible, score.alarms, score.nulls, libraries);

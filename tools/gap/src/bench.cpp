@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <random>
 
+#include "roadload/gap/nominal.hpp"
+
 namespace roadload::gap {
 namespace {
 
@@ -18,6 +20,7 @@ std::vector<RealRun> drive(const BenchCase& c, const BenchDay& day, const j1939:
   for (std::size_t r = 0; r < day.drives.size(); ++r) {
     sim::Scenario s = day.drives[r];
     for (const auto& [effect, magnitude] : c.effects) s.effects.set(effect, magnitude);
+    drive_truck(s, nominal_priors(day.drives[r]), c.truck);
     tasks.push_back({std::move(s), c.seed * 16 + r, &layouts[r]});
   }
   std::vector<RecordedRun> recorded = simulate_all(tasks, db, jobs);
@@ -40,6 +43,11 @@ const char* unobservable(sim::Effect e) {
   switch (e) {
     case sim::Effect::can_accel_offset:
       return "no feature compares accelerometer and CAN timing: a stamp offset only shifts where vibration is binned";
+    case sim::Effect::mass_error:
+      return "the nominal calibration's mass stands for it: a wrong declared mass is another truck's mass, scored in the "
+             "nominal rows";
+    case sim::Effect::air_density_error:
+      return "the nominal calibration's CdA stands for it: air a constant share denser drags as a larger CdA does";
     case sim::Effect::wind_gusts:
     case sim::Effect::drafting:
     case sim::Effect::fan_engagement:
@@ -91,6 +99,7 @@ std::vector<BenchCase> draw_cases(const BenchPlan& plan, const BenchDay& day) {
   for (std::size_t i = 0; i < plan.cases; ++i) {
     BenchCase c;
     c.seed = plan.seed * 100000 + i + 1;
+    if (plan.draw_trucks) c.truck = draw_truck(nominal_priors(day.drives.front()).size(), rng);
     if (i >= nulls) {
       // Singles cycle through the pool so every effect is tried about equally often.
       const sim::Effect first = pool[(i - nulls) % pool.size()];
@@ -117,7 +126,7 @@ CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelL
   }
   if (lib == nullptr) {
     // Built from a drive of its own, with no effect and a seed no case uses.
-    BenchCase calibration{{}, c.seed + 7919};
+    BenchCase calibration{{}, c.seed + 7919, {}};
     libraries.push_back(build_library(drive(calibration, day, db, options.jobs), db, options));
     if (!library_serves(libraries.back(), resims)) libraries.back() = build_library(runs, db, options);
     lib = &libraries.back();
@@ -125,6 +134,13 @@ CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelL
   CaseOutcome o;
   o.truth = c;
   o.result = run_gap(*lib, runs, db, options);
+  const std::vector<NominalPrior> priors = nominal_priors(day.drives.front());
+  const NominalFit& fitted = o.result.diagnosis.nominal;
+  for (std::size_t j = 0; j < priors.size() && j < fitted.value.size(); ++j) {
+    const double truth = priors[j].value + (j < c.truck.size() ? c.truck[j] : 0.0) * priors[j].sigma;
+    o.nominal_truth.push_back(truth);
+    o.nominal_covered.push_back(fitted.lo[j] <= truth && truth <= fitted.hi[j]);
+  }
   const auto& chosen = o.result.diagnosis.chosen;
   if (c.effects.empty()) {
     o.false_alarm = chosen.has_value();
@@ -168,6 +184,16 @@ void BenchScore::add(const CaseOutcome& o) {
     shrink_sum += o.shrink;
   }
   const auto& d = o.result.diagnosis;
+  for (std::size_t j = 0; j < o.nominal_truth.size(); ++j) {
+    if (nominal.size() <= j) nominal.push_back({o.result.problem.nominal[j].name, o.result.problem.nominal[j].unit, 0, 0, 0, 0});
+    Recovery& r = nominal[j];
+    const double err = d.nominal.value[j] - o.nominal_truth[j];
+    const double prior_err = o.result.problem.nominal[j].value - o.nominal_truth[j];
+    r.cases += 1;
+    r.covered += o.nominal_covered[j] ? 1 : 0;
+    r.error_ss += err * err;
+    r.prior_ss += prior_err * prior_err;
+  }
   const std::string row = o.truth.effects.empty() ? "none"
                                                   : std::string(sim::effect_info(o.truth.effects.front().first).name) +
                                                         (o.truth.effects.size() > 1 ? " (+1)" : "");

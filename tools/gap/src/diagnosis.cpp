@@ -14,26 +14,32 @@ constexpr std::uint8_t kBothHalves = 255;
 
 bool in_half(const FeatureKey& k, std::uint8_t half) { return half == kBothHalves || k.half == half; }
 
-// The chi-square of z minus a candidate set's response as a function of the magnitudes'
-// offsets u from base: zz - 2 c'h + c'Gc with c = (u1, u1^2, u2, u2^2, ...), over one half.
+// The chi-square of z minus a candidate set's response and the nominal parameters' as a function
+// of the magnitudes' offsets u from base and the nominal offsets t (in prior sigmas), over one
+// half: zz - 2 c'h + c'Gc with c = (u1, u1^2, u2, u2^2, ..., t). For given u the best t is linear
+// (with its unit prior), so a fit searches over u alone.
 struct Quadratic {
   Eigen::MatrixXd g;
   Eigen::VectorXd h;
   double zz = 0;
   std::size_t n = 0;
+  Eigen::Index ne = 0, nn = 0;                // effect and nominal columns
+  Eigen::LDLT<Eigen::MatrixXd> nominal_info;  // G_nn + I: the nominal block with its prior
 
   Quadratic(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t half) {
-    const auto cols = static_cast<Eigen::Index>(2 * set.size());
-    Eigen::MatrixXd basis(p.z.size(), cols);
+    ne = static_cast<Eigen::Index>(2 * set.size());
+    nn = static_cast<Eigen::Index>(p.nominal.size());
+    Eigen::MatrixXd basis(p.z.size(), ne + nn);
     for (std::size_t i = 0; i < set.size(); ++i) {
       basis.col(static_cast<Eigen::Index>(2 * i)) = p.candidates[set[i]].a;
       basis.col(static_cast<Eigen::Index>(2 * i + 1)) = p.candidates[set[i]].b;
     }
+    for (Eigen::Index j = 0; j < nn; ++j) basis.col(ne + j) = p.nominal[static_cast<std::size_t>(j)].per_sigma;
     std::vector<Eigen::Index> rows;
     for (Eigen::Index r = 0; r < p.z.size(); ++r) {
       if (std::isfinite(p.z(r)) && in_half(p.keys[static_cast<std::size_t>(r)], half)) rows.push_back(r);
     }
-    Eigen::MatrixXd b(static_cast<Eigen::Index>(rows.size()), cols);
+    Eigen::MatrixXd b(static_cast<Eigen::Index>(rows.size()), ne + nn);
     Eigen::VectorXd z(static_cast<Eigen::Index>(rows.size()));
     for (std::size_t i = 0; i < rows.size(); ++i) {
       b.row(static_cast<Eigen::Index>(i)) = basis.row(rows[i]);
@@ -43,14 +49,36 @@ struct Quadratic {
     h = b.transpose() * z;
     zz = z.squaredNorm();
     n = rows.size();
+    nominal_info.compute(g.bottomRightCorner(nn, nn) + Eigen::MatrixXd::Identity(nn, nn));
   }
-  double sse(const std::vector<double>& u) const {
-    Eigen::VectorXd c(h.size());
+  Eigen::VectorXd effect_coeffs(const std::vector<double>& u) const {
+    Eigen::VectorXd c(ne);
     for (std::size_t i = 0; i < u.size(); ++i) {
       c(static_cast<Eigen::Index>(2 * i)) = u[i];
       c(static_cast<Eigen::Index>(2 * i + 1)) = u[i] * u[i];
     }
+    return c;
+  }
+  // The nominal offsets that fit best beside the effect coefficients ce.
+  Eigen::VectorXd theta(const Eigen::VectorXd& ce) const {
+    if (nn == 0) return {};
+    return nominal_info.solve(h.tail(nn) - g.bottomLeftCorner(nn, ne) * ce);
+  }
+  double misfit(const Eigen::VectorXd& ce, const Eigen::VectorXd& t) const {
+    Eigen::VectorXd c(ne + nn);
+    c << ce, t;
     return zz - 2.0 * c.dot(h) + c.dot(g * c);
+  }
+  // What a fit minimises: the misfit with the best nominal offsets, plus their prior.
+  double sse(const std::vector<double>& u) const {
+    const Eigen::VectorXd ce = effect_coeffs(u);
+    const Eigen::VectorXd t = theta(ce);
+    return misfit(ce, t) + t.squaredNorm();
+  }
+  // This half's misfit at u with the nominal offsets another half's fit chose for u.
+  double judged(const Quadratic& fit, const std::vector<double>& u) const {
+    const Eigen::VectorXd ce = effect_coeffs(u);
+    return misfit(ce, fit.theta(ce));
   }
 };
 
@@ -99,7 +127,7 @@ double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, std:
   const Quadratic fit(p, set, fit_half);
   const Quadratic judge(p, set, static_cast<std::uint8_t>(1 - fit_half));
   const std::vector<double> u = minimise(p, set, fit);
-  return judge.sse(std::vector<double>(set.size(), 0.0)) - judge.sse(u);
+  return judge.judged(fit, std::vector<double>(set.size(), 0.0)) - judge.judged(fit, u);
 }
 
 Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const DecisionRule& rule) {
@@ -109,21 +137,25 @@ Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const Decisio
   const Quadratic all(p, set, kBothHalves);
   const std::vector<double> u = minimise(p, set, all);
   const std::vector<double> u0 = minimise(p, set, Quadratic(p, set, 0));
-  // Interval from the curvature (Fisher information of unit-variance residuals), widened by the
-  // fit's own scatter when it exceeds the noise model's.
+  // Interval from the curvature (Fisher information of unit-variance residuals, the nominal
+  // parameters moving beside the effects with their prior), widened by the fit's own scatter when
+  // it exceeds the noise model's.
   const auto k = static_cast<Eigen::Index>(set.size());
-  Eigen::MatrixXd jac(p.z.size(), k);
+  const auto nn = static_cast<Eigen::Index>(p.nominal.size());
+  Eigen::MatrixXd jac(p.z.size(), k + nn);
   for (Eigen::Index i = 0; i < k; ++i) {
     const Candidate& c = p.candidates[set[static_cast<std::size_t>(i)]];
     jac.col(i) = c.a + 2.0 * u[static_cast<std::size_t>(i)] * c.b;
   }
-  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(k, k);
+  for (Eigen::Index j = 0; j < nn; ++j) jac.col(k + j) = p.nominal[static_cast<std::size_t>(j)].per_sigma;
+  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(k + nn, k + nn);
+  info.bottomRightCorner(nn, nn).setIdentity();
   for (Eigen::Index r = 0; r < p.z.size(); ++r) {
     if (std::isfinite(p.z(r))) info += jac.row(r).transpose() * jac.row(r);
   }
   const double dof = std::max(1.0, static_cast<double>(all.n) - static_cast<double>(k));
   const double scale = std::max(1.0, all.sse(u) / dof);
-  const Eigen::MatrixXd cov = info.ldlt().solve(Eigen::MatrixXd::Identity(k, k)) * scale;
+  const Eigen::MatrixXd cov = info.ldlt().solve(Eigen::MatrixXd::Identity(k + nn, k + nn)) * scale;
   for (std::size_t i = 0; i < set.size(); ++i) {
     const Candidate& c = p.candidates[set[i]];
     const double m = c.base + u[i];
@@ -204,6 +236,31 @@ double rms(const Eigen::VectorXd& z, const std::vector<FeatureKey>& keys, std::u
   return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
 }
 
+Fit fit_effects(const Problem& p, const std::vector<std::size_t>& set, const DecisionRule& rule) { return fit_set(p, set, rule); }
+
+NominalFit fit_nominal(const Problem& p, const std::vector<std::size_t>& set, const std::vector<double>& magnitude_half0) {
+  NominalFit out;
+  const Quadratic q0(p, set, 0), q1(p, set, 1);
+  std::vector<double> u;
+  for (std::size_t i = 0; i < set.size(); ++i) u.push_back(magnitude_half0[i] - p.candidates[set[i]].base);
+  const Eigen::VectorXd ce = q0.effect_coeffs(u);
+  const Eigen::VectorXd t = q0.theta(ce);
+  out.chi2_half1_before = q1.misfit(q1.effect_coeffs(std::vector<double>(set.size(), 0.0)), Eigen::VectorXd::Zero(q1.nn));
+  out.chi2_half1_after = q1.misfit(ce, t);
+  if (q0.nn == 0) return out;
+  const double dof = std::max(1.0, static_cast<double>(q0.n) - static_cast<double>(set.size()));
+  const Eigen::MatrixXd cov = q0.nominal_info.solve(Eigen::MatrixXd::Identity(q0.nn, q0.nn)) * std::max(1.0, q0.sse(u) / dof);
+  for (Eigen::Index j = 0; j < q0.nn; ++j) {
+    const NominalColumn& c = p.nominal[static_cast<std::size_t>(j)];
+    const double half_width = 1.645 * std::sqrt(std::max(0.0, cov(j, j))) * c.sigma;
+    out.value.push_back(c.value + t(j) * c.sigma);
+    out.lo.push_back(out.value.back() - half_width);
+    out.hi.push_back(out.value.back() + half_width);
+    out.shift_sigma.push_back(t(j));
+  }
+  return out;
+}
+
 Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
   Diagnosis d;
   for (Eigen::Index r = 0; r < p.z.size(); ++r) {
@@ -212,6 +269,7 @@ Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
     ++d.features;
   }
   d.where = locate(p.keys, p.z, 8);
+  d.nominal = fit_nominal(p, {}, {});
   // Only places beyond the noise: two standard deviations of the group's chi-square.
   std::erase_if(d.where, [](const WhereItem& w) { return w.significance < 2.0; });
   for (std::size_t i = 0; i < p.candidates.size(); ++i) d.singles.push_back(fit_set(p, {i}, rule));
@@ -223,11 +281,16 @@ Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
       if (!d.best_pair || f.gain > d.best_pair->gain) d.best_pair = std::move(f);
     }
   }
-  if (d.singles.empty() || d.singles.front().gain < rule.null_gain) return d;
-  d.chosen = d.singles.front();
+  const auto named = std::find_if(d.singles.begin(), d.singles.end(), [&](const Fit& f) {
+    return f.gain >= std::max(rule.null_gain, rule.null_factor * p.candidates[f.effects[0]].null_gain);
+  });
+  if (named == d.singles.end()) return d;
+  d.chosen = *named;
   // A second effect must beat the first by more than the residual the first leaves unexplained
   // would grant by chance: the threshold grows with that residual's excess over the noise.
-  const double dispersion = std::max(1.0, (d.chi2 - d.chosen->gain) / static_cast<double>(std::max<std::size_t>(1, d.features)));
+  // That residual is what the calibrated nominal truck leaves.
+  const double calibrated = Quadratic(p, {}, kBothHalves).sse({});
+  const double dispersion = std::max(1.0, (calibrated - d.chosen->gain) / static_cast<double>(std::max<std::size_t>(1, d.features)));
   const double needed = std::max(rule.pair_gain * dispersion, rule.pair_share * d.chosen->gain);
   if (d.best_pair && d.best_pair->gain - d.chosen->gain > needed) {
     // The pair's stronger member first: it is the one the single fit found.
@@ -241,6 +304,13 @@ Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
     }
     d.chosen = pair;
   }
+  // The nominal truck as fitted beside the chosen effects; its held-out figures stay those of the
+  // nominal calibration alone.
+  const NominalFit joint = fit_nominal(p, d.chosen->effects, d.chosen->magnitude_half0);
+  d.nominal.value = joint.value;
+  d.nominal.lo = joint.lo;
+  d.nominal.hi = joint.hi;
+  d.nominal.shift_sigma = joint.shift_sigma;
   return d;
 }
 

@@ -1,5 +1,7 @@
 #include "roadload/gap/engine.hpp"
 
+#include <random>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,23 +9,14 @@
 #include <set>
 #include <tuple>
 
+#include "noise_floor.hpp"
+#include "resimulated.hpp"
+
 namespace roadload::gap {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr std::uint64_t kBaselineSeed = 1;
 constexpr std::uint64_t kNoiseSeed0 = 1000;
-
-Eigen::VectorXd values(const std::vector<RecordedRun>& runs) {
-  std::size_t n = 0;
-  for (const auto& r : runs) n += r.features.features.size();
-  Eigen::VectorXd v(static_cast<Eigen::Index>(n));
-  Eigen::Index i = 0;
-  for (const auto& r : runs) {
-    for (const auto& f : r.features.features) v(i++) = f.value;
-  }
-  return v;
-}
 
 // The recordings' features in the library's order. A recording may carry other sensors than the
 // model's truck: what the model has and the recording lacks is missing (NaN), the rest is ignored.
@@ -63,30 +56,6 @@ std::vector<UnmatchedChannel> unmatched_channels(const std::vector<RealRun>& run
 
 namespace {
 
-// Magnitudes the library simulates and a fit may take: the catalog's realistic range, widened by
-// a quarter, reaching zero for an effect that cannot be negative.
-struct Span {
-  double lo, hi, m1, m2;
-};
-Span span_of(const sim::EffectInfo& info, double base) {
-  const double width = info.max - info.min;
-  if (info.min < 0) return {info.min - 0.25 * width, info.max + 0.25 * width, info.max, info.min};
-  return {0.0, info.max + 0.25 * width, info.max, 0.5 * (base + info.max) > 0 ? 0.5 * (base + info.max) : 0.5 * info.max};
-}
-
-// The smallest gap worth explaining per channel: below it a feature is as good as its sensor
-// (CCVS1 speed 1/256 km/h, FD1 fan 0.125 rpm) or the model is as good as anyone needs
-// (1 N m of engine torque, 0.05 L/h, 2 cm of height, 0.1 dB of vibration).
-double noise_floor(const std::string& channel) {
-  if (channel == "speed_mps") return 0.005;
-  if (channel == "speed_sd_mps") return 0.005;
-  if (channel == "fan_rpm") return 2.0;
-  if (channel == "torque_nm" || channel == "torque_sd_nm") return 1.0;
-  if (channel == "fuel_lph") return 0.05;
-  if (channel == "gnss_alt_m") return 0.02;
-  return 0.1;  // psd_db
-}
-
 void say(const GapOptions& o, const std::string& line) {
   if (o.progress) o.progress(line);
 }
@@ -112,15 +81,36 @@ std::vector<sim::Scenario> resimulations(const std::vector<RealRun>& runs) {
 }
 
 namespace {
-void set_noise_floor(ModelLibrary& lib, const std::vector<Eigen::VectorXd>& residuals);
+std::vector<Candidate> candidates(const ModelLibrary& lib, const Eigen::VectorXd& model, const Eigen::VectorXd& yaw);
+void set_null_gains(ModelLibrary& lib, const std::vector<Eigen::VectorXd>& residuals, const GapOptions& options);
+
+// Noise drives: the model driven with seeds of its own and its own wandering wind, each a truck
+// drawn from the nominal priors (its offsets in `trucks`), to be re-simulated from its recording
+// exactly as a real drive is, so the floor holds every difference the pipeline makes when nothing
+// but the truck is missing from the model.
+std::vector<SimTask> noise_drive_tasks(const ModelLibrary& lib, std::size_t count, std::vector<std::vector<double>>& trucks) {
+  std::vector<SimTask> tasks;
+  for (std::size_t k = 0; k < count; ++k) {
+    std::mt19937_64 rng(kNoiseSeed0 + k);
+    const std::vector<double>& truck = trucks.emplace_back(draw_truck(lib.priors.front().size(), rng));
+    for (std::size_t r = 0; r < lib.scenarios.size(); ++r) {
+      sim::Scenario s = lib.scenarios[r];
+      s.weather.wind_trace.clear();
+      drive_truck(s, lib.priors[r], truck);
+      tasks.push_back({std::move(s), kNoiseSeed0 + k, &lib.layouts[r]});
+    }
+  }
+  return tasks;
+}
 }  // namespace
 
 ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options) {
   ModelLibrary lib;
   lib.scenarios = resimulations(runs);
-  for (const RealRun& r : runs) {
-    lib.labels.push_back(r.label);
-    lib.layouts.push_back(layout_for(r.model.route));
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    lib.labels.push_back(runs[r].label);
+    lib.layouts.push_back(layout_for(runs[r].model.route));
+    lib.priors.push_back(nominal_priors(lib.scenarios[r]));
   }
   const std::size_t n_runs = runs.size();
   std::vector<SimTask> tasks;
@@ -132,17 +122,8 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
     }
   };
   add_all([](sim::Scenario&) {}, kBaselineSeed);
-  // Noise drives: the model itself driven with seeds of its own and its own wandering wind, each
-  // then re-simulated from its recording exactly as a real drive is, so the floor holds every
-  // difference the pipeline makes when nothing is missing from the model.
-  std::vector<SimTask> noise_drives;
-  for (std::size_t k = 0; k < options.noise_runs; ++k) {
-    for (std::size_t r = 0; r < n_runs; ++r) {
-      sim::Scenario s = lib.scenarios[r];
-      s.weather.wind_trace.clear();
-      noise_drives.push_back({std::move(s), kNoiseSeed0 + k, &lib.layouts[r]});
-    }
-  }
+  std::vector<std::vector<double>> trucks;
+  const std::vector<SimTask> noise_drives = noise_drive_tasks(lib, options.noise_runs, trucks);
   say(options, "library: " + std::to_string(noise_drives.size()) + " noise drives");
   const std::vector<RecordedRun> noise = simulate_all(noise_drives, db, options.jobs, options.progress);
   for (std::size_t k = 0; k < options.noise_runs; ++k) {
@@ -158,8 +139,16 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
     add_all([&](sim::Scenario& s) { add_candidate(s, info.id, sp.m1); }, kBaselineSeed);
     add_all([&](sim::Scenario& s) { add_candidate(s, info.id, sp.m2); }, kBaselineSeed);
   }
-  say(options,
-      "library: " + std::to_string(tasks.size()) + " simulations (baseline, the noise drives' re-simulations, 2 per effect)");
+  const std::size_t first_nominal = tasks.size() / n_runs;
+  for (std::size_t j = 0; j < lib.priors.front().size(); ++j) {
+    for (std::size_t r = 0; r < n_runs; ++r) {
+      sim::Scenario s = lib.scenarios[r];
+      set_nominal(s, lib.priors[r][j].id, lib.priors[r][j].value + lib.priors[r][j].sigma);
+      tasks.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
+    }
+  }
+  say(options, "library: " + std::to_string(tasks.size()) +
+                   " simulations (baseline, the noise drives' re-simulations, 2 per effect, 1 per nominal parameter)");
   const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs, options.progress);
   auto group = [&](std::size_t g) {
     return std::vector<RecordedRun>(sims.begin() + static_cast<std::ptrdiff_t>(g * n_runs),
@@ -181,54 +170,36 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
                                          noise.begin() + static_cast<std::ptrdiff_t>((k + 1) * n_runs));
     residuals.push_back(values(drive) - values(group(1 + k)));
   }
-  set_noise_floor(lib, residuals);
   for (std::size_t e = 0; e < lib.responses.size(); ++e) {
     lib.responses[e].f1 = values(group(1 + options.noise_runs + 2 * e));
     lib.responses[e].f2 = values(group(2 + options.noise_runs + 2 * e));
   }
+  std::vector<Eigen::VectorXd> plus_sigma;
+  for (std::size_t j = 0; j < lib.priors.front().size(); ++j) plus_sigma.push_back(values(group(first_nominal + j)));
+  set_nominal_delta(lib, plus_sigma);
+  set_noise_floor(lib, residuals, trucks);
+  set_null_gains(lib, residuals, options);
   return lib;
 }
 
 namespace {
 
-// Noise floor: each feature's scatter over the noise drives' residuals, pooled with its channel's
-// so eight seeds do not make a few features look too quiet; then the held-out chi-square those
-// drives reach against it, the bench's measure of an effect's visibility.
-void set_noise_floor(ModelLibrary& lib, const std::vector<Eigen::VectorXd>& residuals) {
-  const auto n = lib.baseline.size();
-  Eigen::VectorXd own = Eigen::VectorXd::Zero(n), count = Eigen::VectorXd::Zero(n);
+// What each candidate finds in the noise drives, fitted and scored as a real drive's would be
+// (the library's own response for drag that grows with yaw).
+void set_null_gains(ModelLibrary& lib, const std::vector<Eigen::VectorXd>& residuals, const GapOptions& options) {
+  const auto yaw = std::find_if(lib.responses.begin(), lib.responses.end(),
+                                [](const auto& r) { return r.effect == sim::Effect::yaw_drag; });
+  lib.null_gain.assign(lib.responses.size(), 0.0);
   for (const Eigen::VectorXd& d : residuals) {
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (std::isfinite(d(i))) own(i) += d(i) * d(i), count(i) += 1;
+    Problem q;
+    q.keys = lib.keys;
+    q.z = d.cwiseQuotient(lib.sigma);
+    q.candidates = candidates(lib, lib.baseline, yaw->f1);
+    q.nominal = nominal_columns(lib, lib.sigma);
+    for (std::size_t c = 0; c < q.candidates.size(); ++c) {
+      lib.null_gain[c] = std::max(lib.null_gain[c], fit_effects(q, {c}, options.rule).gain);
     }
   }
-  std::map<std::pair<std::string, std::string>, std::pair<double, double>> pooled;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    auto& p = pooled[{lib.keys[static_cast<std::size_t>(i)].run, lib.keys[static_cast<std::size_t>(i)].channel}];
-    p.first += own(i);
-    p.second += count(i);
-  }
-  constexpr double kPrior = 4.0;
-  lib.sigma.resize(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const auto& p = pooled[{lib.keys[static_cast<std::size_t>(i)].run, lib.keys[static_cast<std::size_t>(i)].channel}];
-    const double channel_var = p.second > 0 ? p.first / p.second : kNaN;
-    const double var = (own(i) + kPrior * channel_var) / (count(i) + kPrior);
-    const double floor = noise_floor(lib.keys[static_cast<std::size_t>(i)].channel);
-    lib.sigma(i) = count(i) >= 2 && std::isfinite(var) ? std::max(std::sqrt(var), floor) : kNaN;
-  }
-  std::vector<double> null_chi2;
-  for (const Eigen::VectorXd& d : residuals) {
-    const Eigen::VectorXd z = d.cwiseQuotient(lib.sigma);
-    double chi2 = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (lib.keys[static_cast<std::size_t>(i)].half == 1 && std::isfinite(z(i))) chi2 += z(i) * z(i);
-    }
-    null_chi2.push_back(chi2);
-  }
-  for (double c : null_chi2) lib.null_chi2_mean += c / static_cast<double>(null_chi2.size());
-  for (double c : null_chi2) lib.null_chi2_sd += (c - lib.null_chi2_mean) * (c - lib.null_chi2_mean);
-  lib.null_chi2_sd = std::sqrt(lib.null_chi2_sd / std::max<double>(1.0, static_cast<double>(null_chi2.size()) - 1.0));
 }
 
 }  // namespace
@@ -248,10 +219,7 @@ bool library_serves(const ModelLibrary& lib, const std::vector<sim::Scenario>& r
 }
 
 namespace {
-std::vector<Candidate> candidates(const ModelLibrary& lib, const Eigen::VectorXd& model, const Eigen::VectorXd& yaw);
-Eigen::VectorXd with_chosen(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Fit& f,
-                            const j1939::Database& db, const GapOptions& options);
-void held_out(GapResult& g, const Eigen::VectorXd& after_z);
+void held_out(GapResult& g, const Eigen::VectorXd& calibrated_z, const Eigen::VectorXd& after_z);
 }  // namespace
 
 GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options) {
@@ -279,8 +247,11 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
   }
   const Eigen::VectorXd yaw = values(simulate_all(own, db, options.jobs));
   p.candidates = candidates(lib, model, yaw);
+  for (std::size_t c = 0; c < p.candidates.size() && c < lib.null_gain.size(); ++c) p.candidates[c].null_gain = lib.null_gain[c];
+  p.nominal = nominal_columns(lib, lib.sigma);
   say(options, "fitting " + std::to_string(p.candidates.size()) + " candidate effects and their pairs");
   g.diagnosis = diagnose(p, options.rule);
+  widen_by_miss(g.diagnosis.nominal, lib, p.nominal);
   for (const RealRun& run : runs) {
     if (run.caveat.empty()) continue;
     g.withheld += (g.withheld.empty() ? "" : "; ") + run.label + ": " + run.caveat;
@@ -292,14 +263,17 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
   g.real = real;
   g.model = model;
   g.sigma = lib.sigma;
-  g.after = model;
-  Eigen::VectorXd after_z = p.z;
+  say(options, "re-simulating with the nominal truck fitted on half 0");
+  g.calibrated = resimulated(lib, resims, fit_nominal(p, {}, {}).shift_sigma, nullptr, db, options);
+  g.after = g.calibrated;
   if (g.diagnosis.chosen) {
-    say(options, "re-simulating with the chosen effect added (fitted on half 0)");
-    g.after = with_chosen(lib, resims, *g.diagnosis.chosen, db, options);
-    after_z = (real - g.after).cwiseQuotient(lib.sigma);
+    say(options, "refitting the chosen effect on the fitted truck, then re-simulating with both (fitted on half 0)");
+    const std::vector<double>& shift = g.diagnosis.nominal.shift_sigma;
+    const Eigen::VectorXd truck = resimulated(lib, resims, shift, nullptr, db, options);
+    g.diagnosis.chosen = refit_on_truck(lib, resims, real, *g.diagnosis.chosen, shift, truck, db, options);
+    g.after = resimulated(lib, resims, shift, &*g.diagnosis.chosen, db, options);
   }
-  held_out(g, after_z);
+  held_out(g, (real - g.calibrated).cwiseQuotient(lib.sigma), (real - g.after).cwiseQuotient(lib.sigma));
   g.unmatched = unmatched_channels(runs, lib);
   return g;
 }
@@ -328,46 +302,35 @@ std::vector<Candidate> candidates(const ModelLibrary& lib, const Eigen::VectorXd
   return out;
 }
 
-// The drives re-simulated with the chosen effects at their magnitudes fitted on half 0.
-Eigen::VectorXd with_chosen(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Fit& f,
-                            const j1939::Database& db, const GapOptions& options) {
-  std::vector<SimTask> after;
-  for (std::size_t r = 0; r < resims.size(); ++r) {
-    sim::Scenario s = resims[r];
-    for (std::size_t i = 0; i < f.effects.size(); ++i) {
-      const auto& resp = lib.responses[f.effects[i]];
-      add_candidate(s, resp.effect, f.magnitude_half0[i]);
-    }
-    after.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
-  }
-  return values(simulate_all(after, db, options.jobs));
-}
-
-// The held-out half's residual before and after the chosen effects, per channel and overall.
-void held_out(GapResult& g, const Eigen::VectorXd& after_z) {
+// The held-out half's residual as the model was, with the nominal truck, and with the chosen
+// effects, per channel and overall.
+void held_out(GapResult& g, const Eigen::VectorXd& calibrated_z, const Eigen::VectorXd& after_z) {
   const Problem& p = g.problem;
   std::map<std::string, std::size_t> index;
   for (std::size_t i = 0; i < p.keys.size(); ++i) {
     const auto zi = static_cast<Eigen::Index>(i);
-    if (p.keys[i].half != 1 || !std::isfinite(p.z(zi)) || !std::isfinite(after_z(zi))) continue;
+    const double raw = p.z(zi), before = calibrated_z(zi), after = after_z(zi);
+    if (p.keys[i].half != 1 || !std::isfinite(raw) || !std::isfinite(before) || !std::isfinite(after)) continue;
     const std::string& ch = p.keys[i].channel;
     if (!index.count(ch)) {
       index[ch] = g.channels.size();
-      g.channels.push_back({ch, 0, 0, 0});
+      g.channels.push_back({ch, 0, 0, 0, 0});
     }
     ChannelResidual& c = g.channels[index[ch]];
     c.features += 1;
-    c.before += p.z(zi) * p.z(zi);
-    c.after += after_z(zi) * after_z(zi);
-    g.chi2_before += p.z(zi) * p.z(zi);
-    g.chi2_after += after_z(zi) * after_z(zi);
+    c.raw += raw * raw;
+    c.before += before * before;
+    c.after += after * after;
+    g.chi2_raw += raw * raw;
+    g.chi2_before += before * before;
+    g.chi2_after += after * after;
     g.held_out += 1;
   }
   for (auto& c : g.channels) {
-    c.before = std::sqrt(c.before / static_cast<double>(c.features));
-    c.after = std::sqrt(c.after / static_cast<double>(c.features));
+    for (double* v : {&c.raw, &c.before, &c.after}) *v = std::sqrt(*v / static_cast<double>(c.features));
   }
   if (g.held_out > 0) {
+    g.residual_raw = std::sqrt(g.chi2_raw / static_cast<double>(g.held_out));
     g.residual_before = std::sqrt(g.chi2_before / static_cast<double>(g.held_out));
     g.residual_after = std::sqrt(g.chi2_after / static_cast<double>(g.held_out));
   }

@@ -41,40 +41,65 @@ Parsed<sim::Scenario> nearest_builtin(const RunConditions& c, const std::string&
   return *best;
 }
 
-// A road no built-in scenario drives: the model drives the road the recording's own GNSS traces
-// (its heights from that one pass, as `roadload analyze` traces it without a route), in cells of
-// one pavement at the route defaults' CRR and roughness, at the recording's speed and weather.
-Parsed<sim::Scenario> traced_model(const std::string& recording, const Vehicle& truck) {
+// What the model of a drive on a road of its own needs from the recording: its fixes and sensors.
+struct DriveFacts {
+  std::vector<GnssFix> fixes;
+  recording::Metadata meta;
+};
+Parsed<DriveFacts> read_facts(const std::string& recording) {
   auto reader = recording::RecordingReader::open(recording);
   if (!reader) return reader.error();
-  std::vector<GnssFix> fixes;
+  DriveFacts f;
   while (const recording::Record* r = reader.value().next()) {
-    if (const auto* fix = std::get_if<GnssFix>(r)) fixes.push_back(*fix);
+    if (const auto* fix = std::get_if<GnssFix>(r)) f.fixes.push_back(*fix);
   }
-  const std::optional<TrackRoute> track = route_from_track(fixes, truck.gnss_antenna_height_m);
-  const std::optional<RouteGeometry> geometry = track ? RouteGeometry::build(track->points) : std::nullopt;
-  if (!geometry) {
-    return ParseError{recording, 0, recording::kGnssFile,
-                      "the drive lies on no built-in route and its GNSS traces no road (" + std::to_string(fixes.size()) +
-                          " fixes): name the model with --model"};
+  f.meta = reader.value().metadata();
+  return f;
+}
+
+// A cruise of the truck along `route` from where the drive's first fix lies, with the recording's
+// accelerometers, as many and as fast: the simulator mounts them in the vehicle file's order,
+// again from the first when there are more sensors than mounts.
+Parsed<sim::Scenario> cruise(sim::RouteDef route, const DriveFacts& f, const Vehicle& truck, const std::string& recording) {
+  const std::optional<RouteGeometry> geometry = RouteGeometry::build(route.points);
+  if (!geometry || f.fixes.empty()) {
+    return ParseError{recording, 0, recording::kGnssFile, "no GNSS fix to place the drive on route " + route.name};
   }
+  const auto start = geometry->project(f.fixes.front().lat_deg, f.fixes.front().lon_deg);
+  if (start.offset_m > 50.0) {
+    return ParseError{
+        recording, 0, recording::kGnssFile,
+        "the drive's first fix lies " + std::to_string(static_cast<int>(start.offset_m)) + " m off route " + route.name};
+  }
+  // The first fix's epoch becomes the model's time zero, and a scenario starts with its front
+  // axle: the antenna is that far behind it. Metres matter: a model shifted along the road meets
+  // every bump of its profile early or late, which the vibration features see. One fix is a
+  // metre off, so the start is the mean over the first ten seconds' fixes, each taken back by
+  // the distance driven since the first (its speed integrated).
+  double travelled_m = 0, sum_m = 0;
+  std::size_t used = 0;
+  for (std::size_t i = 0; i < f.fixes.size() && i < 100; ++i) {
+    if (i > 0) {
+      const double dt_s = to_seconds(f.fixes[i].t - f.fixes[i - 1].t);
+      travelled_m += 0.5 * (f.fixes[i].speed_mps + f.fixes[i - 1].speed_mps) * dt_s;
+    }
+    const auto p = geometry->project(f.fixes[i].lat_deg, f.fixes[i].lon_deg);
+    if (p.offset_m > 50.0) continue;
+    sum_m += p.s_m - travelled_m;
+    ++used;
+  }
+  const double start_m = sum_m / static_cast<double>(std::max<std::size_t>(1, used)) + truck.gnss_antenna_behind_front_m;
   sim::Scenario s;
-  s.name = kTracedModel;
-  s.description = "the road the recording's own GNSS traces";
-  s.source = recording;
-  s.route.name = "traced from " + std::filesystem::path(recording).filename().string();
-  s.route.source = "the recording's GNSS, one pass";
-  s.route.points = track->points;
-  for (const CellSpan& c : fixed_length_cells(geometry->length_m(), TrackRouteConfig{}.cell_length_m)) {
-    s.route.cells.push_back({c.id, c.start_m, c.end_m, "bituminous", s.route.default_crr, s.route.default_gd_n0_m3, 0});
-  }
+  s.name = route.name;
+  s.description = "a cruise on route " + route.name + " at the recording's speed";
+  s.source = route.source_file.empty() ? recording : route.source_file;
+  s.route = std::move(route);
   s.vehicle = truck;
+  s.start_m = std::max(0.0, start_m);
   s.end_m = geometry->length_m();
-  s.start_utc_ns = fixes.front().utc_ns;
-  // The recording's sensors, as many and as fast: the simulator mounts them in the vehicle file's
-  // order, again from the first when there are more sensors than mounts.
+  s.start_utc_ns = f.fixes.front().utc_ns;
   s.accelerometers = 0;
-  for (const recording::SensorInfo& info : reader.value().metadata().sensors) {
+  for (const recording::SensorInfo& info : f.meta.sensors) {
     if (info.kind != "accelerometer") continue;
     ++s.accelerometers;
     if (info.rate_hz > 0) s.accel_rate_hz = info.rate_hz;
@@ -83,10 +108,48 @@ Parsed<sim::Scenario> traced_model(const std::string& recording, const Vehicle& 
   return s;
 }
 
+// A road no built-in scenario drives and no route file describes: the model drives the road the
+// recording's own GNSS traces (its heights from that one pass, as `roadload analyze` traces it
+// without a route), in cells of one pavement at the route defaults' CRR and roughness.
+Parsed<sim::Scenario> traced_model(const std::string& recording, const Vehicle& truck) {
+  auto facts = read_facts(recording);
+  if (!facts) return facts.error();
+  const std::vector<GnssFix>& fixes = facts.value().fixes;
+  const std::optional<TrackRoute> track = route_from_track(fixes, truck.gnss_antenna_height_m);
+  const std::optional<RouteGeometry> geometry = track ? RouteGeometry::build(track->points) : std::nullopt;
+  if (!geometry) {
+    return ParseError{recording, 0, recording::kGnssFile,
+                      "the drive lies on no built-in route and its GNSS traces no road (" + std::to_string(fixes.size()) +
+                          " fixes): name the model with --model or its road with --route"};
+  }
+  sim::RouteDef route;
+  route.name = "traced from " + std::filesystem::path(recording).filename().string();
+  route.source = "the recording's GNSS, one pass";
+  route.points = track->points;
+  for (const CellSpan& c : fixed_length_cells(geometry->length_m(), TrackRouteConfig{}.cell_length_m)) {
+    route.cells.push_back({c.id, c.start_m, c.end_m, "bituminous", route.default_crr, route.default_gd_n0_m3, 0});
+  }
+  auto s = cruise(std::move(route), facts.value(), truck, recording);
+  if (s) {
+    s.value().name = kTracedModel;
+    s.value().description = "the road the recording's own GNSS traces";
+  }
+  return s;
+}
+
+// The model on a route the user gives (a route file: their own GNSS or GIS sections).
+Parsed<sim::Scenario> route_model(const std::string& recording, const std::string& route_path, const Vehicle& truck) {
+  auto route = sim::load_route(route_path);
+  if (!route) return route.error();
+  auto facts = read_facts(recording);
+  if (!facts) return facts.error();
+  return cruise(std::move(route.value()), facts.value(), truck, recording);
+}
+
 }  // namespace
 
 Parsed<RealRun> load_real_run(const std::string& recording, const std::string& model, const j1939::Database& db,
-                              const std::optional<Vehicle>& vehicle) {
+                              const std::optional<Vehicle>& vehicle, const std::string& route) {
   std::optional<Vehicle> truck = vehicle;
   if (!truck) {
     auto opened = recording::RecordingReader::open(recording);
@@ -97,6 +160,13 @@ Parsed<RealRun> load_real_run(const std::string& recording, const std::string& m
   std::optional<sim::Scenario> scenario;
   if (!model.empty()) {
     auto s = sim::load_scenario(model, data_dir());
+    if (!s) return s.error();
+    scenario = std::move(s.value());
+  }
+  if (!scenario && !route.empty()) {
+    auto fallback = truck ? Parsed<Vehicle>(*truck) : load_vehicle_file(default_vehicle_path());
+    if (!fallback) return fallback.error();
+    auto s = route_model(recording, route, fallback.value());
     if (!s) return s.error();
     scenario = std::move(s.value());
   }

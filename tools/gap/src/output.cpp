@@ -17,6 +17,38 @@ std::string effect_list(const GapResult& g) {
   return s;
 }
 
+// The first rows of the answer: how the model's truck differs from this one.
+void print_nominal(std::FILE* out, const GapResult& g) {
+  const NominalFit& n = g.diagnosis.nominal;
+  if (n.value.empty()) {
+    std::fprintf(out, "\nnominal truck: held as modelled (the vehicle file states no spreads)\n");
+    return;
+  }
+  std::fprintf(out, "\nthe model's truck against this one (fitted on half 0%s; 90 %% interval; prior sigma):\n",
+               g.diagnosis.chosen ? " beside the named effect" : "");
+  for (std::size_t j = 0; j < n.value.size(); ++j) {
+    const NominalColumn& c = g.problem.nominal[j];
+    const bool moved = std::abs(n.shift_sigma[j]) >= 1.0 && (c.value < n.lo[j] || c.value > n.hi[j]);
+    std::fprintf(out, "  %-22s %10.4g -> %-10.4g [%.4g, %.4g] %s  (prior %.3g, %+.1f sigma)%s\n", c.name.c_str(), c.value, n.value[j],
+                 n.lo[j], n.hi[j], c.unit.c_str(), c.sigma, n.shift_sigma[j], moved ? "  <- not the model's" : "");
+  }
+  std::fprintf(out, "  held-out residual (RMS z, re-simulated): %.2f as modelled -> %.2f with this truck\n", g.residual_raw,
+               g.residual_before);
+}
+
+void nominal_json(std::ostringstream& j, const GapResult& g) {
+  const NominalFit& n = g.diagnosis.nominal;
+  j << "  \"nominal\": [";
+  for (std::size_t i = 0; i < n.value.size(); ++i) {
+    const NominalColumn& c = g.problem.nominal[i];
+    j << (i ? "," : "") << "\n    {\"name\": " << results::json_quote(c.name) << ", \"unit\": " << results::json_quote(c.unit)
+      << ", \"model\": " << json_number(c.value) << ", \"prior_sigma\": " << json_number(c.sigma)
+      << ", \"fitted\": " << json_number(n.value[i]) << ", \"lo\": " << json_number(n.lo[i]) << ", \"hi\": " << json_number(n.hi[i])
+      << ", \"shift_sigma\": " << json_number(n.shift_sigma[i]) << "}";
+  }
+  j << "\n  ],\n  \"residual_raw\": " << json_number(g.residual_raw) << ",\n";
+}
+
 }  // namespace
 
 std::string json_number(double v) {
@@ -30,6 +62,7 @@ std::string json_number(double v) {
 void print_result(std::FILE* out, const GapResult& g, const std::vector<std::string>& run_lines) {
   const Diagnosis& d = g.diagnosis;
   for (const auto& line : run_lines) std::fprintf(out, "%s\n", line.c_str());
+  print_nominal(out, g);
   std::fprintf(out, "\nresidual: %zu features, chi-square %.0f against %zu expected from the noise floor\n", d.features, d.chi2,
                d.features);
   std::fprintf(out, "\nwhere the gap lies (sigma = excess chi-square / sqrt(2 n)):\n");
@@ -39,13 +72,17 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
     std::fprintf(out, "  %-22s %-24s %5zu %8.1f %7.1f  %s (%+.1f)\n", w.run.c_str(), w.channel.c_str(), w.features, w.excess,
                  w.significance, w.worst_where.c_str(), w.worst_z);
   }
-  std::fprintf(out, "\ncandidates (held-out chi-square removed, both folds, minus %g per magnitude):\n", 2.0);
+  std::fprintf(out,
+               "\ncandidates (held-out chi-square removed, both folds, minus %g per magnitude; in brackets the most it\n"
+               "removed from a noise drive):\n",
+               2.0);
   const std::size_t shown = std::min<std::size_t>(6, d.singles.size());
   for (std::size_t i = 0; i < shown; ++i) {
     const Fit& f = d.singles[i];
     const Candidate& c = g.problem.candidates[f.effects[0]];
-    std::fprintf(out, "  %-22s gain %8.1f   %s = %.4g %s [%.4g, %.4g]%s\n", c.name.c_str(), f.gain, c.name.c_str(), f.magnitude[0],
-                 c.unit.c_str(), f.lo[0], f.hi[0], f.plausibility < 0.99 ? "  (outside its realistic range)" : "");
+    std::fprintf(out, "  %-22s gain %8.1f (%5.0f)   %s = %.4g %s [%.4g, %.4g]%s\n", c.name.c_str(), f.gain, c.null_gain,
+                 c.name.c_str(), f.magnitude[0], c.unit.c_str(), f.lo[0], f.hi[0],
+                 f.plausibility < 0.99 ? "  (outside its realistic range)" : "");
   }
   if (d.best_pair) {
     const Fit& f = *d.best_pair;
@@ -65,12 +102,14 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
                    c.unit.c_str(), f.lo[i], f.hi[i], c.base);
     }
   }
-  std::fprintf(out, "\nheld-out residual (RMS z on half 1; after: effect fitted on half 0 and simulated):\n");
-  std::fprintf(out, "  %-24s %5s %8s %8s\n", "channel", "n", "before", "after");
+  std::fprintf(out,
+               "\nheld-out residual (RMS z on half 1, re-simulated: as modelled, with the truck fitted on half 0, and with\n"
+               "the effect fitted there as well):\n");
+  std::fprintf(out, "  %-24s %5s %8s %8s %8s\n", "channel", "n", "modelled", "truck", "after");
   for (const ChannelResidual& c : g.channels) {
-    std::fprintf(out, "  %-24s %5zu %8.2f %8.2f\n", c.channel.c_str(), c.features, c.before, c.after);
+    std::fprintf(out, "  %-24s %5zu %8.2f %8.2f %8.2f\n", c.channel.c_str(), c.features, c.raw, c.before, c.after);
   }
-  std::fprintf(out, "  %-24s %5zu %8.2f %8.2f\n", "overall", g.held_out, g.residual_before, g.residual_after);
+  std::fprintf(out, "  %-24s %5zu %8.2f %8.2f %8.2f\n", "overall", g.held_out, g.residual_raw, g.residual_before, g.residual_after);
   if (!g.unmatched.empty()) std::fprintf(out, "\nnot compared (sensors matched by mounting position):\n");
   for (const UnmatchedChannel& u : g.unmatched) {
     std::fprintf(out, "  %-22s %-32s %s\n", u.run.c_str(), u.channel.c_str(),
@@ -91,6 +130,7 @@ std::string result_json(const GapResult& g, const std::vector<std::string>& run_
   } else {
     j << "  \"effect\": null,\n  \"magnitude\": null,\n  \"unit\": null,\n  \"interval\": null,\n";
   }
+  nominal_json(j, g);
   j << "  \"effects\": [";
   if (d.chosen) {
     const Fit& f = *d.chosen;
@@ -115,14 +155,15 @@ std::string result_json(const GapResult& g, const std::vector<std::string>& run_
   for (std::size_t i = 0; i < g.channels.size(); ++i) {
     const ChannelResidual& c = g.channels[i];
     j << (i ? "," : "") << "\n    {\"channel\": " << results::json_quote(c.channel) << ", \"features\": " << c.features
-      << ", \"before\": " << json_number(c.before) << ", \"after\": " << json_number(c.after) << "}";
+      << ", \"raw\": " << json_number(c.raw) << ", \"before\": " << json_number(c.before) << ", \"after\": " << json_number(c.after)
+      << "}";
   }
   j << "\n  ],\n  \"candidates\": [";
   for (std::size_t i = 0; i < d.singles.size(); ++i) {
     const Fit& f = d.singles[i];
     j << (i ? "," : "") << "\n    {\"name\": " << results::json_quote(g.problem.candidates[f.effects[0]].name)
-      << ", \"gain\": " << json_number(f.gain) << ", \"magnitude\": " << json_number(f.magnitude[0])
-      << ", \"plausibility\": " << json_number(f.plausibility) << "}";
+      << ", \"gain\": " << json_number(f.gain) << ", \"noise_gain\": " << json_number(g.problem.candidates[f.effects[0]].null_gain)
+      << ", \"magnitude\": " << json_number(f.magnitude[0]) << ", \"plausibility\": " << json_number(f.plausibility) << "}";
   }
   j << "\n  ],\n  \"withheld\": " << (g.withheld.empty() ? std::string("null") : results::json_quote(g.withheld));
   j << ",\n  \"unmatched\": [";
@@ -140,7 +181,7 @@ std::string result_json(const GapResult& g, const std::vector<std::string>& run_
 std::string features_csv(const GapResult& g) {
   std::ostringstream o;
   o.precision(9);
-  o << "run,channel,where,half,real,model,sigma,z,after\n";
+  o << "run,channel,where,half,real,model,sigma,z,calibrated,after\n";
   auto cell = [&](double v) -> std::ostringstream& {
     if (std::isfinite(v)) o << v;
     return o;
@@ -153,6 +194,7 @@ std::string features_csv(const GapResult& g) {
     cell(g.model(r)) << ',';
     cell(g.sigma(r)) << ',';
     cell(g.problem.z(r)) << ',';
+    cell(g.calibrated(r)) << ',';
     cell(g.after(r)) << '\n';
   }
   return o.str();

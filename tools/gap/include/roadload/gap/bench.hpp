@@ -22,6 +22,9 @@ Parsed<BenchDay> bench_day(const std::string& data_dir);
 struct BenchCase {
   std::vector<std::pair<sim::Effect, double>> effects;  // empty: a null run
   std::uint64_t seed = 0;
+  // The truck driven: each nominal parameter's offset from the model's in its prior sigmas
+  // (nominal.hpp); empty: the model's own truck.
+  std::vector<double> truck;
 };
 
 // The effects the bench draws from by default, and why the others are left out (nullptr: in).
@@ -33,6 +36,7 @@ struct BenchPlan {
   std::uint64_t seed = 1;
   double null_share = 0.2, pair_share = 0.15;
   std::vector<sim::Effect> effects;  // drawn from; observable_effects() when empty
+  bool draw_trucks = true;           // else every case drives the model's own truck
 };
 // Magnitudes are uniform within each effect's realistic range, at least a quarter of the range
 // away from the model's own value so that every effect case has a gap to find.
@@ -45,6 +49,10 @@ struct CaseOutcome {
   bool false_alarm = false;  // null run with an effect named
   bool visible = false;      // the effect raised the held-out chi-square 4 sd above the noise drives'
   double shrink = 0;         // share of that excess chi-square the named effect removed
+  // Per nominal parameter (the diagnosis's order): the truck's true value and whether the
+  // fitted 90 % interval holds it.
+  std::vector<double> nominal_truth;
+  std::vector<bool> nominal_covered;
 };
 
 CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelLibrary>& libraries, const j1939::Database& db,
@@ -60,6 +68,14 @@ struct BenchScore {
   double shrink_sum = 0;
   // Rows: the hidden effect, the first of a pair marked (+1); columns: the first named.
   std::map<std::string, std::map<std::string, int>> confusion;
+  // Per nominal parameter: cases, intervals holding the truth, and the sum of squared errors in
+  // the parameter's unit and of the prior's (what the fit started from).
+  struct Recovery {
+    std::string name, unit;
+    std::size_t cases = 0, covered = 0;
+    double error_ss = 0, prior_ss = 0;
+  };
+  std::vector<Recovery> nominal;
 
   void add(const CaseOutcome& o);
   double top1() const { return cases ? static_cast<double>(right) / static_cast<double>(cases) : 0.0; }

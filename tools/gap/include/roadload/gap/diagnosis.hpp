@@ -32,16 +32,36 @@ struct Candidate {
   // believed (DecisionRule::range_tolerance).
   double realistic_lo = -std::numeric_limits<double>::infinity(), realistic_hi = std::numeric_limits<double>::infinity();
   Eigen::VectorXd a, b;
+  // The most it removed from drives with nothing missing from the model but their truck (the
+  // library's noise drives): an effect that fits noise must beat its own noise to be named.
+  double null_gain = 0;
 
   static Candidate from_two(std::string name, std::string unit, double base, double lo, double hi, double m1,
                             const Eigen::VectorXd& d1, double m2, const Eigen::VectorXd& d2);
   Eigen::VectorXd response(double magnitude) const;
 };
 
+// A nominal parameter of the model's truck (nominal.hpp) as the fit sees it: linear, in units of
+// its prior sigma, with a unit normal prior. Every fit moves these with the candidates.
+struct NominalColumn {
+  std::string name, unit;
+  double value = 0, sigma = 0;  // the model's value and its prior sigma
+  Eigen::VectorXd per_sigma;    // whitened response to one sigma
+};
+
 struct Problem {
   std::vector<FeatureKey> keys;
   Eigen::VectorXd z;  // (real - model) / noise; NaN where either side never saw the feature
   std::vector<Candidate> candidates;
+  std::vector<NominalColumn> nominal;
+};
+
+// The nominal parameters fitted on half 0 (with the chosen effects, when any), 90 % intervals.
+struct NominalFit {
+  std::vector<double> value, lo, hi;  // in the parameters' units, Problem::nominal's order
+  std::vector<double> shift_sigma;    // (value - model) / prior sigma
+  double chi2_half1_before = 0;       // held-out chi-square of the model as it was
+  double chi2_half1_after = 0;        // and with these values (linear in their responses)
 };
 
 struct Fit {
@@ -64,6 +84,7 @@ struct WhereItem {
 
 struct DecisionRule {
   double null_gain = 100.0;       // held-out chi-square a candidate must remove to be named
+  double null_factor = 2.0;       // and this many times its own Candidate::null_gain
   double pair_gain = 50.0;        // and a second effect beyond the first
   double pair_share = 0.01;       // and at least this share of the first's gain: less is the first's model error
   double penalty = 2.0;           // per fitted magnitude, AIC-like
@@ -72,6 +93,7 @@ struct DecisionRule {
 };
 
 struct Diagnosis {
+  NominalFit nominal;        // the model's truck fitted to this one, before any effect
   std::vector<Fit> singles;  // every candidate, best first
   std::optional<Fit> best_pair;
   std::optional<Fit> chosen;     // none: no candidate explains the gap significantly
@@ -81,6 +103,13 @@ struct Diagnosis {
 };
 
 Diagnosis diagnose(const Problem& p, const DecisionRule& rule = {});
+
+// One set of candidates fitted (with the nominal parameters beside them) and scored as diagnose
+// scores it.
+Fit fit_effects(const Problem& p, const std::vector<std::size_t>& set, const DecisionRule& rule = {});
+
+// The nominal parameters fitted on half 0 beside a set of candidates at their half-0 magnitudes.
+NominalFit fit_nominal(const Problem& p, const std::vector<std::size_t>& set, const std::vector<double>& magnitude_half0);
 
 // Groups by (run, channel), ranked by significance, each naming its worst place.
 std::vector<WhereItem> locate(const std::vector<FeatureKey>& keys, const Eigen::VectorXd& z, std::size_t limit);

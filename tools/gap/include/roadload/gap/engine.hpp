@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "roadload/gap/diagnosis.hpp"
+#include "roadload/gap/nominal.hpp"
 #include "roadload/gap/resimulate.hpp"
 #include "roadload/j1939/database.hpp"
 #include "roadload/sim/effects.hpp"
@@ -53,9 +54,20 @@ struct ModelLibrary {
     Eigen::VectorXd f1, f2;  // features with the effect at m1 and m2
   };
   std::vector<Response> responses;
+  // Per response: the most its candidate removed from any noise drive (Candidate::null_gain).
+  std::vector<double> null_gain;
+  // The nominal parameters each run's model may move (the same for every run: one truck), and
+  // the features' change with each at its value plus one sigma (columns).
+  std::vector<std::vector<NominalPrior>> priors;
+  Eigen::MatrixXd nominal_delta;
+  // How far the nominal fit missed the noise drives' own trucks, RMS in prior sigmas per
+  // parameter: the error the linear responses and the features' correlations add, which the
+  // fit's curvature does not know. Intervals are widened by it.
+  std::vector<double> nominal_miss;
   // The held-out half's chi-square of the noise drives: what a drive with nothing missing from
   // the model scores (mean and spread), against which a gap's excess is measured.
   double null_chi2_mean = 0, null_chi2_sd = 0;
+  std::size_t null_chi2_count = 0;  // noise drives behind them
 };
 
 // Adds a candidate effect at a magnitude to a re-simulation. Most are the simulator's own effect;
@@ -84,19 +96,23 @@ std::vector<UnmatchedChannel> unmatched_channels(const std::vector<RealRun>& run
 struct ChannelResidual {
   std::string channel;
   std::size_t features = 0;
-  double before = 0, after = 0;  // RMS of z on held-out features
+  double raw = 0, before = 0, after = 0;  // RMS of z on held-out features: as GapResult's residuals
 };
 
 struct GapResult {
   Problem problem;
-  Eigen::VectorXd real, model, sigma, after;  // per feature of problem.keys; after: with the chosen effect
+  // Per feature of problem.keys: the model as it was, with the nominal truck fitted on half 0,
+  // and with the chosen effects as well.
+  Eigen::VectorXd real, model, sigma, calibrated, after;
   Diagnosis diagnosis;
   // The chosen effects added to the model at the magnitudes fitted on half 0, judged on half 1.
   std::vector<ChannelResidual> channels;
-  double residual_before = 0, residual_after = 0;  // RMS z, held-out half
-  double chi2_before = 0, chi2_after = 0;          // held-out half
-  double null_chi2_mean = 0, null_chi2_sd = 0;     // the library's, for the same half
-  std::size_t held_out = 0;                        // valid held-out features
+  // Held-out half, re-simulated: RMS z and chi-square of the model as it was (raw), with the
+  // nominal truck fitted (before: the gap the effects are asked to explain) and with the effects.
+  double residual_raw = 0, residual_before = 0, residual_after = 0;
+  double chi2_raw = 0, chi2_before = 0, chi2_after = 0;
+  double null_chi2_mean = 0, null_chi2_sd = 0;  // the library's, for the same half
+  std::size_t held_out = 0;                     // valid held-out features
   std::vector<UnmatchedChannel> unmatched;
   std::string withheld;  // why no effect is named although one may fit: the runs' caveats
 };

@@ -1,0 +1,93 @@
+#include "resimulated.hpp"
+
+#include <cmath>
+
+namespace roadload::gap {
+
+Eigen::VectorXd values(const std::vector<RecordedRun>& runs) {
+  std::size_t n = 0;
+  for (const auto& r : runs) n += r.features.features.size();
+  Eigen::VectorXd v(static_cast<Eigen::Index>(n));
+  Eigen::Index i = 0;
+  for (const auto& r : runs) {
+    for (const auto& f : r.features.features) v(i++) = f.value;
+  }
+  return v;
+}
+
+Span span_of(const sim::EffectInfo& info, double base) {
+  const double width = info.max - info.min;
+  if (info.min < 0) return {info.min - 0.25 * width, info.max + 0.25 * width, info.max, info.min};
+  return {0.0, info.max + 0.25 * width, info.max, 0.5 * (base + info.max) > 0 ? 0.5 * (base + info.max) : 0.5 * info.max};
+}
+
+// The drives re-simulated with the nominal truck moved by `shift_sigma` and, when given, the
+// chosen effects at their magnitudes fitted on half 0.
+Eigen::VectorXd resimulated(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const std::vector<double>& shift_sigma,
+                            const Fit* effects, const j1939::Database& db, const GapOptions& options) {
+  std::vector<SimTask> after;
+  for (std::size_t r = 0; r < resims.size(); ++r) {
+    sim::Scenario s = resims[r];
+    for (std::size_t j = 0; j < shift_sigma.size() && j < lib.priors[r].size(); ++j) {
+      const NominalPrior& prior = lib.priors[r][j];
+      set_nominal(s, prior.id, prior.value + shift_sigma[j] * prior.sigma);
+    }
+    for (std::size_t i = 0; effects != nullptr && i < effects->effects.size(); ++i) {
+      add_candidate(s, lib.responses[effects->effects[i]].effect, effects->magnitude_half0[i]);
+    }
+    after.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
+  }
+  return values(simulate_all(after, db, options.jobs));
+}
+
+Fit refit_on_truck(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Eigen::VectorXd& real, const Fit& chosen,
+                   const std::vector<double>& shift_sigma, const Eigen::VectorXd& truck, const j1939::Database& db,
+                   const GapOptions& options) {
+  std::vector<SimTask> tasks;
+  std::vector<Span> spans;
+  for (std::size_t e : chosen.effects) {
+    const auto& resp = lib.responses[e];
+    spans.push_back(span_of(sim::effect_info(resp.effect), resp.base));
+    for (double m : {spans.back().m1, spans.back().m2}) {
+      for (std::size_t r = 0; r < resims.size(); ++r) {
+        sim::Scenario s = resims[r];
+        for (std::size_t j = 0; j < shift_sigma.size() && j < lib.priors[r].size(); ++j) {
+          set_nominal(s, lib.priors[r][j].id, lib.priors[r][j].value + shift_sigma[j] * lib.priors[r][j].sigma);
+        }
+        add_candidate(s, resp.effect, m);
+        tasks.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
+      }
+    }
+  }
+  const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs);
+  const auto runs = static_cast<std::ptrdiff_t>(resims.size());
+  auto group = [&](std::size_t g) {
+    return values(std::vector<RecordedRun>(sims.begin() + g * runs, sims.begin() + (g + 1) * runs));
+  };
+  Problem q;
+  q.keys = lib.keys;
+  q.z = (real - truck).cwiseQuotient(lib.sigma);
+  std::vector<std::size_t> set;
+  for (std::size_t i = 0; i < chosen.effects.size(); ++i) {
+    const auto& resp = lib.responses[chosen.effects[i]];
+    const sim::EffectInfo& info = sim::effect_info(resp.effect);
+    Candidate c = Candidate::from_two(std::string(info.name), std::string(info.unit), resp.base, spans[i].lo, spans[i].hi,
+                                      spans[i].m1, (group(2 * i) - truck).cwiseQuotient(lib.sigma), spans[i].m2,
+                                      (group(2 * i + 1) - truck).cwiseQuotient(lib.sigma));
+    c.realistic_lo = info.min;
+    c.realistic_hi = info.max;
+    q.candidates.push_back(std::move(c));
+    set.push_back(i);
+  }
+  const Fit refit = fit_effects(q, set, options.rule);
+  Fit out = chosen;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    out.lo[i] = refit.magnitude[i] - (chosen.magnitude[i] - chosen.lo[i]);
+    out.hi[i] = refit.magnitude[i] + (chosen.hi[i] - chosen.magnitude[i]);
+    out.magnitude[i] = refit.magnitude[i];
+    out.magnitude_half0[i] = refit.magnitude_half0[i];
+  }
+  return out;
+}
+
+}  // namespace roadload::gap

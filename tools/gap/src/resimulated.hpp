@@ -1,0 +1,39 @@
+#pragma once
+// Pieces the library and the diagnosis share (engine.cpp): features as one vector, the span of
+// magnitudes an effect is simulated and fitted over, and the drives re-simulated with a fitted
+// truck and effects.
+#include <cstdint>
+#include <vector>
+
+#include "roadload/gap/engine.hpp"
+
+namespace roadload::gap {
+
+// The re-simulations' own seed: the baseline and every response share it, so their differences
+// hold the change alone.
+inline constexpr std::uint64_t kBaselineSeed = 1;
+
+// Every run's features, concatenated in order.
+Eigen::VectorXd values(const std::vector<RecordedRun>& runs);
+
+// Magnitudes the library simulates and a fit may take: the catalog's realistic range, widened by
+// a quarter, reaching zero for an effect that cannot be negative.
+struct Span {
+  double lo, hi, m1, m2;
+};
+Span span_of(const sim::EffectInfo& info, double base);
+
+// The drives re-simulated with the nominal truck moved by `shift_sigma` and, when given, the
+// effects at their magnitudes fitted on half 0 (`magnitude_half0`).
+Eigen::VectorXd resimulated(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const std::vector<double>& shift_sigma,
+                            const Fit* effects, const j1939::Database& db, const GapOptions& options);
+
+// The chosen effects refitted on half 0 around the truck fitted beside them: their responses
+// simulated again on that truck, since an effect's size follows the truck's (drag that grows with
+// yaw scales with CdA). Magnitudes move to the refit; intervals keep the joint fit's widths.
+// `truck` is the drives re-simulated with that truck alone.
+Fit refit_on_truck(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Eigen::VectorXd& real, const Fit& chosen,
+                   const std::vector<double>& shift_sigma, const Eigen::VectorXd& truck, const j1939::Database& db,
+                   const GapOptions& options);
+
+}  // namespace roadload::gap
