@@ -19,9 +19,10 @@ cat >"$work/res/gap.json" <<'JSON'
 {"effect": "brake-drag", "magnitude": 118.2, "unit": "N", "interval": [110.1, 126.3],
  "effects": [{"name": "brake-drag", "magnitude": 118.2, "lo": 110.1, "hi": 126.3, "fitted_on_half0": 117.5, "unit": "N"}],
  "where": [{"run": "rec30", "channel": "torque_nm", "features": 30, "excess_chi2": 2500.5, "sigma": 322.8, "worst": "4", "worst_z": 12.5}],
- "residual_before": 7.8, "residual_after": 0.9, "held_out_features": 120,
- "channels": [{"channel": "torque_nm", "features": 15, "before": 12.1, "after": 1.1},
-              {"channel": "fuel_lph", "features": 15, "before": 6.0, "after": 0.8}],
+ "nominal": [{"name": "CdA", "unit": "m2", "model": 6.2, "prior_sigma": 0.6, "fitted": 5.81, "lo": 5.7, "hi": 5.92, "shift_sigma": -0.65}],
+ "residual_raw": 9.6, "residual_before": 7.8, "residual_after": 0.9, "held_out_features": 120,
+ "channels": [{"channel": "torque_nm", "features": 15, "raw": 15.2, "before": 12.1, "after": 1.1},
+              {"channel": "fuel_lph", "features": 15, "raw": 7.1, "before": 6.0, "after": 0.8}],
  "candidates": [{"name": "brake-drag", "gain": 4100.2, "magnitude": 118.2}], "runs": ["run rec30: model mnroad-mainline-30mph"]}
 JSON
 cat >"$work/res/gap-tables.json" <<'JSON'
@@ -43,6 +44,8 @@ rows=$(sed -n '/id="crr"/,/<\/table>/p' "$page" | grep -c '<tr><td>' || true)
 
 grep -q 'id="gap"' "$work/report.html" || fail "no sim-to-real section although gap.json is there"
 grep -q "brake-drag = 118.2 N" "$work/report.html" || fail "the gap section does not name the effect"
+sed -n '/id="gap"/,$p' "$work/report.html" | grep -q "<td>CdA</td><td>6.2 m2</td><td>5.81</td>" ||
+  fail "the gap section does not show the model's truck against this one"
 cp "$work/res/gap.json" "$work/gap.json"
 sed -i '2s/"magnitude": 118.2/"magnitude": 118.2,,/' "$work/res/gap.json"
 expect_status 65 "$roadload" report "$work/res" -o "$work/bad.html"

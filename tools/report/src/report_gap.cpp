@@ -12,8 +12,24 @@ using results::JsonValue;
 std::string text(const JsonValue* v) { return v && v->kind() == JsonValue::Kind::string ? v->string() : std::string(); }
 double number(const JsonValue& v, std::string_view key) { return v.number_at(key).value_or(std::nan("")); }
 
+// The first rows of the answer: the model's truck against this one, fitted before any effect.
+std::string nominal(const JsonValue& g) {
+  const JsonValue* n = g.find("nominal");
+  if (n == nullptr || n->items().empty()) return {};
+  std::vector<std::vector<std::string>> rows;
+  for (const JsonValue& p : n->items()) {
+    rows.push_back({text(p.find("name")), format_number(number(p, "model"), 4) + " " + text(p.find("unit")),
+                    format_number(number(p, "fitted"), 4),
+                    format_number(number(p, "lo"), 4) + " to " + format_number(number(p, "hi"), 4),
+                    format_number(number(p, "shift_sigma"), 2)});
+  }
+  return "<p>The model's truck against this one: its nominal parameters fitted on half of the cells, before any effect is "
+         "named (90 % intervals; the shift in the vehicle file's prior sigmas).</p>\n" +
+         table_html({"parameter", "model", "fitted", "90 % interval", "shift (sigma)"}, rows);
+}
+
 std::string diagnosis(const JsonValue& g) {
-  std::string h;
+  std::string h = nominal(g);
   const std::string effect = text(g.find("effect"));
   std::vector<std::vector<std::string>> rows;
   if (effect.empty()) {
@@ -25,8 +41,9 @@ std::string diagnosis(const JsonValue& g) {
                                     format_number(number(e, "hi"), 3)});
     }
   }
-  rows.push_back({"held-out residual (RMS z) before", format_number(number(g, "residual_before"), 3)});
-  rows.push_back({"after adding it", format_number(number(g, "residual_after"), 3)});
+  rows.push_back({"held-out residual (RMS z) as modelled", format_number(number(g, "residual_raw"), 3)});
+  rows.push_back({"with the truck fitted", format_number(number(g, "residual_before"), 3)});
+  rows.push_back({"and the effect added", format_number(number(g, "residual_after"), 3)});
   if (const JsonValue* runs = g.find("runs")) {
     for (const JsonValue& r : runs->items()) rows.push_back({"drive", r.string()});
   }
@@ -44,17 +61,20 @@ std::string diagnosis(const JsonValue& g) {
   }
   if (const JsonValue* channels = g.find("channels")) {
     Chart c{"gap-channels", {"channel", false, false}, {"held-out residual, RMS z", false, true}, {}, false, {}, {}};
-    Series before{"model as it was", Series::Style::bars, {}, {}, {}, {}};
-    Series after{"with the effect", Series::Style::bars, {}, {}, {}, {}};
+    Series raw{"model as it was", Series::Style::bars, {}, {}, {}, {}};
+    Series before{"with the truck fitted", Series::Style::bars, {}, {}, {}, {}};
+    Series after{"and the effect", Series::Style::bars, {}, {}, {}, {}};
     for (const JsonValue& ch : channels->items()) {
       c.categories.push_back(text(ch.find("channel")));
+      raw.y.push_back(number(ch, "raw"));
       before.y.push_back(number(ch, "before"));
       after.y.push_back(number(ch, "after"));
     }
-    c.series = {std::move(before), std::move(after)};
+    c.series = {std::move(raw), std::move(before), std::move(after)};
     h += figure_html({std::move(c),
-                      "The residual between the drive and its re-simulation on held-out cells, per channel, before and "
-                      "after the chosen effect is added (1: as close as the noise floor allows)."});
+                      "The residual between the drive and its re-simulation on held-out cells, per channel: as modelled, with "
+                      "the truck's nominal parameters fitted, and with the chosen effect added as well (1: as close as the "
+                      "noise floor allows)."});
   }
   return h;
 }
