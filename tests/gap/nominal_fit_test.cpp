@@ -96,5 +96,17 @@ TEST(GapNominal, AnEffectBesideAnotherTruckIsNamedAndTheTruckStillFitted) {
   EXPECT_GT(d.nominal.hi[1], 36000 - 1.5 * 360);
 }
 
+TEST(GapNominal, AnEffectANominalParameterStandsForIsListedButNeverNamed) {
+  Truck t;
+  t.problem.candidates[1].stood_for_by = "mass";
+  t.problem.z = t.problem.candidates[1].response(1.5) + t.problem.candidates[2].response(0.8);
+  t.add_noise();
+  const Diagnosis d = diagnose(t.problem);
+  ASSERT_TRUE(d.chosen);
+  for (std::size_t e : d.chosen->effects) EXPECT_NE(t.problem.candidates[e].name, "effect-1");
+  EXPECT_EQ(t.problem.candidates[d.chosen->effects[0]].name, "effect-2");
+  EXPECT_EQ(t.problem.candidates[d.singles.front().effects[0]].name, "effect-1") << "still fitted and listed first";
+}
+
 }  // namespace
 }  // namespace roadload::gap

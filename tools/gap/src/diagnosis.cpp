@@ -274,15 +274,21 @@ Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
   std::erase_if(d.where, [](const WhereItem& w) { return w.significance < 2.0; });
   for (std::size_t i = 0; i < p.candidates.size(); ++i) d.singles.push_back(fit_set(p, {i}, rule));
   std::sort(d.singles.begin(), d.singles.end(), [](const Fit& x, const Fit& y) { return x.gain > y.gain; });
-  const std::size_t pool = std::min(rule.pair_pool, d.singles.size());
+  // Candidates a nominal parameter stands for are fitted and listed, never named or paired.
+  std::vector<std::size_t> nameable;
+  for (const Fit& f : d.singles) {
+    if (p.candidates[f.effects[0]].stood_for_by.empty()) nameable.push_back(f.effects[0]);
+  }
+  const std::size_t pool = std::min(rule.pair_pool, nameable.size());
   for (std::size_t i = 0; i < pool; ++i) {
     for (std::size_t j = i + 1; j < pool; ++j) {
-      Fit f = fit_set(p, {d.singles[i].effects[0], d.singles[j].effects[0]}, rule);
+      Fit f = fit_set(p, {nameable[i], nameable[j]}, rule);
       if (!d.best_pair || f.gain > d.best_pair->gain) d.best_pair = std::move(f);
     }
   }
   const auto named = std::find_if(d.singles.begin(), d.singles.end(), [&](const Fit& f) {
-    return f.gain >= std::max(rule.null_gain, rule.null_factor * p.candidates[f.effects[0]].null_gain);
+    const Candidate& c = p.candidates[f.effects[0]];
+    return c.stood_for_by.empty() && f.gain >= std::max(rule.null_gain, rule.null_factor * c.null_gain);
   });
   if (named == d.singles.end()) return d;
   d.chosen = *named;

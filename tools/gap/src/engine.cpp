@@ -247,7 +247,13 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
   }
   const Eigen::VectorXd yaw = values(simulate_all(own, db, options.jobs));
   p.candidates = candidates(lib, model, yaw);
-  for (std::size_t c = 0; c < p.candidates.size() && c < lib.null_gain.size(); ++c) p.candidates[c].null_gain = lib.null_gain[c];
+  for (std::size_t c = 0; c < p.candidates.size() && c < lib.null_gain.size(); ++c) {
+    p.candidates[c].null_gain = lib.null_gain[c];
+    const auto nominal = stands_for(lib.responses[c].effect);
+    const bool fitted = nominal && std::any_of(lib.priors.front().begin(), lib.priors.front().end(),
+                                               [&](const NominalPrior& prior) { return prior.id == *nominal; });
+    if (fitted) p.candidates[c].stood_for_by = std::string(nominal_name(*nominal));
+  }
   p.nominal = nominal_columns(lib, lib.sigma);
   say(options, "fitting " + std::to_string(p.candidates.size()) + " candidate effects and their pairs");
   g.diagnosis = diagnose(p, options.rule);

@@ -14,6 +14,14 @@ std::string_view nominal_name(Nominal p) {
   return "?";
 }
 
+std::optional<Nominal> stands_for(sim::Effect e) {
+  switch (e) {
+    case sim::Effect::mass_error: return Nominal::mass;
+    case sim::Effect::air_density_error: return Nominal::cda;
+    default: return std::nullopt;
+  }
+}
+
 std::string_view nominal_unit(Nominal p) {
   switch (p) {
     case Nominal::mass: return "kg";

@@ -80,9 +80,11 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
   for (std::size_t i = 0; i < shown; ++i) {
     const Fit& f = d.singles[i];
     const Candidate& c = g.problem.candidates[f.effects[0]];
+    const std::string note = !c.stood_for_by.empty() ? "  (the nominal " + c.stood_for_by + " stands for it)"
+                             : f.plausibility < 0.99 ? "  (outside its realistic range)"
+                                                     : "";
     std::fprintf(out, "  %-22s gain %8.1f (%5.0f)   %s = %.4g %s [%.4g, %.4g]%s\n", c.name.c_str(), f.gain, c.null_gain,
-                 c.name.c_str(), f.magnitude[0], c.unit.c_str(), f.lo[0], f.hi[0],
-                 f.plausibility < 0.99 ? "  (outside its realistic range)" : "");
+                 c.name.c_str(), f.magnitude[0], c.unit.c_str(), f.lo[0], f.hi[0], note.c_str());
   }
   if (d.best_pair) {
     const Fit& f = *d.best_pair;

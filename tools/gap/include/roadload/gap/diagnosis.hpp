@@ -35,6 +35,9 @@ struct Candidate {
   // The most it removed from drives with nothing missing from the model but their truck (the
   // library's noise drives): an effect that fits noise must beat its own noise to be named.
   double null_gain = 0;
+  // The nominal parameter that stands for it, when one does (a wrong declared mass is the
+  // nominal mass): it is fitted and listed but never named, which would count it twice.
+  std::string stood_for_by;
 
   static Candidate from_two(std::string name, std::string unit, double base, double lo, double hi, double m1,
                             const Eigen::VectorXd& d1, double m2, const Eigen::VectorXd& d2);

@@ -3,6 +3,7 @@
 // area, engine friction and driveline efficiency), each with the prior spread its vehicle file
 // states. The diagnosis fits them before any effect, so that "this is another truck" is not
 // mistaken for an unmodelled effect.
+#include <optional>
 #include <random>
 #include <string_view>
 #include <vector>
@@ -21,6 +22,10 @@ struct NominalPrior {
 };
 
 std::string_view nominal_name(Nominal p);
+
+// The nominal parameter an effect is indistinguishable from, when there is one: a wrong declared
+// mass is another truck's mass, and air a constant share denser drags as a larger CdA does.
+std::optional<Nominal> stands_for(sim::Effect e);
 std::string_view nominal_unit(Nominal p);
 
 // The parameters the model scenario lets a fit move: those whose vehicle file states a spread
