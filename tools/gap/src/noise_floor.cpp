@@ -80,8 +80,8 @@ void set_nominal_delta(ModelLibrary& lib, const std::vector<Eigen::VectorXd>& pl
   }
   // The nominal truck is fitted on the longitudinal channels alone. Its mass moves the body's
   // modes too, but the vibration model's own errors are larger than that: fitted on vibration,
-  // the mass and the efficiency took what a vibration effect's response left (+37 sigma of mass
-  // and +24 of efficiency on the bench's joint-faulting cases, cancelling in the torque).
+  // the mass and the efficiency would take up what a vibration effect's response leaves, in
+  // shifts that cancel in the torque.
   for (std::size_t i = 0; i < lib.keys.size(); ++i) {
     if (lib.keys[i].channel.starts_with("psd_db")) lib.nominal_delta.row(static_cast<Eigen::Index>(i)).setZero();
   }

@@ -21,17 +21,28 @@ Span span_of(const sim::EffectInfo& info, double base) {
   return {0.0, info.max + 0.25 * width, info.max, 0.5 * (base + info.max) > 0 ? 0.5 * (base + info.max) : 0.5 * info.max};
 }
 
+namespace {
+
+// Run r's re-simulation with its nominal truck moved by `shift_sigma`.
+sim::Scenario on_truck(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, std::size_t r,
+                       const std::vector<double>& shift_sigma) {
+  sim::Scenario s = resims[r];
+  for (std::size_t j = 0; j < shift_sigma.size() && j < lib.priors[r].size(); ++j) {
+    const NominalPrior& prior = lib.priors[r][j];
+    set_nominal(s, prior.id, prior.value + shift_sigma[j] * prior.sigma);
+  }
+  return s;
+}
+
+}  // namespace
+
 // The drives re-simulated with the nominal truck moved by `shift_sigma` and, when given, the
 // chosen effects at their magnitudes fitted on half 0.
 Eigen::VectorXd resimulated(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const std::vector<double>& shift_sigma,
                             const Fit* effects, const j1939::Database& db, const GapOptions& options) {
   std::vector<SimTask> after;
   for (std::size_t r = 0; r < resims.size(); ++r) {
-    sim::Scenario s = resims[r];
-    for (std::size_t j = 0; j < shift_sigma.size() && j < lib.priors[r].size(); ++j) {
-      const NominalPrior& prior = lib.priors[r][j];
-      set_nominal(s, prior.id, prior.value + shift_sigma[j] * prior.sigma);
-    }
+    sim::Scenario s = on_truck(lib, resims, r, shift_sigma);
     for (std::size_t i = 0; effects != nullptr && i < effects->effects.size(); ++i) {
       add_candidate(s, lib.responses[effects->effects[i]].effect, effects->magnitude_half0[i]);
     }
@@ -50,10 +61,7 @@ Fit refit_on_truck(const ModelLibrary& lib, const std::vector<sim::Scenario>& re
     spans.push_back(span_of(sim::effect_info(resp.effect), resp.base));
     for (double m : {spans.back().m1, spans.back().m2}) {
       for (std::size_t r = 0; r < resims.size(); ++r) {
-        sim::Scenario s = resims[r];
-        for (std::size_t j = 0; j < shift_sigma.size() && j < lib.priors[r].size(); ++j) {
-          set_nominal(s, lib.priors[r][j].id, lib.priors[r][j].value + shift_sigma[j] * lib.priors[r][j].sigma);
-        }
+        sim::Scenario s = on_truck(lib, resims, r, shift_sigma);
         add_candidate(s, resp.effect, m);
         tasks.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
       }
