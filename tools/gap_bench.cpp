@@ -1,4 +1,5 @@
 // roadload gap bench: the diagnosis tried blind on drives with hidden effects.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,11 +15,12 @@ namespace roadload::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: roadload gap bench [--cases N] [--seed S] [--effects A,B,...] [--model-truck] [--jobs N]\n\n"
-    "Simulates test days of the MnROAD truck (the Mainline at 30 mph at 8 C in a south-west wind,\n"
-    "then at 64 mph at 22 C in a west wind)\n"
-    "with effects the diagnosis is not told: one at a random magnitude within its range, two at once\n"
-    "(15 % of cases) or none (20 %). Each day is diagnosed blind, from what its recordings would hold.\n"
+    "usage: roadload gap bench [--cases N] [--seed S] [--effects A,B,...] [--days FILE] [--road NAME]\n"
+    "                          [--model-truck] [--jobs N]\n\n"
+    "Simulates test days of a truck (each on one road: two cruise runs and a neutral coast-down, as\n"
+    "a test-days file sets them out) with effects the diagnosis is not told: one at a random\n"
+    "magnitude within its range, two at once (15 % of cases) or none (20 %). Each day is diagnosed\n"
+    "blind, from what its recordings would hold.\n"
     "Prints every case, the confusion matrix, top-1 accuracy (null runs count as right when nothing\n"
     "is named), the mean held-out shrink over cases whose effect is visible above the noise, and\n"
     "the false-alarm rate on null runs. The last line reads\n"
@@ -27,6 +29,9 @@ constexpr const char* kHelp =
     "  --seed S        seed of the draw (default 1)\n"
     "  --effects LIST  effects to draw from, comma-separated, or \"all\" (default: every effect the\n"
     "                  features can see; the others are listed with why)\n"
+    "  --days FILE     test-days file (default: config/bench/test-days.toml: the MnROAD Mainline,\n"
+    "                  TH 10, TH 66 and a generated hilly road); each case draws one of its days\n"
+    "  --road NAME     only the days on this road (repeatable)\n"
     "  --model-truck   every case drives the model's own truck (default: each case a truck drawn\n"
     "                  from the vehicle file's spreads of mass, CdA, engine friction and driveline\n"
     "                  efficiency, whose recovery is scored)\n"
@@ -53,7 +58,12 @@ std::optional<std::string> parse_effects(std::string_view list, std::vector<sim:
 }
 
 // The plan and options, or the exit status when there is nothing to run (help, a bad option).
-std::optional<int> parse(OptionParser& opt, gap::BenchPlan& plan, gap::GapOptions& options) {
+struct DaysChoice {
+  std::string file;
+  std::vector<std::string> roads;  // empty: every day
+};
+
+std::optional<int> parse(OptionParser& opt, gap::BenchPlan& plan, gap::GapOptions& options, DaysChoice& days) {
   while (opt.more()) {
     if (opt.help(kHelp)) return kExitOk;
     if (auto n = opt.number("--cases", 1, 100000)) {
@@ -62,6 +72,10 @@ std::optional<int> parse(OptionParser& opt, gap::BenchPlan& plan, gap::GapOption
       plan.seed = static_cast<std::uint64_t>(*s);
     } else if (auto j = opt.number("--jobs", 1, 256)) {
       options.jobs = static_cast<unsigned>(*j);
+    } else if (auto f = opt.value("--days")) {
+      days.file = *f;
+    } else if (auto r = opt.value("--road")) {
+      days.roads.emplace_back(*r);
     } else if (opt.flag("--model-truck")) {
       plan.draw_trucks = false;
     } else if (auto list = opt.value("--effects")) {
@@ -92,7 +106,7 @@ void print_case(std::size_t i, const gap::CaseOutcome& o) {
                   d.nominal.shift_sigma[j], o.nominal_covered[j] ? "" : "!");
     truck += text;
   }
-  if (!truck.empty()) std::printf("      truck (sigmas, true -> fitted; ! outside the interval):%s\n", truck.c_str());
+  std::printf("      %s; truck (sigmas, true -> fitted; ! outside the interval):%s\n", o.road.c_str(), truck.c_str());
   const double linear_truck = gap::fit_nominal(o.result.problem, {}, {}).chi2_half1_after;
   const double linear_after = d.chosen
                                   ? gap::fit_nominal(o.result.problem, d.chosen->effects, d.chosen->magnitude_half0).chi2_half1_after
@@ -126,6 +140,8 @@ void print_score(const gap::BenchScore& score, std::size_t libraries) {
     std::printf("  %-22s %zu/%zu (%.1f %%; goal 80-97 %%)\n", "all parameters", covered, total,
                 100.0 * static_cast<double>(covered) / static_cast<double>(total));
   }
+  std::printf("\ntop-1 by road:");
+  for (const auto& [road, n] : score.by_road) std::printf(" %s %zu/%zu", road.c_str(), n.first, n.second);
   std::printf("\ntop-1 %zu/%zu; shrink over %zu visible effect cases; false alarms %zu/%zu null runs; %zu model libraries\n",
               score.right, score.cases, score.visible, score.alarms, score.nulls, libraries);
   std::printf("goals: top1 >= 0.90, shrink >= 0.70, false_alarm <= 0.05\n");
@@ -138,19 +154,30 @@ int run_gap_bench(OptionParser& opt) {
   gap::BenchPlan plan;
   gap::GapOptions options;
   options.jobs = default_jobs();
-  if (auto rc = parse(opt, plan, options)) return *rc;
+  DaysChoice choice{gap::default_bench_days(data_dir()), {}};
+  if (auto rc = parse(opt, plan, options, choice)) return *rc;
   j1939::Database db;
   if (auto err = load_dbc_file(db, core_dbc_path())) {
     std::fprintf(stderr, "roadload gap bench: %s\n", err->to_string().c_str());
     return kExitNoInput;
   }
-  auto day = gap::bench_day(data_dir());
-  if (!day) {
-    std::fprintf(stderr, "roadload gap bench: %s\n", day.error().to_string().c_str());
-    return kExitNoInput;
+  auto loaded = gap::load_bench_days(choice.file, data_dir());
+  if (!loaded) {
+    std::fprintf(stderr, "roadload gap bench: %s\n", loaded.error().to_string().c_str());
+    return kExitDataErr;
+  }
+  std::vector<gap::BenchDay> days;
+  for (auto& d : loaded.value()) {
+    if (choice.roads.empty() || std::find(choice.roads.begin(), choice.roads.end(), d.road) != choice.roads.end()) {
+      days.push_back(std::move(d));
+    }
+  }
+  if (days.empty()) {
+    std::fprintf(stderr, "roadload gap bench: --road: no day of %s drives it\n", choice.file.c_str());
+    return kExitUsage;
   }
   options.progress = [](const std::string& line) { std::fprintf(stderr, "gap bench: %s\n", line.c_str()); };
-  const auto cases = gap::draw_cases(plan, day.value());
+  const auto cases = gap::draw_cases(plan, days);
   if (plan.effects.empty()) {
     for (const auto& e : sim::effect_catalog()) {
       if (const char* why = gap::unobservable(e.id)) std::printf("not drawn: %s: %s\n", name_of(e.id).c_str(), why);
@@ -162,7 +189,7 @@ int run_gap_bench(OptionParser& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
   std::printf("%4s  %-48s %-44s %8s %7s\n", "case", "hidden effects", "named (fitted magnitude)", "gain", "shrink");
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const gap::CaseOutcome o = gap::run_case(cases[i], day.value(), libraries, db, options);
+    const gap::CaseOutcome o = gap::run_case(cases[i], days, libraries, db, options);
     score.add(o);
     print_case(i, o);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

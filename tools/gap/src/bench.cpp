@@ -10,9 +10,6 @@
 namespace roadload::gap {
 namespace {
 
-// Drives are labelled like recording folders, so the bench reads like a user's runs.
-constexpr const char* kLabels[] = {"mainline-30mph-am", "mainline-64mph-pm"};
-
 std::vector<RealRun> drive(const BenchCase& c, const BenchDay& day, const j1939::Database& db, unsigned jobs) {
   std::vector<RunLayout> layouts;
   for (const auto& d : day.drives) layouts.push_back(layout_for(d.route));
@@ -25,7 +22,7 @@ std::vector<RealRun> drive(const BenchCase& c, const BenchDay& day, const j1939:
   }
   std::vector<RecordedRun> recorded = simulate_all(tasks, db, jobs);
   std::vector<RealRun> runs;
-  for (std::size_t r = 0; r < recorded.size(); ++r) runs.push_back({kLabels[r % 2], day.models[r], std::move(recorded[r]), {}});
+  for (std::size_t r = 0; r < recorded.size(); ++r) runs.push_back({day.labels[r], day.models[r], std::move(recorded[r]), {}});
   return runs;
 }
 
@@ -57,34 +54,12 @@ const char* unobservable(sim::Effect e) {
   }
 }
 
-Parsed<BenchDay> bench_day(const std::string& data_dir) {
-  BenchDay day;
-  // The wind turns from the south-west in the morning (head and cross components both about
-  // 3.5 m/s on the westbound Mainline) to the west in the afternoon (a headwind): drag that grows
-  // with yaw acts on the first run only, a dragging brake on both.
-  const struct {
-    const char* scenario;
-    double temp_c, wind_from_deg;
-  } kDrives[] = {{"mnroad-mainline-30mph", 8.0, 225.0}, {"mnroad-mainline-64mph", 22.0, 275.0}};
-  for (const auto& d : kDrives) {
-    auto s = sim::load_scenario(d.scenario, data_dir);
-    if (!s) return s.error();
-    day.models.push_back(s.value());
-    sim::Scenario drive = s.value();
-    drive.weather.air_temp_c = d.temp_c;
-    drive.weather.wind_speed_mps = 5.0;
-    drive.weather.wind_from_deg = d.wind_from_deg;
-    day.drives.push_back(std::move(drive));
-  }
-  return day;
-}
-
-std::vector<BenchCase> draw_cases(const BenchPlan& plan, const BenchDay& day) {
+std::vector<BenchCase> draw_cases(const BenchPlan& plan, const std::vector<BenchDay>& days) {
   std::mt19937_64 rng(plan.seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<sim::Effect> pool = plan.effects;
   if (pool.empty()) pool = observable_effects();
-  auto magnitude = [&](sim::Effect e) {
+  auto magnitude = [&](sim::Effect e, const BenchDay& day) {
     const sim::EffectInfo& info = sim::effect_info(e);
     const double base = day.models.front().effects.magnitude(e);
     const double keep_out = 0.25 * (info.max - info.min);
@@ -99,15 +74,16 @@ std::vector<BenchCase> draw_cases(const BenchPlan& plan, const BenchDay& day) {
   for (std::size_t i = 0; i < plan.cases; ++i) {
     BenchCase c;
     c.seed = plan.seed * 100000 + i + 1;
-    if (plan.draw_trucks) c.truck = draw_truck(nominal_priors(day.drives.front()).size(), rng);
+    c.day = std::uniform_int_distribution<std::size_t>(0, days.size() - 1)(rng);
+    if (plan.draw_trucks) c.truck = draw_truck(nominal_priors(days[c.day].drives.front()).size(), rng);
     if (i >= nulls) {
       // Singles cycle through the pool so every effect is tried about equally often.
       const sim::Effect first = pool[(i - nulls) % pool.size()];
-      c.effects.emplace_back(first, magnitude(first));
+      c.effects.emplace_back(first, magnitude(first, days[c.day]));
       if (i >= plan.cases - pairs && pool.size() > 1) {
         sim::Effect second = first;
         while (second == first) second = pool[static_cast<std::size_t>(unit(rng) * static_cast<double>(pool.size())) % pool.size()];
-        c.effects.emplace_back(second, magnitude(second));
+        c.effects.emplace_back(second, magnitude(second, days[c.day]));
       }
     }
     cases.push_back(std::move(c));
@@ -116,8 +92,9 @@ std::vector<BenchCase> draw_cases(const BenchPlan& plan, const BenchDay& day) {
   return cases;
 }
 
-CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelLibrary>& libraries, const j1939::Database& db,
-                     const GapOptions& options) {
+CaseOutcome run_case(const BenchCase& c, const std::vector<BenchDay>& days, std::vector<ModelLibrary>& libraries,
+                     const j1939::Database& db, const GapOptions& options) {
+  const BenchDay& day = days[c.day];
   const std::vector<RealRun> runs = drive(c, day, db, options.jobs);
   const std::vector<sim::Scenario> resims = resimulations(runs);
   const ModelLibrary* lib = nullptr;
@@ -126,13 +103,14 @@ CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelL
   }
   if (lib == nullptr) {
     // Built from a drive of its own, with no effect and a seed no case uses.
-    BenchCase calibration{{}, c.seed + 7919, {}};
+    BenchCase calibration{c.day, {}, c.seed + 7919, {}};
     libraries.push_back(build_library(drive(calibration, day, db, options.jobs), db, options));
     if (!library_serves(libraries.back(), resims)) libraries.back() = build_library(runs, db, options);
     lib = &libraries.back();
   }
   CaseOutcome o;
   o.truth = c;
+  o.road = day.road;
   o.result = run_gap(*lib, runs, db, options);
   const std::vector<NominalPrior> priors = nominal_priors(day.drives.front());
   const NominalFit& fitted = o.result.diagnosis.nominal;
@@ -175,6 +153,8 @@ std::string describe_effects(const std::vector<std::pair<sim::Effect, double>>& 
 void BenchScore::add(const CaseOutcome& o) {
   ++cases;
   right += o.named_right ? 1 : 0;
+  by_road[o.road].first += o.named_right ? 1 : 0;
+  by_road[o.road].second += 1;
   if (o.truth.effects.empty()) {
     ++nulls;
     alarms += o.false_alarm ? 1 : 0;

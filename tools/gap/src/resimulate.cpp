@@ -90,8 +90,9 @@ Parsed<RecordedRun> read_run(const std::string& path, const j1939::Database& db,
 sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, const recording::Metadata& meta) {
   sim::Scenario s = model;
   // A drive near the model's set speed was driven at it: the measured mean carries the cruise
-  // loop's own error, which the re-simulation reproduces.
-  if (c.mean_speed_mps > 0.5 && c.mean_speed_mps <= 40.0 && std::abs(c.mean_speed_mps - model.speed_mps) > 0.3) {
+  // loop's own error, which the re-simulation reproduces. A coast-down's speed is the model's
+  // entry speed; its mean is what the run is about.
+  if (!model.coast && c.mean_speed_mps > 0.5 && c.mean_speed_mps <= 40.0 && std::abs(c.mean_speed_mps - model.speed_mps) > 0.3) {
     s.speed_mps = c.mean_speed_mps;
   }
   if (c.duration_s > 0) s.duration = std::min(model.duration.value_or(Seconds{1e9}), Seconds{c.duration_s + 1.0});

@@ -12,14 +12,20 @@
 
 namespace roadload::gap {
 
-// One test day of the MnROAD truck: the Mainline at 30 and at 64 mph, morning and afternoon.
+// One test day on one road (config/bench/test-days.toml): its runs as driven and as the
+// diagnosis is told them.
 struct BenchDay {
-  std::vector<sim::Scenario> drives;  // what happened, before the hidden effects
-  std::vector<sim::Scenario> models;  // what the diagnosis is told (the built-in scenarios)
+  std::string road;
+  std::vector<std::string> labels;    // as a user would name the recording folders
+  std::vector<sim::Scenario> drives;  // what happened, before the hidden effects and the truck
+  std::vector<sim::Scenario> models;  // what the diagnosis is told (the runs' scenarios)
 };
-Parsed<BenchDay> bench_day(const std::string& data_dir);
+// The days of a test-days file, errors naming its file, line and field.
+Parsed<std::vector<BenchDay>> load_bench_days(const std::string& path, const std::string& data_dir);
+std::string default_bench_days(const std::string& data_dir);
 
 struct BenchCase {
+  std::size_t day = 0;                                  // which test day (road)
   std::vector<std::pair<sim::Effect, double>> effects;  // empty: a null run
   std::uint64_t seed = 0;
   // The truck driven: each nominal parameter's offset from the model's in its prior sigmas
@@ -38,12 +44,14 @@ struct BenchPlan {
   std::vector<sim::Effect> effects;  // drawn from; observable_effects() when empty
   bool draw_trucks = true;           // else every case drives the model's own truck
 };
-// Magnitudes are uniform within each effect's realistic range, at least a quarter of the range
-// away from the model's own value so that every effect case has a gap to find.
-std::vector<BenchCase> draw_cases(const BenchPlan& plan, const BenchDay& day);
+// Each case's day is drawn uniformly. Magnitudes are uniform within each effect's realistic range,
+// at least a quarter of the range away from the model's own value so that every effect case has a
+// gap to find.
+std::vector<BenchCase> draw_cases(const BenchPlan& plan, const std::vector<BenchDay>& days);
 
 struct CaseOutcome {
   BenchCase truth;
+  std::string road;
   GapResult result;
   bool named_right = false;  // null: nothing named; otherwise the first named effect was on
   bool false_alarm = false;  // null run with an effect named
@@ -55,8 +63,8 @@ struct CaseOutcome {
   std::vector<bool> nominal_covered;
 };
 
-CaseOutcome run_case(const BenchCase& c, const BenchDay& day, std::vector<ModelLibrary>& libraries, const j1939::Database& db,
-                     const GapOptions& options);
+CaseOutcome run_case(const BenchCase& c, const std::vector<BenchDay>& days, std::vector<ModelLibrary>& libraries,
+                     const j1939::Database& db, const GapOptions& options);
 
 std::string describe_effects(const std::vector<std::pair<sim::Effect, double>>& effects);
 
@@ -76,6 +84,7 @@ struct BenchScore {
     double error_ss = 0, prior_ss = 0;
   };
   std::vector<Recovery> nominal;
+  std::map<std::string, std::pair<std::size_t, std::size_t>> by_road;  // right, cases
 
   void add(const CaseOutcome& o);
   double top1() const { return cases ? static_cast<double>(right) / static_cast<double>(cases) : 0.0; }
