@@ -1,4 +1,5 @@
 // roadload gap tables: the seed report's suspension-power tables against the simulator.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -19,7 +20,10 @@ constexpr const char* kHelp =
     "each pavement's IRI. Each candidate effect that acts on the vertical dynamics (joint-faulting,\n"
     "slab-curl, suspension-friction, tire-pressure) is fitted to the Mainline's concrete-to-bituminous\n"
     "ratio and judged on the highways' ratio, which it never saw; the best is added and the table\n"
-    "printed before and after. The simulated figure is the simulator's own damper dissipation.\n\n"
+    "printed before and after. The simulated figure is the simulator's own damper dissipation.\n"
+    "Then each nominal parameter of the truck (mass, CdA, engine friction, driveline efficiency) is\n"
+    "moved one sigma of its vehicle file's spread; for those that move the suspension power, the\n"
+    "choice is made again at both ends of their 90 % interval.\n\n"
     "  --json FILE   write the comparison as JSON\n"
     "  --jobs N      simulations at once (default: the number of CPUs)\n"
     "  -h, --help    this text\n";
@@ -44,9 +48,53 @@ std::string tables_json(const gap::TablesResult& t) {
   j += t.chosen >= 0
            ? results::json_quote(std::string(sim::effect_info(t.candidates[static_cast<std::size_t>(t.chosen)].effect).name))
            : std::string("null");
+  j += ",\n  \"nominal\": [";
+  for (std::size_t i = 0; i < t.nominal.size(); ++i) {
+    const auto& n = t.nominal[i];
+    j += std::string(i ? "," : "") + "\n    {\"name\": " + results::json_quote(n.name) +
+         ", \"unit\": " + results::json_quote(n.unit) + ", \"value\": " + gap::json_number(n.value) +
+         ", \"sigma\": " + gap::json_number(n.sigma) + ", \"power_per_sigma\": " + gap::json_number(n.power_per_sigma) +
+         ", \"ends\": [";
+    for (std::size_t k = 0; k < n.ends.size(); ++k) {
+      const auto& e = n.ends[k];
+      j += std::string(k ? ", " : "") + "{\"value\": " + gap::json_number(e.value) +
+           ", \"effect\": " + (e.effect ? results::json_quote(std::string(sim::effect_info(*e.effect).name)) : std::string("null")) +
+           ", \"magnitude\": " + gap::json_number(e.magnitude) + ", \"highway_ratio\": " + gap::json_number(e.highway_ratio) + "}";
+    }
+    j += "]}";
+  }
+  j += "\n  ]";
   j += ",\n  \"report_mainline_ratio\": " + gap::json_number(gap::kReportMainlineRatio) +
        ",\n  \"report_highway_ratio\": " + gap::json_number(gap::kReportHighwayRatio) + "\n}\n";
   return j;
+}
+
+// The truck's nominal parameters: which move the suspension power, and the choice at both ends of
+// the 90 % interval of those that do.
+void print_nominal(const gap::TablesResult& t) {
+  std::printf(
+      "\nthe model's truck (vehicle file; the four powers cannot fit it: each road's level is the report's\n"
+      "Eq. 2.7 against the simulator's damper dissipation, a scale the ratios take out):\n");
+  for (const auto& n : t.nominal) {
+    std::printf("  %-22s %.5g +- %.3g%s%s: Mainline suspension power %+.1f %% per sigma", n.name.c_str(), n.value, n.sigma,
+                n.unit.empty() ? "" : " ", n.unit.c_str(), 100.0 * n.power_per_sigma);
+    if (n.ends.empty()) std::printf(", left at its value\n");
+    for (std::size_t k = 0; k < n.ends.size(); ++k) {
+      const auto& e = n.ends[k];
+      std::printf("%s at %.5g: ", k ? ";" : "\n   ", e.value);
+      if (e.effect) {
+        std::printf("%s=%.4g, TH 10/TH 66 %.2f", sim::effect_info(*e.effect).name.data(), e.magnitude, e.highway_ratio);
+      } else {
+        std::printf("no candidate reaches the Mainline ratio");
+      }
+    }
+    if (!n.ends.empty()) std::printf("\n");
+  }
+  if (std::all_of(t.nominal.begin(), t.nominal.end(), [](const auto& n) { return n.ends.empty(); })) {
+    std::printf(
+        "  none moves the suspension power by 1 %% at one sigma: the choice holds for any truck within the\n"
+        "  vehicle file's spreads\n");
+  }
 }
 
 void print_tables(const gap::TablesResult& t) {
@@ -86,6 +134,7 @@ void print_tables(const gap::TablesResult& t) {
   } else {
     std::printf("\neffect: none of the candidates reaches the report's Mainline ratio\n");
   }
+  print_nominal(t);
 }
 
 }  // namespace

@@ -31,7 +31,11 @@ cat >"$work/res/gap-tables.json" <<'JSON'
           {"pavement": "TH 66 bituminous (Table 6.6)", "report_w": 6486, "before_w": 900, "after_w": 900},
           {"pavement": "TH 10 concrete (Table 6.6)", "report_w": 9353, "before_w": 800, "after_w": 1250}],
  "candidates": [{"effect": "joint-faulting", "reaches_mainline_ratio": true, "magnitude": 0.003, "highway_ratio": 1.39, "holdout_error": 0.04}],
- "effect": "joint-faulting", "report_mainline_ratio": 1.475, "report_highway_ratio": 1.442}
+ "effect": "joint-faulting", "report_mainline_ratio": 1.475, "report_highway_ratio": 1.442,
+ "nominal": [{"name": "mass", "unit": "kg", "value": 36000, "sigma": 360, "power_per_sigma": 0.021,
+              "ends": [{"value": 35408, "effect": "joint-faulting", "magnitude": 0.00322, "highway_ratio": 1.03},
+                       {"value": 36592, "effect": "joint-faulting", "magnitude": 0.00331, "highway_ratio": 1.03}]},
+             {"name": "CdA", "unit": "m2", "value": 6.2, "sigma": 0.6, "power_per_sigma": 0.001, "ends": []}]}
 JSON
 expect_status 0 "$roadload" report "$work/res" --truth "$work/truth" -o "$work/report.html"
 page=$work/report.html
@@ -47,6 +51,8 @@ grep -q "brake-drag = 118.2 N" "$work/report.html" || fail "the gap section does
 # Not grep -q: it would stop reading, and under pipefail sed's broken pipe would fail the check.
 sed -n '/id="gap"/,$p' "$work/report.html" | grep "<td>CdA</td><td>6.2 m2</td><td>5.81</td>" >/dev/null ||
   fail "the gap section does not show the model's truck against this one"
+sed -n '/id="gap"/,$p' "$work/report.html" | grep "<td>mass</td><td>36000 ± 360 kg</td>" >/dev/null ||
+  fail "the tables do not show the truck's nominal parameters"
 cp "$work/res/gap.json" "$work/gap.json"
 sed -i '2s/"magnitude": 118.2/"magnitude": 118.2,,/' "$work/res/gap.json"
 expect_status 65 "$roadload" report "$work/res" -o "$work/bad.html"
