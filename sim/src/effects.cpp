@@ -38,6 +38,8 @@ constexpr std::array<EffectInfo, kEffectCount> kCatalog{{
     {Effect::brake_drag, "brake-drag", "N", 100.0, 30.0, 150.0, "one wheel end drags its brake: a constant force at the wheels"},
     {Effect::cruise_hunting, "cruise-hunting", "m/s", 0.15, 0.05, 0.3,
      "cruise control hunts around its set speed with a 20 s period"},
+    {Effect::ac_compressor, "ac-compressor", "W", 2000.0, 1000.0, 4000.0,
+     "the driver runs the cab's air conditioning: its compressor takes this power from the crankshaft, unreported"},
 }};
 
 }  // namespace

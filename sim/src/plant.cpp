@@ -194,7 +194,7 @@ void TruckPlant::start(double x_m, double speed_mps, const Environment& env) {
                                             effects_.magnitude(Effect::driveline_losses));
   const double omega = state_.engine_rpm * kRadps_per_rpm;
   const double acc = (truck_.accessories.alternator_w + truck_.accessories.steering_w + truck_.accessories.compressor_w +
-                      truck_.accessories.fan_idle_w) /
+                      truck_.accessories.fan_idle_w + ac_power_w()) /
                      std::max(omega, 1.0);
   if (state_.clutch_engaged) {
     state_.indicated_torque_nm = clutch_torque_for_wheel_nm(d, loss, state_.gear, wheel_nm) +

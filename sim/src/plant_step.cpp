@@ -53,7 +53,8 @@ double TruckPlant::parasitic_torque_nm(double omega0) {
   const double fan_w = state_.fan_on ? (acc.fan_engaged_w - acc.fan_idle_w) * fan_speed * fan_speed * fan_speed : 0.0;
   const double omega_safe = std::max(omega0, 1.0);
   state_.friction_torque_nm = friction_torque_nm(truck_.engine, state_.engine_rpm);
-  state_.accessory_torque_nm = known_w / omega_safe;
+  state_.ac_torque_nm = ac_power_w() / omega_safe;
+  state_.accessory_torque_nm = known_w / omega_safe + state_.ac_torque_nm;
   state_.fan_torque_nm = fan_w / omega_safe;
   return state_.friction_torque_nm + state_.accessory_torque_nm + state_.fan_torque_nm;
 }

@@ -99,7 +99,8 @@ struct Simulation::Parts {
     v.actual_torque_pct = s.indicated_torque_nm * (1.0 + bias) / ref * 100.0;
     v.demand_torque_pct = s.demand_torque_nm / ref * 100.0;
     v.friction_torque_pct = s.friction_torque_nm / ref * 100.0;
-    v.parasitic_torque_pct = s.accessory_torque_nm / ref * 100.0;
+    // The engine's estimate knows its own accessories, not a compressor the cab switched on.
+    v.parasitic_torque_pct = (s.accessory_torque_nm - s.ac_torque_nm) / ref * 100.0;
     const double max = full_load_indicated_torque_nm(e, s.engine_rpm);
     v.load_pct = max > 0 ? std::clamp(s.indicated_torque_nm / max * 100.0, 0.0, 125.0) : 0.0;
     v.engine_controlled = s.clutch_engaged;

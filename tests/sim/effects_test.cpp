@@ -13,9 +13,10 @@ namespace {
 struct Observed {
   std::uint64_t digest = 1469598103934665603ULL;  // FNV-1a over everything the sensors wrote
   std::string meta;
-  double crr_mean = 0;          // truth
-  double reported_torque = 0;   // mean EEC1 actual torque, % (as sent)
-  double indicated_torque = 0;  // truth, % of reference
+  double crr_mean = 0;                                 // truth
+  double reported_torque = 0;                          // mean EEC1 actual torque, % (as sent)
+  double indicated_torque = 0;                         // truth, % of reference
+  double engine_rpm = 0, accessory_nm = 0, ac_nm = 0;  // truth at the end
   std::size_t frames = 0;
 
   void mix(const void* p, std::size_t n) {
@@ -74,6 +75,9 @@ Observed observe(std::optional<Effect> effect, double magnitude) {
   o.crr_mean = sum.ledger.roll_j / (sum.ledger.distance_m * sim.plant().truck().total_mass_kg() * 9.80665);
   o.reported_torque = sink.torque();
   o.indicated_torque = sim.plant().state().indicated_torque_nm / 2386.0 * 100.0;
+  o.engine_rpm = sim.plant().state().engine_rpm;
+  o.accessory_nm = sim.plant().state().accessory_torque_nm;
+  o.ac_nm = sim.plant().state().ac_torque_nm;
   return o;
 }
 
@@ -101,6 +105,18 @@ TEST(Effects, TorqueBiasScalesOnlyTheReportedTorque) {
   const Observed biased = observe(Effect::torque_bias, 0.05);
   EXPECT_NEAR(biased.indicated_torque, base.indicated_torque, 0.5);  // the truck is the same
   EXPECT_NEAR(biased.reported_torque / base.reported_torque, 1.05, 0.02);
+}
+
+// The compressor takes its power from the crankshaft: the engine makes P / omega more torque for
+// the same speed, and the engine's own estimate of its parasitic losses does not know it.
+TEST(Effects, AcCompressorLoadsTheEngineAndNotTheWheels) {
+  const Observed base = observe(std::nullopt, 0);
+  const Observed on = observe(Effect::ac_compressor, 3000.0);
+  const double omega = on.engine_rpm * 2.0 * 3.14159265358979 / 60.0;
+  EXPECT_NEAR(on.ac_nm, 3000.0 / omega, 0.5);
+  EXPECT_NEAR(on.accessory_nm - on.ac_nm, base.accessory_nm, 0.5);
+  EXPECT_NEAR(on.indicated_torque - base.indicated_torque, on.ac_nm / 2386.0 * 100.0, 0.3);
+  EXPECT_NEAR(on.crr_mean, base.crr_mean, 1e-6);
 }
 
 }  // namespace

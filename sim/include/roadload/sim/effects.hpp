@@ -31,6 +31,7 @@ enum class Effect : std::size_t {
   air_density_error,    // weather station reads warm by this many degC (and low pressure)
   brake_drag,           // a dragging brake, N at the wheels
   cruise_hunting,       // cruise-control limit cycle amplitude, m/s
+  ac_compressor,        // the cab's air conditioning switched on: compressor shaft power, W
   count
 };
 

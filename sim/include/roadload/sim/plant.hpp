@@ -30,6 +30,7 @@ struct TruckState {
   double friction_torque_nm = 0;
   double accessory_torque_nm = 0;  // alternator, steering, compressor, idling fan
   double fan_torque_nm = 0;        // engaged fan beyond its idle drag
+  double ac_torque_nm = 0;         // the part of accessory_torque_nm the A/C compressor takes (an effect)
   bool fan_on = false;
   double demand_torque_nm = 0;  // what the cruise control asked for, indicated
   double fuel_kgps = 0;
@@ -99,6 +100,7 @@ class TruckPlant {
   void lock_clutch();
   Resisting resisting(const Environment& env, double x0);
   double parasitic_torque_nm(double omega0);
+  double ac_power_w() const { return effects_.on(Effect::ac_compressor) ? effects_.magnitude(Effect::ac_compressor) : 0.0; }
   double cruise(double dt_s, double v0, double m_eff, double parasitic, const DrivelineLoss& loss, double& brake);
   double governor(double v0, double omega0, double parasitic);
   double book(const Motion& m, const Resisting& r, double dt_s);
