@@ -26,6 +26,14 @@ std::vector<RealRun> drive(const BenchCase& c, const BenchDay& day, const j1939:
   return runs;
 }
 
+// Whether a day's roads give the effect something to act on: joints and slabs need jointed concrete.
+bool day_shows(const BenchDay& day, sim::Effect e) {
+  if (e != sim::Effect::joint_faulting && e != sim::Effect::slab_curl) return true;
+  return std::any_of(day.models.begin(), day.models.end(), [](const sim::Scenario& m) {
+    return std::any_of(m.route.cells.begin(), m.route.cells.end(), [](const auto& c) { return c.joint_spacing_m > 0; });
+  });
+}
+
 }  // namespace
 
 std::vector<sim::Effect> observable_effects() {
@@ -74,15 +82,26 @@ std::vector<BenchCase> draw_cases(const BenchPlan& plan, const std::vector<Bench
   for (std::size_t i = 0; i < plan.cases; ++i) {
     BenchCase c;
     c.seed = plan.seed * 100000 + i + 1;
-    c.day = std::uniform_int_distribution<std::size_t>(0, days.size() - 1)(rng);
+    // Singles cycle through the pool so every effect is tried about equally often, each on a day
+    // whose roads can show it.
+    const bool null_run = i < nulls;
+    const sim::Effect first = pool[(null_run ? 0 : i - nulls) % pool.size()];
+    std::vector<std::size_t> eligible;
+    for (std::size_t d = 0; d < days.size(); ++d) {
+      if (null_run || day_shows(days[d], first)) eligible.push_back(d);
+    }
+    if (eligible.empty()) eligible.push_back(0);
+    c.day = eligible[std::uniform_int_distribution<std::size_t>(0, eligible.size() - 1)(rng)];
     if (plan.draw_trucks) c.truck = draw_truck(nominal_priors(days[c.day].drives.front()).size(), rng);
-    if (i >= nulls) {
-      // Singles cycle through the pool so every effect is tried about equally often.
-      const sim::Effect first = pool[(i - nulls) % pool.size()];
+    if (!null_run) {
       c.effects.emplace_back(first, magnitude(first, days[c.day]));
-      if (i >= plan.cases - pairs && pool.size() > 1) {
-        sim::Effect second = first;
-        while (second == first) second = pool[static_cast<std::size_t>(unit(rng) * static_cast<double>(pool.size())) % pool.size()];
+      std::vector<sim::Effect> seconds;
+      for (sim::Effect e : pool) {
+        if (e != first && day_shows(days[c.day], e)) seconds.push_back(e);
+      }
+      if (i >= plan.cases - pairs && !seconds.empty()) {
+        const sim::Effect second =
+            seconds[static_cast<std::size_t>(unit(rng) * static_cast<double>(seconds.size())) % seconds.size()];
         c.effects.emplace_back(second, magnitude(second, days[c.day]));
       }
     }

@@ -44,7 +44,8 @@ struct BenchPlan {
   std::vector<sim::Effect> effects;  // drawn from; observable_effects() when empty
   bool draw_trucks = true;           // else every case drives the model's own truck
 };
-// Each case's day is drawn uniformly. Magnitudes are uniform within each effect's realistic range,
+// Each case's day is drawn uniformly among those whose roads can show its effect (joint and slab
+// effects need jointed concrete). Magnitudes are uniform within each effect's realistic range,
 // at least a quarter of the range away from the model's own value so that every effect case has a
 // gap to find.
 std::vector<BenchCase> draw_cases(const BenchPlan& plan, const std::vector<BenchDay>& days);
