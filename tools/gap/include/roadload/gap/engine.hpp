@@ -114,7 +114,9 @@ struct GapResult {
   double null_chi2_mean = 0, null_chi2_sd = 0;  // the library's, for the same half
   std::size_t held_out = 0;                     // valid held-out features
   std::vector<UnmatchedChannel> unmatched;
-  std::string withheld;  // why no effect is named although one may fit: the runs' caveats
+  // Why no effect is named although one may fit: the runs' caveats, or a re-simulation with it
+  // that did not lower the held-out residual.
+  std::string withheld;
 };
 
 GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options);
