@@ -30,14 +30,13 @@ void read_run(const detail::TomlFields& f, const toml::table& t, const std::stri
     if (model.coast) f.fail(t.get("speed_mph"), where + "speed_mph", "a coast-down starts at its scenario's speed");
     drive.speed_mps = f.required_in(t, "speed_mph", where, 5.0, 85.0) * sim::kMps_per_mph;
   }
-  drive.weather.air_temp_c = f.number(t, "air_temp_c", where).value_or(drive.weather.air_temp_c);
-  drive.weather.wind_speed_mps = f.number(t, "wind_speed_mps", where).value_or(drive.weather.wind_speed_mps);
-  drive.weather.wind_from_deg = f.number(t, "wind_from_deg", where).value_or(drive.weather.wind_from_deg);
-  if (drive.weather.air_temp_c < -40 || drive.weather.air_temp_c > 50)
-    f.fail(t.get("air_temp_c"), where + "air_temp_c", "outside -40..50");
-  if (drive.weather.wind_speed_mps < 0 || drive.weather.wind_speed_mps > 25) {
-    f.fail(t.get("wind_speed_mps"), where + "wind_speed_mps", "outside 0..25");
-  }
+  // Each given field within its physical range (NaN included in what is refused); the model's otherwise.
+  auto set_in = [&](std::string_view key, double lo, double hi, double& value) {
+    if (t.contains(key)) value = f.required_in(t, key, where, lo, hi);
+  };
+  set_in("air_temp_c", -40.0, 50.0, drive.weather.air_temp_c);
+  set_in("wind_speed_mps", 0.0, 25.0, drive.weather.wind_speed_mps);
+  set_in("wind_from_deg", 0.0, 360.0, drive.weather.wind_from_deg);
   day.labels.push_back(label);
   day.models.push_back(std::move(model));
   day.drives.push_back(std::move(drive));
