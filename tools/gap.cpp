@@ -1,5 +1,6 @@
 // roadload gap: where the gap between the simulator and a real drive lies, which unmodelled
 // effect causes it and how far it shrinks once that effect is added (docs/gap.md).
+#include <array>
 #include <cstdio>
 #include <string>
 #include <thread>
@@ -10,6 +11,7 @@
 #include "options.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/gap/engine.hpp"
+#include "roadload/gap/library_cache.hpp"
 #include "roadload/gap/model_choice.hpp"
 #include "roadload/gap/output.hpp"
 #include "roadload/route_file.hpp"
@@ -41,6 +43,10 @@ constexpr const char* kHelp =
     "  --json FILE         write the diagnosis as JSON (docs/gap.md)\n"
     "  --features FILE     write every feature (real, model, noise floor, z, after) as CSV\n"
     "  --noise-runs K      model seeds calibrating the noise floor (default 8)\n"
+    "  --cache DIR         where response libraries are kept for later drives of the same truck on\n"
+    "                      the same road (default $ROADLOAD_CACHE_DIR, else $XDG_CACHE_HOME/roadload/gap,\n"
+    "                      else ~/.cache/roadload/gap)\n"
+    "  --no-cache          build the library afresh and keep nothing\n"
     "  --jobs N            simulations at once (default: the number of CPUs)\n"
     "  -q, --quiet         no progress on standard error\n"
     "  -h, --help          this text\n\n"
@@ -51,9 +57,31 @@ constexpr const char* kHelp =
     "tables: the seed report's Tables 6.5-6.6 (suspension power by pavement) against an IRI-only\n"
     "simulation, the candidate effects that could close the difference, and the tables after.\n";
 
+// The library (read from the cache when one there serves these runs), the diagnosis, and the files
+// asked for: {JSON, features CSV}, either empty for none.
+int diagnose(const std::vector<gap::RealRun>& runs, const std::vector<std::string>& run_lines, const j1939::Database& db,
+             const gap::GapOptions& options, const std::string& cache_dir, bool quiet, const std::array<std::string, 2>& files) {
+  gap::CachedLibrary cached = gap::cached_library(cache_dir, runs, db, options);
+  if (!cached.note.empty() && (!quiet || cached.note.starts_with("cache:"))) {
+    std::fprintf(stderr, "%s%s\n", cached.note.starts_with("cache:") ? "roadload gap: " : "gap: ", cached.note.c_str());
+  }
+  const gap::ModelLibrary& lib = cached.library;
+  const gap::GapResult result = gap::run_gap(lib, runs, db, options);
+  gap::print_result(stdout, result, run_lines);
+  for (const auto& [path, text] :
+       {std::pair{files[0], gap::result_json(result, run_lines)}, std::pair{files[1], gap::features_csv(result)}}) {
+    if (path.empty()) continue;
+    if (auto err = gap::write_text_file(path, text)) {
+      std::fprintf(stderr, "roadload gap: %s\n", err->to_string().c_str());
+      return kExitCantCreate;
+    }
+  }
+  return kExitOk;
+}
+
 int run_diagnosis(OptionParser& opt) {
   std::vector<std::string> reals, models;
-  std::string json, features, vehicle_name, route_name;
+  std::string json, features, vehicle_name, route_name, cache_dir = gap::default_cache_dir();
   gap::GapOptions options;
   options.jobs = default_jobs();
   bool quiet = false;
@@ -71,6 +99,10 @@ int run_diagnosis(OptionParser& opt) {
       route_name = *rt;
     } else if (auto j = opt.value("--json")) {
       json = *j;
+    } else if (auto c = opt.value("--cache")) {
+      cache_dir = *c;
+    } else if (opt.flag("--no-cache")) {
+      cache_dir.clear();
     } else if (auto f = opt.value("--features")) {
       features = *f;
     } else if (auto h = opt.value("--holdout")) {
@@ -114,18 +146,7 @@ int run_diagnosis(OptionParser& opt) {
     run_lines.push_back(gap::describe(run.value()));
     runs.push_back(std::move(run.value()));
   }
-  const gap::ModelLibrary lib = gap::build_library(runs, db, options);
-  const gap::GapResult result = gap::run_gap(lib, runs, db, options);
-  gap::print_result(stdout, result, run_lines);
-  for (const auto& [path, text] :
-       {std::pair{json, gap::result_json(result, run_lines)}, std::pair{features, gap::features_csv(result)}}) {
-    if (path.empty()) continue;
-    if (auto err = gap::write_text_file(path, text)) {
-      std::fprintf(stderr, "roadload gap: %s\n", err->to_string().c_str());
-      return kExitCantCreate;
-    }
-  }
-  return kExitOk;
+  return diagnose(runs, run_lines, db, options, cache_dir, quiet, {json, features});
 }
 
 }  // namespace

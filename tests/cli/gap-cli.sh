@@ -5,6 +5,7 @@ set -euo pipefail
 roadload=${1:?usage: gap-cli.sh ROADLOAD_BIN}
 # shellcheck source=cli-lib.sh source-path=SCRIPTDIR
 . "$(dirname "${BASH_SOURCE[0]}")/cli-lib.sh" gap-cli
+export ROADLOAD_CACHE_DIR=$work/cache
 
 expect_status 0 "$roadload" gap --help
 grep -q -- "--real DIR" "$work/out" || fail "--help does not describe --real"
@@ -36,6 +37,21 @@ assert g["where"] and g["where"][0]["channel"] == "torque_nm", g["where"][:2]
 assert g["residual_after"] < 0.5 * g["residual_before"] < 0.5 * g["residual_raw"], (g["residual_raw"], g["residual_before"], g["residual_after"])
 PY
 head -1 "$work/f.csv" | grep -qx "run,channel,where,half,real,model,sigma,z,calibrated,after" || fail "features CSV header"
+
+# The library is kept for the next drive of this truck on this road: the same drive again reads it
+# and says the same; a damaged library is named, removed and built again.
+cp "$work/out" "$work/first"
+ls "$work"/cache/*.lib >/dev/null || fail "no library stored in the cache: $(ls -la "$work/cache")"
+expect_status 0 "$roadload" gap --real "$work/rec" --noise-runs 3 --jobs 2
+grep -q "^gap: library read from $work/cache/" "$work/err" || fail "the stored library was not read: $(cat "$work/err")"
+cmp -s "$work/out" "$work/first" || fail "the cached library changed the diagnosis: $(diff "$work/first" "$work/out")"
+sed -i '2s/\t[^\t]*$/\tgarbage/' "$work"/cache/*.lib
+expect_status 0 "$roadload" gap --real "$work/rec" --noise-runs 3 --jobs 2 -q
+grep -q "^roadload gap: cache: $work/cache/[0-9a-f-]*\.lib:2: .*not a number: 'garbage' (removed)" "$work/err" ||
+  fail "the damaged library was not named: $(cat "$work/err")"
+cmp -s "$work/out" "$work/first" || fail "the rebuilt library changed the diagnosis: $(diff "$work/first" "$work/out")"
+expect_status 0 "$roadload" gap --real "$work/rec" --noise-runs 3 --jobs 2 --no-cache
+grep -q "read from\|stored in" "$work/err" && fail "--no-cache used the cache: $(cat "$work/err")"
 
 # A road no built-in scenario drives, by a truck of the recording's own vehicle file: no --model,
 # the model drives the road the drive's GNSS traces. One pass's heights and a road of unknown

@@ -213,6 +213,9 @@ bool library_serves(const ModelLibrary& lib, const std::vector<sim::Scenario>& r
     if (a.route.name != b.route.name || a.start_m != b.start_m || a.end_m != b.end_m) return false;
     if (std::abs(a.speed_mps - b.speed_mps) > 0.3 || std::abs(a.load_scale - b.load_scale) > 0.08) return false;
     if (std::abs(a.weather.air_temp_c - b.weather.air_temp_c) > 6.0) return false;
+    if (std::abs(a.weather.pressure_pa - b.weather.pressure_pa) > 2000.0) return false;  // as 6 C does to the air's density
+    if (a.duration.has_value() != b.duration.has_value()) return false;
+    if (a.duration && std::abs(a.duration->count() - b.duration->count()) > 0.05 * a.duration->count() + 5.0) return false;
     if (std::abs(a.weather.wind_speed_mps - b.weather.wind_speed_mps) > 1.5) return false;
     if (std::abs(std::remainder(a.weather.wind_from_deg - b.weather.wind_from_deg, 360.0)) > 30.0) return false;
   }
@@ -225,28 +228,30 @@ void held_out(GapResult& g, const Eigen::VectorXd& calibrated_z, const Eigen::Ve
 
 GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options) {
   const std::vector<sim::Scenario> resims = resimulations(runs);
+  // Drag that grows with the yaw angle follows the crosswind the truck met, cell by cell: its
+  // response is simulated on this drive's own wind rather than taken from the library's. It is
+  // linear in its magnitude, so one simulation gives it (at the library's first magnitude),
+  // simulated beside the drives themselves.
+  const auto yaw_response = std::find_if(lib.responses.begin(), lib.responses.end(),
+                                         [](const auto& r) { return r.effect == sim::Effect::yaw_drag; });
   std::vector<SimTask> tasks;
   for (std::size_t r = 0; r < runs.size(); ++r) tasks.push_back({resims[r], kBaselineSeed, &lib.layouts[r]});
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    sim::Scenario s = resims[r];
+    add_candidate(s, sim::Effect::yaw_drag, yaw_response->m1);
+    tasks.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
+  }
   say(options, "re-simulating " + std::to_string(runs.size()) + " run(s)");
-  const Eigen::VectorXd model = values(simulate_all(tasks, db, options.jobs));
+  const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs);
+  const auto n_runs = static_cast<std::ptrdiff_t>(runs.size());
+  const Eigen::VectorXd model = values(std::vector<RecordedRun>(sims.begin(), sims.begin() + n_runs));
+  const Eigen::VectorXd yaw = values(std::vector<RecordedRun>(sims.begin() + n_runs, sims.end()));
   const Eigen::VectorXd real = aligned(runs, lib);
 
   GapResult g;
   Problem& p = g.problem;
   p.keys = lib.keys;
   p.z = (real - model).cwiseQuotient(lib.sigma);
-  // Drag that grows with the yaw angle follows the crosswind the truck met, cell by cell: its
-  // response is simulated on this drive's own wind rather than taken from the library's. It is
-  // linear in its magnitude, so one simulation gives it (at the library's first magnitude).
-  const auto yaw_response = std::find_if(lib.responses.begin(), lib.responses.end(),
-                                         [](const auto& r) { return r.effect == sim::Effect::yaw_drag; });
-  std::vector<SimTask> own;
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    sim::Scenario s = resims[r];
-    add_candidate(s, sim::Effect::yaw_drag, yaw_response->m1);
-    own.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
-  }
-  const Eigen::VectorXd yaw = values(simulate_all(own, db, options.jobs));
   p.candidates = candidates(lib, model, yaw);
   for (std::size_t c = 0; c < p.candidates.size() && c < lib.null_gain.size(); ++c) {
     p.candidates[c].null_gain = lib.null_gain[c];
@@ -271,12 +276,16 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
   g.model = model;
   g.sigma = lib.sigma;
   say(options, "re-simulating with the nominal truck fitted on half 0");
-  g.calibrated = resimulated(lib, resims, fit_nominal(p, {}, {}).shift_sigma, nullptr, db, options);
+  // The truck fitted beside the chosen effect is re-simulated with the truck fitted alone.
+  const std::vector<double>& shift = g.diagnosis.nominal.shift_sigma;
+  std::vector<Resimulation> variants{{fit_nominal(p, {}, {}).shift_sigma, nullptr}};
+  if (g.diagnosis.chosen) variants.push_back({shift, nullptr});
+  const std::vector<Eigen::VectorXd> trucks = resimulated(lib, resims, variants, db, options);
+  g.calibrated = trucks.front();
   g.after = g.calibrated;
   if (g.diagnosis.chosen) {
     say(options, "refitting the chosen effect on the fitted truck, then re-simulating with both (fitted on half 0)");
-    const std::vector<double>& shift = g.diagnosis.nominal.shift_sigma;
-    const Eigen::VectorXd truck = resimulated(lib, resims, shift, nullptr, db, options);
+    const Eigen::VectorXd& truck = trucks.back();
     g.diagnosis.chosen = refit_on_truck(lib, resims, real, *g.diagnosis.chosen, shift, truck, db, options);
     g.after = resimulated(lib, resims, shift, &*g.diagnosis.chosen, db, options);
   }

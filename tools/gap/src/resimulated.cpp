@@ -36,19 +36,31 @@ sim::Scenario on_truck(const ModelLibrary& lib, const std::vector<sim::Scenario>
 
 }  // namespace
 
-// The drives re-simulated with the nominal truck moved by `shift_sigma` and, when given, the
-// chosen effects at their magnitudes fitted on half 0.
+std::vector<Eigen::VectorXd> resimulated(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims,
+                                         const std::vector<Resimulation>& variants, const j1939::Database& db,
+                                         const GapOptions& options) {
+  std::vector<SimTask> tasks;
+  for (const Resimulation& v : variants) {
+    for (std::size_t r = 0; r < resims.size(); ++r) {
+      sim::Scenario s = on_truck(lib, resims, r, v.shift_sigma);
+      for (std::size_t i = 0; v.effects != nullptr && i < v.effects->effects.size(); ++i) {
+        add_candidate(s, lib.responses[v.effects->effects[i]].effect, v.effects->magnitude_half0[i]);
+      }
+      tasks.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
+    }
+  }
+  const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs);
+  std::vector<Eigen::VectorXd> out;
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    const auto first = sims.begin() + static_cast<std::ptrdiff_t>(k * resims.size());
+    out.push_back(values(std::vector<RecordedRun>(first, first + static_cast<std::ptrdiff_t>(resims.size()))));
+  }
+  return out;
+}
+
 Eigen::VectorXd resimulated(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const std::vector<double>& shift_sigma,
                             const Fit* effects, const j1939::Database& db, const GapOptions& options) {
-  std::vector<SimTask> after;
-  for (std::size_t r = 0; r < resims.size(); ++r) {
-    sim::Scenario s = on_truck(lib, resims, r, shift_sigma);
-    for (std::size_t i = 0; effects != nullptr && i < effects->effects.size(); ++i) {
-      add_candidate(s, lib.responses[effects->effects[i]].effect, effects->magnitude_half0[i]);
-    }
-    after.push_back({std::move(s), kBaselineSeed, &lib.layouts[r]});
-  }
-  return values(simulate_all(after, db, options.jobs));
+  return resimulated(lib, resims, std::vector<Resimulation>{{shift_sigma, effects}}, db, options).front();
 }
 
 Fit refit_on_truck(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Eigen::VectorXd& real, const Fit& chosen,

@@ -27,6 +27,14 @@ Span span_of(const sim::EffectInfo& info, double base);
 // effects at their magnitudes fitted on half 0 (`magnitude_half0`).
 Eigen::VectorXd resimulated(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const std::vector<double>& shift_sigma,
                             const Fit* effects, const j1939::Database& db, const GapOptions& options);
+// Several such re-simulations at once, so that a single drive's keep both cores busy.
+struct Resimulation {
+  std::vector<double> shift_sigma;
+  const Fit* effects = nullptr;
+};
+std::vector<Eigen::VectorXd> resimulated(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims,
+                                         const std::vector<Resimulation>& variants, const j1939::Database& db,
+                                         const GapOptions& options);
 
 // The chosen effects refitted on half 0 around the truck fitted beside them: their responses
 // simulated again on that truck, since an effect's size follows the truck's (drag that grows with

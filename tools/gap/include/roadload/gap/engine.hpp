@@ -80,8 +80,8 @@ void add_candidate(sim::Scenario& s, sim::Effect e, double magnitude);
 std::vector<sim::Scenario> resimulations(const std::vector<RealRun>& runs);
 
 ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options);
-// Whether a library built for other drives may serve these: same routes and speeds, weather
-// and mass near enough that the responses and the noise floor carry over.
+// Whether a library built for other drives may serve these: same routes and speeds, weather,
+// mass and duration near enough that the responses and the noise floor carry over.
 bool library_serves(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims);
 
 // A channel one side has and the other lacks, in one run: a recording's sensor at a position where
