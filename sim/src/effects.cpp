@@ -40,6 +40,10 @@ constexpr std::array<EffectInfo, kEffectCount> kCatalog{{
      "cruise control hunts around its set speed with a 20 s period"},
     {Effect::ac_compressor, "ac-compressor", "W", 2000.0, 1000.0, 4000.0,
      "the driver runs the cab's air conditioning: its compressor takes this power from the crankshaft, unreported"},
+    {Effect::wet_road, "wet-road", "mm", 0.5, 0.1, 1.0,
+     "a water film on the road, unseen by the weather station: CRR x (1 + 0.2 per mm of film)"},
+    {Effect::tread_wear, "tread-wear", "fraction", 0.3, 0.1, 0.8,
+     "tires worn by this share of their 17 mm of usable tread: CRR x (1 - 0.25 w), radius smaller, speedometer high"},
 }};
 
 }  // namespace

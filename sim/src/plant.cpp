@@ -86,6 +86,8 @@ double TruckPlant::crr_of_axle(std::size_t axle, const Environment& env) const {
   if (fx.on(Effect::temperature_crr)) crr *= 1.0 - fx.magnitude(Effect::temperature_crr) * (env.air_temp_c - 14.3);
   if (fx.on(Effect::speed_crr)) crr *= 1.0 + fx.magnitude(Effect::speed_crr) * (state_.speed_mps - 13.4112);
   if (fx.on(Effect::tire_pressure)) crr *= std::pow(1.0 + fx.magnitude(Effect::tire_pressure), -0.3);
+  if (fx.on(Effect::wet_road)) crr *= 1.0 + kWetCrrPerMm * fx.magnitude(Effect::wet_road);
+  if (fx.on(Effect::tread_wear)) crr *= 1.0 - kWornCrrDrop * fx.magnitude(Effect::tread_wear);
   return crr;
 }
 

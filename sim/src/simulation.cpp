@@ -47,7 +47,17 @@ TruckParams scenario_truck(const Scenario& s) {
                     &t.accessories.fan_idle_w}) {
     *w *= s.accessory_scale;
   }
+  if (s.effects.on(Effect::tread_wear)) {
+    for (auto& a : t.axles) a.tire_radius_m -= kUsableTread_m * s.effects.magnitude(Effect::tread_wear);
+  }
   return t;
+}
+
+// The ECUs turn wheel revolutions into speed and distance with the vehicle file's tire radius:
+// on worn, smaller tires they read high by this factor, and the cruise control holds the
+// speed they read.
+double speedometer_scale(const Scenario& s, const TruckParams& worn) {
+  return truck_from_vehicle(s.vehicle, s.unsprung).drive_radius_m() / worn.drive_radius_m();
 }
 
 // The driver's set speed at x: the crawl over the last crawl_m before each stop line, and before it
@@ -77,6 +87,7 @@ struct Simulation::Parts {
         route(build_route(sc)),
         profile(build_road(sc, route)),
         truck(scenario_truck(sc)),
+        speedometer(speedometer_scale(sc, truck)),
         plant(truck, route, profile, sc.effects, sd),
         wind(sc.weather, sc.effects.magnitude(Effect::wind_gusts), Rng(sd, kWind)),
         bus(db, bus_options(sc.clocks), Rng(sd, kBus)),
@@ -104,8 +115,8 @@ struct Simulation::Parts {
     const double max = full_load_indicated_torque_nm(e, s.engine_rpm);
     v.load_pct = max > 0 ? std::clamp(s.indicated_torque_nm / max * 100.0, 0.0, 125.0) : 0.0;
     v.engine_controlled = s.clutch_engaged;
-    v.wheel_speed_kmh = s.speed_mps * 3.6;
-    v.front_axle_speed_kmh = s.speed_mps * 3.6;
+    v.wheel_speed_kmh = s.speed_mps * speedometer * 3.6;
+    v.front_axle_speed_kmh = s.speed_mps * speedometer * 3.6;
     v.cruise_active = s.clutch_engaged && !scenario.coast;
     v.cruise_set_kmh = scenario.speed_mps * 3.6;
     v.brake_switch = s.service_brake;
@@ -120,8 +131,8 @@ struct Simulation::Parts {
     v.pressure_kpa = env.pressure_pa / 1000.0;
     v.ambient_c = env.air_temp_c + 0.3;  // the truck's sensor sits near warm parts
     v.intake_c = env.air_temp_c + 5.0;
-    v.total_distance_m = kOdometerStart_m + plant.ledger().distance_m;
-    v.trip_distance_m = plant.ledger().distance_m;
+    v.total_distance_m = kOdometerStart_m + plant.ledger().distance_m * speedometer;
+    v.trip_distance_m = plant.ledger().distance_m * speedometer;
     v.lat_deg = vp1_lat;
     v.lon_deg = vp1_lon;
     v.fan_on = s.fan_on;
@@ -222,6 +233,7 @@ struct Simulation::Parts {
   Route route;
   RoadProfile profile;
   TruckParams truck;
+  double speedometer;
   TruckPlant plant;
   WindField wind;
   J1939Bus bus;
@@ -312,7 +324,7 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
   const double dt = 1.0 / sc.physics_rate_hz;
   RunSummary sum;
   p.plant.set_coasting(sc.coast);
-  p.plant.start(sc.start_m, sc.speed_mps, p.wind.at_truck());
+  p.plant.start(sc.start_m, sc.speed_mps / p.speedometer, p.wind.at_truck());
   Kinematics before = p.kinematics(p.plant.state());
   double x_before = p.plant.state().x_m, v_before = p.plant.state().speed_mps;
   const double total = sc.end_m - sc.start_m;
@@ -329,7 +341,7 @@ RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::fu
       const auto step = static_cast<std::size_t>(p.plant.state().t_s / sc.hold.count());
       p.plant.set_hold_rpm(sc.hold_rpm[std::min(step, sc.hold_rpm.size() - 1)]);
     }
-    if (sc.stops.every_m > 0) p.plant.set_cruise_speed(set_speed_mps(sc, p.plant.state().x_m));
+    if (sc.stops.every_m > 0) p.plant.set_cruise_speed(set_speed_mps(sc, p.plant.state().x_m) / p.speedometer);
     p.plant.step(dt, air);
     const TruckState& s = p.plant.state();
     const Kinematics now = p.kinematics(s);

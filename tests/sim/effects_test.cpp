@@ -17,6 +17,8 @@ struct Observed {
   double reported_torque = 0;                          // mean EEC1 actual torque, % (as sent)
   double indicated_torque = 0;                         // truth, % of reference
   double engine_rpm = 0, accessory_nm = 0, ac_nm = 0;  // truth at the end
+  double reported_speed_kmh = 0;                       // mean CCVS1 wheel-based speed (as sent)
+  double speed_mps = 0, drive_radius_m = 0;            // truth at the end
   std::size_t frames = 0;
 
   void mix(const void* p, std::size_t n) {
@@ -36,6 +38,10 @@ class TruthSink final : public SampleSink {
       torque_sum_ += f.data[2] - 125.0;
       ++torque_n_;
     }
+    if ((f.id >> 8 & 0x3FFFF) == 0xFEF1) {  // CCVS1: bytes 2-3 are wheel-based speed, 1/256 km/h
+      speed_sum_ += (f.data[1] | f.data[2] << 8) / 256.0;
+      ++speed_n_;
+    }
     ++o_.frames;
   }
   void accel(const AccelSample& s) override {
@@ -51,11 +57,12 @@ class TruthSink final : public SampleSink {
     o_.mix(&s.air_temp_c, sizeof(double) * 4);
   }
   double torque() const { return torque_n_ > 0 ? torque_sum_ / static_cast<double>(torque_n_) : 0.0; }
+  double speed() const { return speed_n_ > 0 ? speed_sum_ / static_cast<double>(speed_n_) : 0.0; }
 
  private:
   Observed& o_;
-  double torque_sum_ = 0;
-  std::size_t torque_n_ = 0;
+  double torque_sum_ = 0, speed_sum_ = 0;
+  std::size_t torque_n_ = 0, speed_n_ = 0;
 };
 
 Observed observe(std::optional<Effect> effect, double magnitude) {
@@ -78,6 +85,9 @@ Observed observe(std::optional<Effect> effect, double magnitude) {
   o.engine_rpm = sim.plant().state().engine_rpm;
   o.accessory_nm = sim.plant().state().accessory_torque_nm;
   o.ac_nm = sim.plant().state().ac_torque_nm;
+  o.reported_speed_kmh = sink.speed();
+  o.speed_mps = sim.plant().state().speed_mps;
+  o.drive_radius_m = sim.plant().truck().drive_radius_m();
   return o;
 }
 
@@ -117,6 +127,28 @@ TEST(Effects, AcCompressorLoadsTheEngineAndNotTheWheels) {
   EXPECT_NEAR(on.accessory_nm - on.ac_nm, base.accessory_nm, 0.5);
   EXPECT_NEAR(on.indicated_torque - base.indicated_torque, on.ac_nm / 2386.0 * 100.0, 0.3);
   EXPECT_NEAR(on.crr_mean, base.crr_mean, 1e-6);
+}
+
+// A water film the weather station does not see: the tires roll harder, nothing else changes.
+TEST(Effects, WetRoadRaisesTheRollingResistanceAlone) {
+  const Observed base = observe(std::nullopt, 0);
+  const Observed wet = observe(Effect::wet_road, 0.5);
+  EXPECT_NEAR(wet.crr_mean / base.crr_mean, 1.10, 0.005);
+  EXPECT_NEAR(wet.reported_speed_kmh, base.reported_speed_kmh, 0.02);
+}
+
+// Worn tires are smaller: the wheels turn faster for the road speed, so the ECUs' speed (worked out
+// with the vehicle file's radius) reads high by r_file / r_worn and the cruise control, holding that
+// reading, drives the truck slower. They also roll easier.
+TEST(Effects, TreadWearMakesTheSpeedometerReadHighAndTheTiresRollEasier) {
+  const Observed base = observe(std::nullopt, 0);
+  const Observed worn = observe(Effect::tread_wear, 0.5);
+  EXPECT_NEAR(base.drive_radius_m - worn.drive_radius_m, 0.5 * 0.017, 1e-9);
+  const double scale = base.drive_radius_m / worn.drive_radius_m;
+  EXPECT_NEAR(worn.reported_speed_kmh, base.reported_speed_kmh, 0.05);
+  EXPECT_NEAR(worn.speed_mps * scale, base.speed_mps, 0.05);
+  EXPECT_LT(worn.speed_mps, base.speed_mps - 0.2);
+  EXPECT_NEAR(worn.crr_mean / base.crr_mean, 1.0 - 0.25 * 0.5, 0.005);
 }
 
 }  // namespace

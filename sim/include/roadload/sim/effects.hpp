@@ -32,10 +32,20 @@ enum class Effect : std::size_t {
   brake_drag,           // a dragging brake, N at the wheels
   cruise_hunting,       // cruise-control limit cycle amplitude, m/s
   ac_compressor,        // the cab's air conditioning switched on: compressor shaft power, W
+  wet_road,             // water film on the road, mm: CRR x (1 + w_f h)
+  tread_wear,           // share of the usable tread worn since the vehicle file's tires
   count
 };
 
 inline constexpr std::size_t kEffectCount = static_cast<std::size_t>(Effect::count);
+
+// Figures two places share (the plant's CRR and the scenario's truck; docs/simulator.md,
+// "Effects"): CRR rises 0.2 per mm of water film (docs/simulator-parameters.md #16, mid-range);
+// a worn-out tire rolls 25 % easier than a new one (#20) and a truck tire's usable tread is 17 mm
+// (about 21 mm new, pulled at about 3 mm).
+inline constexpr double kWetCrrPerMm = 0.2;
+inline constexpr double kWornCrrDrop = 0.25;
+inline constexpr double kUsableTread_m = 0.017;
 
 struct EffectInfo {
   Effect id;
