@@ -20,6 +20,12 @@ inline constexpr NumberField<Vehicle> kBody[] = {
     {"mass_sigma_kg", &Vehicle::mass_sigma_kg, 0, 100000},
 };
 
+// Keys a vehicle file may leave out (0: not known), so that files and recordings written before
+// them still read.
+inline constexpr NumberField<Vehicle> kBodyOptional[] = {
+    {"tire_radius_sigma_m", &Vehicle::tire_radius_sigma_m, 0, 0.05},
+};
+
 inline constexpr NumberField<EngineDescription> kEngine[] = {
     {"reference_torque_nm", &EngineDescription::reference_torque_nm, 1, 64255},  // SPN 544's range
     {"idle_rpm", &EngineDescription::idle_rpm, 100, 3000},

@@ -140,7 +140,15 @@ Vehicle read_vehicle(const TomlFields& f, const toml::table& root, const std::st
   v.name = f.required_text(root, "name", w);
   v.description = f.text(root, "description", w).value_or("");
   v.vin = f.text(root, "vin", w).value_or("");
-  read_numbers(f, section(f, root, "body", w), w + "body.", vf::kBody, v);
+  const toml::table& body = section(f, root, "body", w);
+  std::vector<std::string_view> body_keys;
+  add_keys(body_keys, vf::kBody);
+  add_keys(body_keys, vf::kBodyOptional);
+  f.only(body, body_keys, w + "body.");
+  read_fields(f, body, w + "body.", vf::kBody, v);
+  for (const auto& n : vf::kBodyOptional) {
+    if (body.contains(n.key)) v.*n.member = f.required_in(body, n.key, w + "body.", n.lo, n.hi);
+  }
   read_engine(f, section(f, root, "engine", w), w + "engine.", v.engine);
   read_driveline(f, section(f, root, "driveline", w), w + "driveline.", v.driveline);
   read_numbers(f, section(f, root, "fuel", w), w + "fuel.", vf::kFuel, v.fuel);

@@ -89,6 +89,12 @@ std::string format_vehicle(const Vehicle& v, const VehicleNotes& notes, std::str
   if (!v.vin.empty()) w.key("vin", "vin", quoted(v.vin));
   w.header("body");
   w.numbers("body.", vf::kBody, v);
+  for (const auto& n : vf::kBodyOptional) {
+    if (v.*n.member == 0) continue;
+    std::string field = "body.";
+    field.append(n.key);
+    w.key(field, n.key, number(v.*n.member));
+  }
   w.header("engine");
   w.numbers("engine.", vf::kEngine, v.engine);
   w.list("engine.", "full_load_rpm", v.engine.full_load_rpm);

@@ -47,14 +47,15 @@ TruckParams scenario_truck(const Scenario& s) {
                     &t.accessories.fan_idle_w}) {
     *w *= s.accessory_scale;
   }
-  if (s.effects.on(Effect::tread_wear)) {
-    for (auto& a : t.axles) a.tire_radius_m -= kUsableTread_m * s.effects.magnitude(Effect::tread_wear);
+  for (auto& a : t.axles) {
+    a.tire_radius_m *= s.tire_radius_scale;
+    if (s.effects.on(Effect::tread_wear)) a.tire_radius_m -= kUsableTread_m * s.effects.magnitude(Effect::tread_wear);
   }
   return t;
 }
 
 // The ECUs turn wheel revolutions into speed and distance with the vehicle file's tire radius:
-// on worn, smaller tires they read high by this factor, and the cruise control holds the
+// on other or worn tires they read off by this factor, and the cruise control holds the
 // speed they read.
 double speedometer_scale(const Scenario& s, const TruckParams& worn) {
   return truck_from_vehicle(s.vehicle, s.unsprung).drive_radius_m() / worn.drive_radius_m();

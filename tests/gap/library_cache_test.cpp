@@ -3,6 +3,7 @@
 // of another speed or weather is judged by library_serves() as one in memory is.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "roadload/gap/library_cache.hpp"
@@ -138,6 +139,21 @@ TEST_F(GapLibraryCache, TheFingerprintFollowsTheTruckTheRoadAndTheRuleButNotTheW
   resims = resimulations({run_});
   o.noise_runs += 1;
   EXPECT_NE(library_fingerprint(resims, db, o), base);
+}
+
+// The tires' radius is one of the truck's nominal parameters when its vehicle file gives a
+// spread: the model's truck is moved by the scenario's tire scale, which the ECUs do not know.
+TEST_F(GapLibraryCache, TheTireRadiusIsANominalParameterOfTheModelsTruck) {
+  sim::Scenario s = run_.model;
+  const std::vector<NominalPrior> priors = nominal_priors(s);
+  const auto radius = std::find_if(priors.begin(), priors.end(), [](const NominalPrior& p) { return p.id == Nominal::tire_radius; });
+  ASSERT_NE(radius, priors.end());
+  EXPECT_DOUBLE_EQ(radius->value, s.vehicle.drive_axle()->tire_radius_m);
+  EXPECT_DOUBLE_EQ(radius->sigma, s.vehicle.tire_radius_sigma_m);
+  set_nominal(s, Nominal::tire_radius, radius->value + 2 * radius->sigma);
+  EXPECT_NEAR(s.tire_radius_scale, 1.0 + 2 * radius->sigma / radius->value, 1e-12);
+  s.vehicle.tire_radius_sigma_m = 0;
+  for (const NominalPrior& p : nominal_priors(s)) EXPECT_NE(p.id, Nominal::tire_radius) << "a radius nobody gave a spread for";
 }
 
 }  // namespace

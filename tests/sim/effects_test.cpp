@@ -65,13 +65,14 @@ class TruthSink final : public SampleSink {
   std::size_t torque_n_ = 0, speed_n_ = 0;
 };
 
-Observed observe(std::optional<Effect> effect, double magnitude) {
+Observed observe(std::optional<Effect> effect, double magnitude, double tire_radius_scale = 1.0) {
   static const j1939::Database db = test::core_database();
   Scenario sc = test::builtin("th10-55mph");  // jointed concrete at 31 C: every effect has something to act on
   sc.effects = EffectSet{};
   sc.duration = Seconds{30.0};
   sc.accelerometers = 2;
   if (effect) sc.effects.set(*effect, magnitude);
+  sc.tire_radius_scale = tire_radius_scale;
   Simulation sim(sc, 9, db);
   Observed o;
   TruthSink sink(o);
@@ -149,6 +150,17 @@ TEST(Effects, TreadWearMakesTheSpeedometerReadHighAndTheTiresRollEasier) {
   EXPECT_NEAR(worn.speed_mps * scale, base.speed_mps, 0.05);
   EXPECT_LT(worn.speed_mps, base.speed_mps - 0.2);
   EXPECT_NEAR(worn.crr_mean / base.crr_mean, 1.0 - 0.25 * 0.5, 0.005);
+}
+
+// Tires larger than the vehicle file's (another brand, or an ECU told a smaller size): the same
+// speedometer error the other way round, and nothing else.
+TEST(Effects, ATruckOnOtherTiresReadsItsSpeedOffAsWornTiresDo) {
+  const Observed base = observe(std::nullopt, 0);
+  const Observed larger = observe(std::nullopt, 0, 1.01);
+  EXPECT_NEAR(larger.drive_radius_m / base.drive_radius_m, 1.01, 1e-12);
+  EXPECT_NEAR(larger.reported_speed_kmh, base.reported_speed_kmh, 0.05);
+  EXPECT_NEAR(larger.speed_mps, base.speed_mps * 1.01, 0.05);
+  EXPECT_NEAR(larger.crr_mean, base.crr_mean, 1e-4);
 }
 
 }  // namespace

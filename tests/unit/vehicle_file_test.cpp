@@ -84,6 +84,15 @@ TEST_F(VehicleFileErrors, AnUnknownKeyIsATypo) {
   EXPECT_EQ(error_of("lhv_jpkg = 42.8e6", "lhv_jpkg = 42.8e6\nlhv_per_kg = 1").field, "fuel.lhv_per_kg");
 }
 
+// Files written before the key read as "not known"; a value it cannot have is still refused.
+TEST_F(VehicleFileErrors, TheTireRadiusSpreadMayBeLeftOutButNotImpossible) {
+  auto v = load_vehicle_file(variant("tire_radius_sigma_m = 0.004", ""));
+  ASSERT_TRUE(v.ok()) << v.error().to_string();
+  EXPECT_EQ(v.value().tire_radius_sigma_m, 0.0);
+  EXPECT_EQ(format_vehicle(v.value()).find("tire_radius_sigma_m"), std::string::npos);
+  EXPECT_EQ(error_of("tire_radius_sigma_m = 0.004", "tire_radius_sigma_m = 0.5").field, "body.tire_radius_sigma_m");
+}
+
 TEST_F(VehicleFileErrors, AxlesGoFrontToRear) {
   EXPECT_EQ(error_of("position_m = 16.45", "position_m = 1.0").field, "axle[3].position_m");
 }

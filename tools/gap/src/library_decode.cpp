@@ -90,7 +90,7 @@ void need(const std::vector<std::string_view>& f, std::size_t n, std::string_vie
 }
 
 Nominal nominal_named(std::string_view name) {
-  for (int i = 0; i <= static_cast<int>(Nominal::driveline_efficiency); ++i) {
+  for (int i = 0; i <= static_cast<int>(Nominal::tire_radius); ++i) {
     if (nominal_name(static_cast<Nominal>(i)) == name) return static_cast<Nominal>(i);
   }
   throw Bad{"prior", "unknown nominal parameter '" + std::string(name) + "'"};

@@ -10,6 +10,7 @@ std::string_view nominal_name(Nominal p) {
     case Nominal::cda: return "CdA";
     case Nominal::engine_friction: return "engine friction";
     case Nominal::driveline_efficiency: return "driveline efficiency";
+    case Nominal::tire_radius: return "tire radius";
   }
   return "?";
 }
@@ -28,9 +29,21 @@ std::string_view nominal_unit(Nominal p) {
     case Nominal::cda: return "m2";
     case Nominal::engine_friction: return "x curve";
     case Nominal::driveline_efficiency: return "";
+    case Nominal::tire_radius: return "m";
   }
   return "";
 }
+
+namespace {
+
+// The driven tires' radius as the vehicle file gives it (the plant's engine speed and the ECUs'
+// speed both turn on it); 0 without a driven axle, which leaves the parameter out.
+double drive_radius_m(const Vehicle& v) {
+  const VehicleAxle* a = v.drive_axle();
+  return a != nullptr ? a->tire_radius_m : 0.0;
+}
+
+}  // namespace
 
 std::vector<NominalPrior> nominal_priors(const sim::Scenario& model) {
   const Vehicle& v = model.vehicle;
@@ -39,6 +52,7 @@ std::vector<NominalPrior> nominal_priors(const sim::Scenario& model) {
       {Nominal::cda, v.cda_m2 * model.cda_scale, v.cda_sigma_m2 * model.cda_scale},
       {Nominal::engine_friction, model.engine_friction_scale, v.engine.friction_sigma * model.engine_friction_scale},
       {Nominal::driveline_efficiency, v.driveline.efficiency, v.driveline.efficiency_sigma},
+      {Nominal::tire_radius, drive_radius_m(v) * model.tire_radius_scale, v.tire_radius_sigma_m * model.tire_radius_scale},
   };
   std::vector<NominalPrior> out;
   for (const NominalPrior& p : all) {
@@ -53,6 +67,7 @@ void set_nominal(sim::Scenario& model, Nominal p, double value) {
     case Nominal::cda: model.cda_scale = value / model.vehicle.cda_m2; return;
     case Nominal::engine_friction: model.engine_friction_scale = value; return;
     case Nominal::driveline_efficiency: model.vehicle.driveline.efficiency = std::clamp(value, 0.5, 0.999); return;
+    case Nominal::tire_radius: model.tire_radius_scale = value / drive_radius_m(model.vehicle); return;
   }
 }
 

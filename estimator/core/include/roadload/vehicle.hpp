@@ -120,6 +120,9 @@ struct Vehicle {
   double gnss_antenna_height_m = 0;
   // How well the axle loads are known: a scale ticket's 1 %, a declared cargo's 5-10 %.
   double mass_sigma_kg = 0;
+  // How far the tires' rolling radius may be from the axles' tire_radius_m (brand, wear, the size
+  // the ECUs were programmed with): the speedometer's error. 0 when not known.
+  double tire_radius_sigma_m = 0;
 
   double mass_kg() const;            // the axles' static loads
   double cg_behind_front_m() const;  // from the axle loads

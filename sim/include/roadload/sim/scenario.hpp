@@ -54,6 +54,9 @@ struct Scenario {
   double engine_friction_scale = 1.0;
   double accessory_scale = 1.0;
   double cda_scale = 1.0;  // and its drag area against the type's (body, mirrors, trailer gap)
+  // and its tires' rolling radius against the vehicle file's, which the ECUs turn wheel
+  // revolutions into speed and distance with
+  double tire_radius_scale = 1.0;
   bool coast = false;      // neutral coast-down instead of cruise
   // City traffic: at a stop line every `every_m` the driver slows to `crawl_mps` for `crawl_m`,
   // braking down to it and accelerating at full load back to the set speed. A crawl, not a stop:

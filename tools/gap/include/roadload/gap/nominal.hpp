@@ -12,7 +12,7 @@
 
 namespace roadload::gap {
 
-enum class Nominal { mass, cda, engine_friction, driveline_efficiency };
+enum class Nominal { mass, cda, engine_friction, driveline_efficiency, tire_radius };
 
 // One parameter as the model has it: its value and one sigma of how far a real truck may be off.
 struct NominalPrior {
