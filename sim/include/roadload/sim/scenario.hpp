@@ -57,7 +57,7 @@ struct Scenario {
   // and its tires' rolling radius against the vehicle file's, which the ECUs turn wheel
   // revolutions into speed and distance with
   double tire_radius_scale = 1.0;
-  bool coast = false;      // neutral coast-down instead of cruise
+  bool coast = false;  // neutral coast-down instead of cruise
   // City traffic: at a stop line every `every_m` the driver slows to `crawl_mps` for `crawl_m`,
   // braking down to it and accelerating at full load back to the set speed. A crawl, not a stop:
   // the plant has no launch clutch, so a stand-still would stall its engine.
