@@ -62,9 +62,8 @@ constexpr const char* kHelp =
 int diagnose(const std::vector<gap::RealRun>& runs, const std::vector<std::string>& run_lines, const j1939::Database& db,
              const gap::GapOptions& options, const std::string& cache_dir, bool quiet, const std::array<std::string, 2>& files) {
   gap::CachedLibrary cached = gap::cached_library(cache_dir, runs, db, options);
-  if (!cached.note.empty() && (!quiet || cached.note.starts_with("cache:"))) {
-    std::fprintf(stderr, "%s%s\n", cached.note.starts_with("cache:") ? "roadload gap: " : "gap: ", cached.note.c_str());
-  }
+  for (const std::string& w : cached.warnings) std::fprintf(stderr, "roadload gap: cache: %s\n", w.c_str());
+  if (!cached.note.empty() && !quiet) std::fprintf(stderr, "gap: %s\n", cached.note.c_str());
   const gap::ModelLibrary& lib = cached.library;
   const gap::GapResult result = gap::run_gap(lib, runs, db, options);
   gap::print_result(stdout, result, run_lines);

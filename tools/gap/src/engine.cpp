@@ -151,11 +151,8 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
   say(options, "library: " + std::to_string(tasks.size()) +
                    " simulations (baseline, the noise drives' re-simulations, 2 per effect, 1 per nominal parameter)");
   const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs, options.progress);
-  auto group = [&](std::size_t g) {
-    return std::vector<RecordedRun>(sims.begin() + static_cast<std::ptrdiff_t>(g * n_runs),
-                                    sims.begin() + static_cast<std::ptrdiff_t>((g + 1) * n_runs));
-  };
-  const std::vector<RecordedRun> base = group(0);
+  auto group = [&](std::size_t g) { return group_values(sims, g, n_runs); };
+  const std::span<const RecordedRun> base = std::span(sims).first(n_runs);
   for (std::size_t r = 0; r < n_runs; ++r) {
     for (const Feature& f : base[r].features.features) {
       const auto half = options.holdout == Holdout::runs ? static_cast<std::uint8_t>(r % 2) : f.half;
@@ -167,16 +164,14 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
   // Each noise drive's residual against its own re-simulation: the floor, then its chi-square.
   std::vector<Eigen::VectorXd> residuals;
   for (std::size_t k = 0; k < options.noise_runs; ++k) {
-    const std::vector<RecordedRun> drive(noise.begin() + static_cast<std::ptrdiff_t>(k * n_runs),
-                                         noise.begin() + static_cast<std::ptrdiff_t>((k + 1) * n_runs));
-    residuals.push_back(values(drive) - values(group(1 + k)));
+    residuals.push_back(group_values(noise, k, n_runs) - group(1 + k));
   }
   for (std::size_t e = 0; e < lib.responses.size(); ++e) {
-    lib.responses[e].f1 = values(group(1 + options.noise_runs + 2 * e));
-    lib.responses[e].f2 = values(group(2 + options.noise_runs + 2 * e));
+    lib.responses[e].f1 = group(1 + options.noise_runs + 2 * e);
+    lib.responses[e].f2 = group(2 + options.noise_runs + 2 * e);
   }
   std::vector<Eigen::VectorXd> plus_sigma;
-  for (std::size_t j = 0; j < lib.priors.front().size(); ++j) plus_sigma.push_back(values(group(first_nominal + j)));
+  for (std::size_t j = 0; j < lib.priors.front().size(); ++j) plus_sigma.push_back(group(first_nominal + j));
   set_nominal_delta(lib, plus_sigma);
   set_noise_floor(lib, residuals, trucks);
   set_null_gains(lib, residuals, options);
@@ -243,9 +238,8 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
   }
   say(options, "re-simulating " + std::to_string(runs.size()) + " run(s)");
   const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs);
-  const auto n_runs = static_cast<std::ptrdiff_t>(runs.size());
-  const Eigen::VectorXd model = values(std::vector<RecordedRun>(sims.begin(), sims.begin() + n_runs));
-  const Eigen::VectorXd yaw = values(std::vector<RecordedRun>(sims.begin() + n_runs, sims.end()));
+  const Eigen::VectorXd model = group_values(sims, 0, runs.size());
+  const Eigen::VectorXd yaw = group_values(sims, 1, runs.size());
   const Eigen::VectorXd real = aligned(runs, lib);
 
   GapResult g;

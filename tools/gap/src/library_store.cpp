@@ -49,7 +49,7 @@ void trim(const fs::path& dir, std::size_t keep) {
 std::string store(const fs::path& dir, const std::string& fingerprint, const ModelLibrary& lib, std::size_t keep) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec) return "cache: " + dir.string() + ": " + ec.message();
+  if (ec) return dir.string() + ": " + ec.message();
   const auto stamp = std::chrono::system_clock::now().time_since_epoch().count();
   const std::string name = fingerprint + "-" + std::to_string(stamp) + "-" + std::to_string(::getpid());
   const fs::path tmp = dir / ("." + name + ".tmp"), path = dir / (name + std::string(kSuffix));
@@ -59,11 +59,11 @@ std::string store(const fs::path& dir, const std::string& fingerprint, const Mod
     out.close();
     if (!out) {
       fs::remove(tmp, ec);
-      return "cache: " + tmp.string() + ": cannot write";
+      return tmp.string() + ": cannot write";
     }
   }
   fs::rename(tmp, path, ec);
-  if (ec) return "cache: " + path.string() + ": " + ec.message();
+  if (ec) return path.string() + ": " + ec.message();
   trim(dir, keep);
   return {};
 }
@@ -84,17 +84,16 @@ CachedLibrary cached_library(const std::string& dir, const std::vector<RealRun>&
   const std::string fingerprint = dir.empty() ? std::string() : library_fingerprint(resims, db, options);
   if (dir.empty() || fingerprint.empty()) {
     out.library = build_library(runs, db, options);
-    if (!dir.empty()) out.note = "cache: this build has no build id, so no library is cached";
+    if (!dir.empty()) out.warnings.push_back("this build has no build id, so no library is cached");
     return out;
   }
-  std::string removed;
   for (const fs::path& path : entries(dir, fingerprint + "-")) {
     const auto text = read_whole(path);
     if (!text) continue;
     auto lib = decode_library(*text, path.string(), fingerprint, runs);
     std::error_code ec;
     if (!lib) {
-      removed += "cache: " + lib.error().to_string() + " (removed); ";
+      out.warnings.push_back(lib.error().to_string() + " (removed)");
       fs::remove(path, ec);
       continue;
     }
@@ -107,7 +106,11 @@ CachedLibrary cached_library(const std::string& dir, const std::vector<RealRun>&
   }
   out.library = build_library(runs, db, options);
   const std::string failed = store(dir, fingerprint, out.library, keep);
-  out.note = removed + (failed.empty() ? "library stored in " + dir : failed);
+  if (failed.empty()) {
+    out.note = "library stored in " + dir;
+  } else {
+    out.warnings.push_back(failed);
+  }
   return out;
 }
 

@@ -4,7 +4,7 @@
 
 namespace roadload::gap {
 
-Eigen::VectorXd values(const std::vector<RecordedRun>& runs) {
+Eigen::VectorXd values(std::span<const RecordedRun> runs) {
   std::size_t n = 0;
   for (const auto& r : runs) n += r.features.features.size();
   Eigen::VectorXd v(static_cast<Eigen::Index>(n));
@@ -51,10 +51,7 @@ std::vector<Eigen::VectorXd> resimulated(const ModelLibrary& lib, const std::vec
   }
   const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs);
   std::vector<Eigen::VectorXd> out;
-  for (std::size_t k = 0; k < variants.size(); ++k) {
-    const auto first = sims.begin() + static_cast<std::ptrdiff_t>(k * resims.size());
-    out.push_back(values(std::vector<RecordedRun>(first, first + static_cast<std::ptrdiff_t>(resims.size()))));
-  }
+  for (std::size_t k = 0; k < variants.size(); ++k) out.push_back(group_values(sims, k, resims.size()));
   return out;
 }
 
@@ -80,10 +77,7 @@ Fit refit_on_truck(const ModelLibrary& lib, const std::vector<sim::Scenario>& re
     }
   }
   const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs);
-  const auto runs = static_cast<std::ptrdiff_t>(resims.size());
-  auto group = [&](std::size_t g) {
-    return values(std::vector<RecordedRun>(sims.begin() + g * runs, sims.begin() + (g + 1) * runs));
-  };
+  auto group = [&](std::size_t g) { return group_values(sims, g, resims.size()); };
   Problem q;
   q.keys = lib.keys;
   q.z = (real - truck).cwiseQuotient(lib.sigma);

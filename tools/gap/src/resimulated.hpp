@@ -3,6 +3,7 @@
 // magnitudes an effect is simulated and fitted over, and the drives re-simulated with a fitted
 // truck and effects.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "roadload/gap/engine.hpp"
@@ -14,7 +15,11 @@ namespace roadload::gap {
 inline constexpr std::uint64_t kBaselineSeed = 1;
 
 // Every run's features, concatenated in order.
-Eigen::VectorXd values(const std::vector<RecordedRun>& runs);
+Eigen::VectorXd values(std::span<const RecordedRun> runs);
+// Simulations made `runs` at a time (every run of one change, then the next change): group g's.
+inline Eigen::VectorXd group_values(std::span<const RecordedRun> sims, std::size_t g, std::size_t runs) {
+  return values(sims.subspan(g * runs, runs));
+}
 
 // Magnitudes the library simulates and a fit may take: the catalog's realistic range, widened by
 // a quarter, reaching zero for an effect that cannot be negative.

@@ -31,7 +31,8 @@ std::string default_cache_dir();
 struct CachedLibrary {
   ModelLibrary library;
   bool from_cache = false;
-  std::string note;  // what happened to the cache, for the progress line; empty when all went well
+  std::string note;                   // for the progress line: where the library was read or stored
+  std::vector<std::string> warnings;  // what could not be read or written, each to be told
 };
 
 // A library for these runs from `dir` when one there serves them, else built and stored there
