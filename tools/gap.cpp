@@ -33,7 +33,9 @@ constexpr const char* kHelp =
     "  --model S           scenario (built-in name or TOML file) for the runs, in order; one for all,\n"
     "                      or none: the built-in scenario whose route the drive's first GNSS fix lies\n"
     "                      on and whose speed is nearest, else a cruise on the road the drive's own\n"
-    "                      GNSS traces (gnss.csv; cells of 250 m, the heights of that one pass)\n"
+    "                      GNSS traces (gnss.csv; cells of 250 m, the heights of that one pass); a run\n"
+    "                      whose driveline is disengaged (ETC1) 80 % of the time is a coast-down\n"
+    "                      from its first speed, on a coast scenario of its route when one exists\n"
     "  --route R           route file or built-in route name the runs drove (your own GNSS or GIS\n"
     "                      sections): the model cruises it from where each drive starts\n"
     "  --vehicle V         vehicle file or built-in name the model drives (default: the one each\n"
@@ -47,6 +49,7 @@ constexpr const char* kHelp =
     "                      the same road (default $ROADLOAD_CACHE_DIR, else $XDG_CACHE_HOME/roadload/gap,\n"
     "                      else ~/.cache/roadload/gap)\n"
     "  --no-cache          build the library afresh and keep nothing\n"
+    "  --dry-run           print the model each run is compared with, and stop\n"
     "  --jobs N            simulations at once (default: the number of CPUs)\n"
     "  -q, --quiet         no progress on standard error\n"
     "  -h, --help          this text\n\n"
@@ -83,7 +86,7 @@ int run_diagnosis(OptionParser& opt) {
   std::string json, features, vehicle_name, route_name, cache_dir = gap::default_cache_dir();
   gap::GapOptions options;
   options.jobs = default_jobs();
-  bool quiet = false;
+  bool quiet = false, dry_run = false;
   while (opt.more()) {
     if (opt.help(kHelp)) return kExitOk;
     if (opt.flag("-q", "--quiet")) {
@@ -102,6 +105,8 @@ int run_diagnosis(OptionParser& opt) {
       cache_dir = *c;
     } else if (opt.flag("--no-cache")) {
       cache_dir.clear();
+    } else if (opt.flag("--dry-run")) {
+      dry_run = true;
     } else if (auto f = opt.value("--features")) {
       features = *f;
     } else if (auto h = opt.value("--holdout")) {
@@ -144,6 +149,10 @@ int run_diagnosis(OptionParser& opt) {
     }
     run_lines.push_back(gap::describe(run.value()));
     runs.push_back(std::move(run.value()));
+  }
+  if (dry_run) {
+    for (const std::string& line : run_lines) std::printf("%s\n", line.c_str());
+    return kExitOk;
   }
   return diagnose(runs, run_lines, db, options, cache_dir, quiet, {json, features});
 }

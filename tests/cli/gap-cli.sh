@@ -53,10 +53,26 @@ cmp -s "$work/out" "$work/first" || fail "the rebuilt library changed the diagno
 expect_status 0 "$roadload" gap --real "$work/rec" --noise-runs 3 --jobs 2 --no-cache
 grep -q "read from\|stored in" "$work/err" && fail "--no-cache used the cache: $(cat "$work/err")"
 
+# A neutral coast-down is compared with a coast, never with the cruise nearest its mean speed: the
+# Mainline's own coast scenario, and on TH 10 (which has none) its cruise turned into a coast-down
+# from the recording's first speed.
+expect_status 0 "$roadload" gap --real "$work/rec" --dry-run
+grep -q "model mnroad-mainline-30mph (route [^)]*)," "$work/out" || fail "the cruise's model: $(cat "$work/out")"
+grep -q "coast-down" "$work/out" && fail "the cruise taken for a coast-down: $(cat "$work/out")"
+expect_status 0 "$roadload" simulate --scenario mnroad-mainline-coast-64mph --seed 24 --duration 60 --out "$work/coast" -q
+expect_status 0 "$roadload" gap --real "$work/coast" --dry-run
+grep -q "model mnroad-mainline-coast-64mph (route [^)]*, coast-down)" "$work/out" ||
+  fail "the Mainline coast-down's model: $(cat "$work/out")"
+config=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../config" && pwd)
+printf 'name = "th10-coast"\nroute = "%s"\nmode = "coast"\nspeed_mph = 52\nstart_m = 50\nduration_s = 60\nstart_utc = 2014-06-20T16:00:00Z\n' \
+  "$config/routes/th10-sartell.toml" >"$work/th10-coast.toml"
+expect_status 0 "$roadload" simulate --scenario "$work/th10-coast.toml" --seed 25 --out "$work/th10-coast" -q
+expect_status 0 "$roadload" gap --real "$work/th10-coast" --dry-run
+grep -q "model th10-55mph (route TH 10, Sartell, coast-down)" "$work/out" || fail "the TH 10 coast-down's model: $(cat "$work/out")"
+
 # A road no built-in scenario drives, by a truck of the recording's own vehicle file: no --model,
 # the model drives the road the drive's GNSS traces. One pass's heights and a road of unknown
 # pavement are not a model to blame effects on: the places are ranked, no effect is named.
-config=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../config" && pwd)
 printf 'name = "county"\nroute = "%s"\nvehicle = "%s"\nspeed_mph = 40\nstart_m = 100\nduration_s = 90\n' \
   "$config/routes/example-county-road-eastbound.toml" "$config/vehicles/tractor-53ft-18speed.toml" >"$work/county.toml"
 expect_status 0 "$roadload" simulate --scenario "$work/county.toml" --seed 22 --out "$work/county" -q

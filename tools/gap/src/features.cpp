@@ -112,6 +112,7 @@ struct FeatureExtractor::State {
   bool started = false;
   CaptureTime first{}, last{};
   RunningStats speed_all;
+  double first_speed_mps = 0, disengaged = 0;
   RunningStats temp_t;
   double temp_tv = 0, temp_tt = 0;  // for the drift, about the first stamp
   double temp_sum = 0, temp_n = 0, pressure_sum = 0, pressure_n = 0;
@@ -187,7 +188,11 @@ void FeatureExtractor::push(const CanFrame& frame) {
     if (!fresh(Quantity::wheel_speed_mps)) return;
     const double v = s.feed.get(Quantity::wheel_speed_mps).value;
     s.position.advance(frame.t, v);
+    if (s.speed_all.n == 0) s.first_speed_mps = v;
     s.speed_all.add(v);
+    // ETC1 comes every 10 ms; a reading older than a second is no longer the driveline's state.
+    const Reading& engaged = s.feed.get(Quantity::driveline_engaged);
+    if (engaged.seen && frame.t - engaged.t < std::chrono::seconds(1) && engaged.value < 0.5) s.disengaged += 1;
     if (bin >= 0) s.acc[static_cast<std::size_t>(bin)].speed.add(v, second);
   } else if (m->pgn == s.eec1 && bin >= 0) {
     const Reading& ref = s.feed.get(Quantity::reference_torque_nm);
@@ -357,6 +362,8 @@ RunFeatures FeatureExtractor::finish() const {
   c.duration_s = s.started ? to_seconds(s.last - s.first) : 0.0;
   c.mean_speed_mps = s.speed_all.mean;
   c.speed_samples = s.speed_all.n;
+  c.first_speed_mps = s.first_speed_mps;
+  if (s.speed_all.n > 0) c.disengaged_share = s.disengaged / static_cast<double>(s.speed_all.n);
   if (s.temp_n > 0) {
     c.air_temp_c = s.temp_sum / s.temp_n;
     const double n = s.temp_n, mt = s.temp_t.mean;

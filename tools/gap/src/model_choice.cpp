@@ -19,25 +19,48 @@ namespace {
 
 constexpr const char* kTracedModel = "traced";
 
+// A neutral coast-down: the driveline disengaged for most of the run. Its model is a coast, not
+// the cruise nearest its mean speed, which would fit the truck's mass to the deceleration.
+bool coasting(const RunConditions& c) { return c.speed_samples > 0 && c.disengaged_share >= 0.8; }
+
+// A cruise model turned into the coast-down the recording holds, from its entry speed.
+void as_coast(sim::Scenario& s, const RunConditions& c) {
+  if (s.coast) return;
+  s.coast = true;
+  s.stops = {};
+  if (c.first_speed_mps > 0.5) s.speed_mps = c.first_speed_mps;
+  char why[160];
+  std::snprintf(why, sizeof why, "; a neutral coast-down from %.1f m/s (the driveline disengaged %.0f %% of the run)", s.speed_mps,
+                100.0 * c.disengaged_share);
+  s.description += why;
+}
+
+// The built-in scenario whose route the first fix lies on: for a cruise the one whose set speed is
+// nearest the drive's mean; for a coast-down a coast scenario of that route with the nearest entry
+// speed, else that route's cruise nearest the entry speed.
 Parsed<sim::Scenario> nearest_builtin(const RunConditions& c, const std::string& recording) {
   if (!c.have_fix) return ParseError{recording, 0, recording::kGnssFile, "no GNSS fix: name the model with --model"};
+  const bool coast = coasting(c);
   std::optional<sim::Scenario> best;
-  double best_dv = std::numeric_limits<double>::infinity();
+  double best_score = std::numeric_limits<double>::infinity();
   for (const std::string& name : sim::builtin_scenarios(data_dir())) {
     auto s = sim::load_scenario(name, data_dir());
-    if (!s || s.value().coast) continue;
+    if (!s || (s.value().coast && !coast)) continue;
     const auto geometry = RouteGeometry::build(s.value().route.points);
     if (!geometry) continue;
     const auto p = geometry->project(c.first_lat_deg, c.first_lon_deg);
     if (p.offset_m > 30.0 || p.s_m < -50.0 || p.s_m > geometry->length_m() + 50.0) continue;
-    const double dv = std::abs(s.value().speed_mps - c.mean_speed_mps);
-    if (dv < best_dv) {
-      best_dv = dv;
+    const double dv = std::abs(s.value().speed_mps - (coast ? c.first_speed_mps : c.mean_speed_mps));
+    // A coast scenario before any cruise for a coast-down: it starts where the road allows one.
+    const double score = dv + (coast && !s.value().coast ? 1000.0 : 0.0);
+    if (score < best_score) {
+      best_score = score;
       best = std::move(s.value());
     }
   }
   if (!best)
     return ParseError{recording, 0, recording::kGnssFile, "the drive lies on no built-in route: name the model with --model"};
+  if (coast) as_coast(*best, c);
   return *best;
 }
 
@@ -163,23 +186,18 @@ Parsed<RealRun> load_real_run(const std::string& recording, const std::string& m
     if (!s) return s.error();
     scenario = std::move(s.value());
   }
-  if (!scenario && !route.empty()) {
-    auto fallback = truck ? Parsed<Vehicle>(*truck) : load_vehicle_file(default_vehicle_path());
-    if (!fallback) return fallback.error();
-    auto s = route_model(recording, route, fallback.value());
-    if (!s) return s.error();
-    scenario = std::move(s.value());
-  }
   if (!scenario) {
-    // A first pass with no bins finds where the drive started.
+    // A first pass with no bins finds where the drive started and whether it coasted.
     const RunLayout probe{*RouteGeometry::build(std::vector<GeoPoint>{{45, -93, 0}, {45.001, -93, 0}}), {}};
     auto fallback = truck ? Parsed<Vehicle>(*truck) : load_vehicle_file(default_vehicle_path());
     if (!fallback) return fallback.error();
     auto first = read_run(recording, db, probe, fallback.value());
     if (!first) return first.error();
-    auto chosen = nearest_builtin(first.value().features.conditions, recording);
-    if (!chosen && first.value().features.conditions.have_fix) chosen = traced_model(recording, fallback.value());
+    const RunConditions& c = first.value().features.conditions;
+    auto chosen = route.empty() ? nearest_builtin(c, recording) : route_model(recording, route, fallback.value());
+    if (!chosen && route.empty() && c.have_fix) chosen = traced_model(recording, fallback.value());
     if (!chosen) return chosen.error();
+    if (coasting(c)) as_coast(chosen.value(), c);
     scenario = std::move(chosen.value());
   }
   if (truck) scenario->vehicle = *truck;
@@ -201,9 +219,10 @@ std::string describe(const RealRun& run) {
   const auto mass = run.recorded.meta.vehicle.find("mass_kg");
   char line[512];
   std::snprintf(line, sizeof line,
-                "run %s: model %s (route %s), %.0f s at %.2f m/s, %.1f C, %.0f Pa, wind %.1f m/s from %.0f deg, mass %.0f kg",
-                run.label.c_str(), run.model.name.c_str(), run.model.route.name.c_str(), c.duration_s, c.mean_speed_mps, c.air_temp_c,
-                c.pressure_pa, c.wind_speed_mps, c.wind_from_deg, mass != run.recorded.meta.vehicle.end() ? mass->second : 0.0);
+                "run %s: model %s (route %s%s), %.0f s at %.2f m/s, %.1f C, %.0f Pa, wind %.1f m/s from %.0f deg, mass %.0f kg",
+                run.label.c_str(), run.model.name.c_str(), run.model.route.name.c_str(), run.model.coast ? ", coast-down" : "",
+                c.duration_s, c.mean_speed_mps, c.air_temp_c, c.pressure_pa, c.wind_speed_mps, c.wind_from_deg,
+                mass != run.recorded.meta.vehicle.end() ? mass->second : 0.0);
   return line;
 }
 

@@ -48,6 +48,10 @@ struct Feature {
 struct RunConditions {
   double duration_s = 0;
   double mean_speed_mps = 0;
+  double first_speed_mps = 0;  // the first wheel-based speed: a coast-down's entry speed
+  // Share of the speed samples sent while ETC1 said the driveline was disengaged (out of gear or
+  // clutch open): near 1 for a neutral coast-down, near 0 for a cruise.
+  double disengaged_share = 0;
   double air_temp_c = 15.0, temp_drift_c_per_h = 0.0, pressure_pa = 98100.0;
   double wind_speed_mps = 0.0, wind_from_deg = 0.0;
   std::vector<sim::WindPoint> wind_trace;  // 10 s running means of the measured wind, from the run's start
