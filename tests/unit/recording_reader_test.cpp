@@ -2,6 +2,7 @@
 // file, line and field and skipped, never silently lost.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -92,6 +93,29 @@ TEST_F(RecordingFolder, BadRowsAreReportedWithFileLineAndFieldAndSkipped) {
   EXPECT_EQ(errors.kept()[2].field, "sensor");
   EXPECT_EQ(errors.kept()[3].field, "z_mps2");
   EXPECT_NE(errors.kept()[0].file.find("accel.csv"), std::string::npos);
+}
+
+// A line a megabyte long (a logger's corrupted buffer) costs that line, not the rest of the file.
+TEST_F(RecordingFolder, AnOverlongLineIsSkippedAndReportedAndReadingGoesOn) {
+  const std::string frame = "can0 0CF00400#607D844A1400F084\n";
+  write("can.log", "(0.000000) " + frame + std::string(1 << 20, 'x') + "\n(0.002000) " + frame + "(0.004000) " + frame);
+  write("accel.csv",
+        "t_ns,sensor,x_mps2,y_mps2,z_mps2\n1,0,0,0,9.8\n" + std::string(3 << 20, '7') + "\n3,0,0,0,9.8\n" + std::string(70000, ','));
+  auto rec = RecordingReader::open(dir_.string());
+  ASSERT_TRUE(rec) << rec.error().to_string();
+  int frames = 0, samples = 0;
+  while (const Record* r = rec.value().next()) (r->index() == 0 ? frames : samples) += 1;
+  EXPECT_EQ(frames, 3);
+  EXPECT_EQ(samples, 2);
+  const auto& errors = rec.value().errors();
+  ASSERT_EQ(errors.count(), 3u);
+  std::vector<std::string> where;
+  for (const ParseError& e : errors.kept())
+    where.push_back(fs::path(e.file).filename().string() + ":" + std::to_string(e.line) + ": " + e.message);
+  std::sort(where.begin(), where.end());
+  EXPECT_EQ(where, (std::vector<std::string>{"accel.csv:3: line longer than 65536 bytes, skipped",
+                                             "accel.csv:5: line longer than 65536 bytes, skipped",
+                                             "can.log:2: line longer than 65536 bytes, skipped"}));
 }
 
 TEST_F(RecordingFolder, MissingColumnIsFatalAtOpen) {

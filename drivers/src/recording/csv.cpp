@@ -40,6 +40,7 @@ Parsed<CsvReader> CsvReader::open(const std::string& path, std::span<const std::
   if (!lines) return lines.error();
   std::optional<std::string_view> header;
   while ((header = lines.value().next()) && skippable(*header)) {
+    if (lines.value().overlong()) return lines.value().overlong_error();
   }
   if (!header) {
     if (lines.value().error()) return *lines.value().error();
@@ -71,6 +72,10 @@ CsvReader::Status CsvReader::next(std::span<const std::string_view>& row) {
     if (!line) {
       error_ = lines_.error();
       return Status::end;
+    }
+    if (lines_.overlong()) {
+      error_ = lines_.overlong_error();
+      return Status::bad_row;
     }
     if (skippable(*line)) continue;
     const std::size_t n = split(*line, split_);

@@ -19,6 +19,24 @@ Parsed<LineReader> LineReader::open(const std::string& path, std::size_t buffer_
   return LineReader(path, f, buffer_bytes);
 }
 
+std::optional<std::string_view> LineReader::skip_overlong() {
+  overlong_ = true;
+  for (;;) {
+    begin_ = end_;
+    if (!refill()) {
+      if (error_) return std::nullopt;
+      ++line_;
+      return std::string_view();
+    }
+    const char* start = buf_.data() + begin_;
+    if (const auto* nl = static_cast<const char*>(std::memchr(start, '\n', end_ - begin_))) {
+      begin_ += static_cast<std::size_t>(nl - start) + 1;
+      ++line_;
+      return std::string_view();
+    }
+  }
+}
+
 bool LineReader::refill() {
   if (eof_) return false;
   if (begin_ > 0) {
@@ -35,8 +53,13 @@ bool LineReader::refill() {
   return n > 0;
 }
 
+ParseError LineReader::overlong_error() const {
+  return ParseError{path_, line_, "", "line longer than " + std::to_string(kMaxLine) + " bytes, skipped"};
+}
+
 std::optional<std::string_view> LineReader::next() {
   if (error_) return std::nullopt;
+  overlong_ = false;
   for (;;) {
     const char* start = buf_.data() + begin_;
     const auto* nl = static_cast<const char*>(std::memchr(start, '\n', end_ - begin_));
@@ -47,10 +70,7 @@ std::optional<std::string_view> LineReader::next() {
       if (len > 0 && start[len - 1] == '\r') --len;
       return std::string_view(start, len);
     }
-    if (end_ - begin_ > kMaxLine) {
-      error_ = ParseError{path_, line_ + 1, "", "line longer than " + std::to_string(kMaxLine) + " bytes"};
-      return std::nullopt;
-    }
+    if (end_ - begin_ > kMaxLine) return skip_overlong();
     if (!refill()) {
       if (error_ || begin_ == end_) return std::nullopt;
       // Last line without a newline.

@@ -175,6 +175,10 @@ Parsed<std::unique_ptr<CandumpStream>> CandumpStream::open(const std::string& pa
 
 bool CandumpStream::next_frame(CanFrame& out, ErrorLog& errors) {
   while (const auto line = lines_.next()) {
+    if (lines_.overlong()) {
+      errors.add(lines_.overlong_error());
+      continue;
+    }
     LineResult result;
     if (const auto e = parse_candump_line(*line, ifaces_, out, result)) {
       errors.add(ParseError{lines_.path(), lines_.line_number(), e->field, e->message});

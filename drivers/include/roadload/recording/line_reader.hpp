@@ -20,9 +20,13 @@ class LineReader {
   // Opens `path`; "-" reads standard input.
   static Parsed<LineReader> open(const std::string& path, std::size_t buffer_bytes = kDefaultBuffer);
 
-  // Next line without its terminator; nullopt at end of file. A line longer than kMaxLine is an
-  // error (see error()), not a silent truncation.
+  // Next line without its terminator; nullopt at end of file or after a read error (error()). A
+  // line longer than kMaxLine is skipped whole and given as an empty line with overlong() set: its
+  // caller reports it with its number and reads on, never losing the rest of the file.
   std::optional<std::string_view> next();
+  bool overlong() const { return overlong_; }
+  // The report of the overlong line just given.
+  ParseError overlong_error() const;
   long line_number() const { return line_; }
   const std::string& path() const { return path_; }
   const std::optional<ParseError>& error() const { return error_; }
@@ -33,6 +37,7 @@ class LineReader {
   };
   LineReader(std::string path, std::FILE* f, std::size_t buffer_bytes);
   bool refill();
+  std::optional<std::string_view> skip_overlong();
 
   std::string path_;
   std::unique_ptr<std::FILE, FileCloser> file_;
@@ -40,6 +45,7 @@ class LineReader {
   std::size_t begin_ = 0;
   std::size_t end_ = 0;
   bool eof_ = false;
+  bool overlong_ = false;
   long line_ = 0;
   std::optional<ParseError> error_;
 };
