@@ -64,10 +64,14 @@ TEST(CandumpLine, InterfaceNameWithControlBytesIsRejected) {
   EXPECT_STREQ(p.error->field, "interface");
 }
 
-TEST(CandumpLine, LinesCanplayerIgnoresAreIgnored) {
+TEST(CandumpLine, BlankLinesAndCommentsAreIgnoredAnythingElseIsMalformed) {
   EXPECT_EQ(parse("").result, LineResult::ignored);
+  EXPECT_EQ(parse("  \r").result, LineResult::ignored);
   EXPECT_EQ(parse("# comment").result, LineResult::ignored);
   EXPECT_FALSE(parse("# comment").error);
+  const Parsed garbage = parse("garbage");
+  ASSERT_TRUE(garbage.error);
+  EXPECT_STREQ(garbage.error->field, "timestamp");
 }
 
 TEST(CandumpLine, FormatRoundTripsEveryKind) {

@@ -97,7 +97,10 @@ std::string_view InterfaceTable::name(std::uint8_t index) const {
 
 std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTable& ifaces, CanFrame& out, LineResult& result) {
   result = LineResult::ignored;
-  if (line.empty() || line[0] != '(') return std::nullopt;
+  // Blank lines and comments are passed over; any other line is a frame or an error, so that a
+  // file of something else is refused rather than read as a drive without frames.
+  if (line.find_first_not_of(" \t\r") == std::string_view::npos || line[0] == '#') return std::nullopt;
+  if (line[0] != '(') return LineError{"timestamp", "expected a candump -L line: (seconds.fraction) iface ID#DATA"};
   if (auto e = parse_stamp(line, out.t)) return e;
   if (line.empty() || line[0] != ' ') return LineError{"interface", "expected ' ' after timestamp"};
   line.remove_prefix(1);
