@@ -121,8 +121,7 @@ std::variant<AnalyzeOptions, int> parse(Args args) {
       o.mass = *m;
     } else if (auto d = opt.value("--dbc")) {
       o.dbcs.emplace_back(*d);
-    } else if (auto p = opt.positional()) {
-      o.recording = *p;
+    } else if (opt.single_positional(o.recording, "RECORDING")) {
     } else if (!opt.failed()) {
       return opt.fail_unknown();
     }

@@ -132,9 +132,7 @@ int run_decode(Args args) {
       dbcs.emplace_back(*v);
     } else if (auto n = opts.number("--pgn", 0, 0x3FFFF)) {
       only.push_back(static_cast<j1939::Pgn>(*n));
-    } else if (auto p = opts.positional()) {
-      if (!input.empty()) return opts.fail("only one input may be given");
-      input = *p;
+    } else if (opts.single_positional(input, "input")) {
     } else {
       return opts.fail_unknown();
     }

@@ -81,6 +81,17 @@ std::optional<std::string_view> OptionParser::positional() {
   return arg;
 }
 
+bool OptionParser::single_positional(std::string& into, std::string_view what) {
+  const auto arg = positional();
+  if (!arg) return false;
+  if (!into.empty()) {
+    fail("one " + std::string(what) + " at a time: '" + into + "' and '" + std::string(*arg) + "' given");
+    return true;
+  }
+  into = *arg;
+  return true;
+}
+
 int OptionParser::fail(const std::string& message) {
   if (!failed_)
     std::fprintf(stderr, "roadload %.*s: %s (see --help)\n", static_cast<int>(command_.size()), command_.data(), message.c_str());

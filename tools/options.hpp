@@ -32,6 +32,9 @@ class OptionParser {
   std::optional<std::int64_t> number(std::string_view name, std::int64_t min, std::int64_t max);
   std::optional<double> real(std::string_view name, double min, double max);
   std::optional<std::string_view> positional();
+  // A command's one positional argument (`what`, as its usage names it) into `into`: true when an
+  // argument was taken, a second one failing with both named (64) rather than replacing the first.
+  bool single_positional(std::string& into, std::string_view what);
 
   int fail(const std::string& message);
   int fail_unknown();

@@ -141,8 +141,7 @@ int run_psd(Args args) {
       o.column = *c;
     } else if (auto out = opt.value("-o")) {
       o.out = *out;
-    } else if (auto p = opt.positional()) {
-      o.input = *p;
+    } else if (opt.single_positional(o.input, "RECORDING")) {
     } else if (!opt.failed()) {
       return opt.fail_unknown();
     }

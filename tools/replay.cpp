@@ -103,9 +103,7 @@ std::variant<ReplayOptions, int> parse(Args args) {
       const auto rate = parse_rate(*r);
       if (!rate) return p.fail("--rate: '" + std::string(*r) + "' is not 1, a positive factor or max");
       o.rate = *rate;
-    } else if (auto pos = p.positional()) {
-      if (!o.input.empty()) return p.fail("one recording at a time");
-      o.input = *pos;
+    } else if (p.single_positional(o.input, "recording")) {
     } else {
       return p.fail_unknown();
     }

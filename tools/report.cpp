@@ -38,8 +38,7 @@ int run_report(Args args) {
       truth_dir = *t;
     } else if (auto ti = opt.value("--title")) {
       title = *ti;
-    } else if (auto p = opt.positional()) {
-      results_dir = *p;
+    } else if (opt.single_positional(results_dir, "RESULTS folder")) {
     } else if (!opt.failed()) {
       return opt.fail_unknown();
     }
