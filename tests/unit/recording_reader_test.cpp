@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 #include "roadload/recording/reader.hpp"
 
@@ -122,8 +124,37 @@ TEST_F(RecordingFolder, MissingColumnIsFatalAtOpen) {
   write("gnss.csv", "t_ns,lat_deg,lon_deg\n1,45,-93\n");
   auto rec = RecordingReader::open(dir_.string());
   ASSERT_FALSE(rec);
-  EXPECT_EQ(rec.error().field, "utc_ns");
+  EXPECT_EQ(rec.error().field, "alt_m");
   EXPECT_EQ(rec.error().line, 1);
+}
+
+// A receiver that gives neither UTC nor course nor HDOP: the fixes read, with UTC unknown (0) and
+// course NaN. What no sensor reports is refused with its line and field.
+TEST_F(RecordingFolder, GnssWithoutUtcOrCourseReadsAndNonsenseIsRefused) {
+  write("gnss.csv",
+        "t_ns,lat_deg,lon_deg,alt_m,speed_mps,mode\n"
+        "1000,45.25,-93.69,290.5,13.4,3\n"
+        "-5,45.25,-93.69,290.5,13.4,3\n"                                                 // line 3: a stamp before the clock's zero
+        "9223372036854775807,45.25,-93.69,290.5,13.4,3\n"                                // line 4: beyond any clock
+        "2000,45.25,-93.69,290.5,1e9,3\n");                                              // line 5: speed
+  write("accel.csv", "t_ns,sensor,x_mps2,y_mps2,z_mps2\n1,0,0,0,9.8\n2,0,0,1e6,9.8\n");  // line 3: y
+  auto rec = RecordingReader::open(dir_.string());
+  ASSERT_TRUE(rec) << rec.error().to_string();
+  std::vector<GnssFix> fixes;
+  while (const Record* r = rec.value().next()) {
+    if (const auto* f = std::get_if<GnssFix>(r)) fixes.push_back(*f);
+  }
+  ASSERT_EQ(fixes.size(), 1u);
+  EXPECT_EQ(fixes[0].utc_ns, 0);
+  EXPECT_TRUE(std::isnan(fixes[0].course_deg));
+  EXPECT_DOUBLE_EQ(fixes[0].lat_deg, 45.25);
+  std::vector<std::string> errors;
+  for (const ParseError& e : rec.value().errors().kept()) {
+    errors.push_back(fs::path(e.file).filename().string() + ":" + std::to_string(e.line) + ": " + e.field);
+  }
+  std::sort(errors.begin(), errors.end());
+  EXPECT_EQ(errors,
+            (std::vector<std::string>{"accel.csv:3: y_mps2", "gnss.csv:3: t_ns", "gnss.csv:4: t_ns", "gnss.csv:5: speed_mps"}));
 }
 
 TEST_F(RecordingFolder, MetadataErrorsNameTheKeyAndLine) {
@@ -139,6 +170,35 @@ TEST(Metadata, NonAsciiIsRejectedWithItsLine) {
   auto m = parse_metadata("format = \"roadload-recording\"\nversion = 1\n\xcf\xa6 = 1\n", "meta.toml");
   ASSERT_FALSE(m);
   EXPECT_EQ(m.error().line, 3);
+}
+
+// Keys the format defines, of the wrong type, are errors rather than absent: a mass given as text
+// would leave the truck's mass unknown without a word.
+TEST(Metadata, WrongTypesAreNamedNotIgnored) {
+  const std::string head = "format = \"roadload-recording\"\nversion = 1\n";
+  const std::tuple<std::string, std::string, long> cases[] = {
+      {"[vehicle]\nmass_kg = \"heavy\"\n", "vehicle.mass_kg", 4},
+      {"vehicle = 5\n", "vehicle", 3},
+      {"clock = \"x\"\n", "clock", 3},
+      {"can = [1]\n", "can", 3},
+  };
+  for (const auto& [body, field, line] : cases) {
+    auto m = parse_metadata(head + body, "meta.toml");
+    ASSERT_FALSE(m) << body;
+    EXPECT_EQ(m.error().field, field) << body;
+    EXPECT_EQ(m.error().line, line) << body;
+  }
+  auto labelled = parse_metadata(head + "[vehicle]\nname = \"truck 7\"\nmass_kg = 36000\n", "meta.toml");
+  ASSERT_TRUE(labelled) << labelled.error().to_string();
+  EXPECT_EQ(labelled.value().vehicle_text.at("name"), "truck 7");
+}
+
+TEST_F(RecordingFolder, AMetaTomlThatIsADirectoryIsSaidToBeOne) {
+  write("can.log", "");
+  fs::create_directories(dir_ / "meta.toml");
+  auto rec = RecordingReader::open(dir_.string());
+  ASSERT_FALSE(rec);
+  EXPECT_EQ(rec.error().message, "Is a directory");
 }
 
 TEST_F(RecordingFolder, MetadataRoundTrips) {

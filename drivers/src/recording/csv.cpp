@@ -35,7 +35,8 @@ std::optional<double> parse_f64(std::string_view s) {
   return v;
 }
 
-Parsed<CsvReader> CsvReader::open(const std::string& path, std::span<const std::string_view> required) {
+Parsed<CsvReader> CsvReader::open(const std::string& path, std::span<const std::string_view> required,
+                                  std::span<const std::string_view> optional) {
   auto lines = LineReader::open(path);
   if (!lines) return lines.error();
   std::optional<std::string_view> header;
@@ -52,14 +53,21 @@ Parsed<CsvReader> CsvReader::open(const std::string& path, std::span<const std::
   if (n > kMaxColumns) return ParseError{path, line, "header", "more than 32 columns"};
   std::vector<std::string> names;
   std::vector<std::size_t> map;
-  for (std::string_view want : required) {
-    std::size_t found = n;
+  auto position = [&](std::string_view want) {
     for (std::size_t i = 0; i < n; ++i) {
-      if (cols[i] == want) found = i;
+      if (cols[i] == want) return i;
     }
-    if (found == n) return ParseError{path, line, std::string(want), "required column missing from header"};
+    return kAbsent;
+  };
+  for (std::string_view want : required) {
+    const std::size_t found = position(want);
+    if (found == kAbsent) return ParseError{path, line, std::string(want), "required column missing from header"};
     names.emplace_back(want);
     map.push_back(found);
+  }
+  for (std::string_view want : optional) {
+    names.emplace_back(want);
+    map.push_back(position(want));
   }
   CsvReader r(std::move(lines.value()), std::move(names), std::move(map));
   r.file_columns_ = n;
@@ -85,7 +93,7 @@ CsvReader::Status CsvReader::next(std::span<const std::string_view>& row) {
                               (n > kMaxColumns ? std::string("more than 32") : std::to_string(n))};
       return Status::bad_row;
     }
-    for (std::size_t i = 0; i < map_.size(); ++i) row_[i] = split_[map_[i]];
+    for (std::size_t i = 0; i < map_.size(); ++i) row_[i] = map_[i] == kAbsent ? std::string_view() : split_[map_[i]];
     row = std::span<const std::string_view>(row_.data(), map_.size());
     return Status::row;
   }

@@ -39,6 +39,23 @@ class Reader {
 
   // A vehicle number a truck can have: finite; a mass (its name ends in _kg) above 0 and below
   // 200 t; an axle's position between 0 and 50 m behind the front axle.
+  // A free key named with its unit holds a number: text there is a mistake, not a label.
+  static bool names_a_unit(std::string_view key) {
+    for (std::string_view unit :
+         {"_kg", "_m", "_m2", "_mps", "_mps2", "_nm", "_pa", "_c", "_deg", "_s", "_ns", "_hz", "_w", "_l", "_pct", "_rpm", "_kw"}) {
+      if (key.ends_with(unit)) return true;
+    }
+    return false;
+  }
+
+  // A table the format defines: absent is allowed, any other type is an error.
+  const toml::table* table(const toml::table& root, std::string_view key) const {
+    const toml::node* n = root.get(key);
+    if (n == nullptr) return nullptr;
+    if (!n->is_table()) fail(n, std::string(key), "expected a table ([" + std::string(key) + "])");
+    return n->as_table();
+  }
+
   static const char* unphysical(std::string_view key, double v) {
     if (!std::isfinite(v)) return "not a finite number";
     if (key.ends_with("_kg") && !(v > 0 && v < 200'000)) return "a mass must lie between 0 and 200,000 kg";
@@ -66,16 +83,16 @@ class Reader {
     m.version = integer(*version, "version");
     if (m.version != kFormatVersion) fail(version, "version", "unsupported format version");
     m.created_by = text(root, "created_by", "");
-    if (const toml::table* clock = root["clock"].as_table()) {
+    if (const toml::table* clock = table(root, "clock")) {
       m.clock_source = text(*clock, "source", "clock.");
       if (const toml::node* off = clock->get("utc_offset_ns")) m.utc_offset_ns = integer(*off, "clock.utc_offset_ns");
     }
-    if (const toml::table* vehicle = root["vehicle"].as_table()) {
+    if (const toml::table* vehicle = table(root, "vehicle")) {
       for (const auto& [key, node] : *vehicle) {
         const std::string field = "vehicle." + std::string(key.str());
         if (key.str() == "file" && node.is_table()) {
           m.vehicle_file = described_vehicle(*node.as_table());
-        } else if (node.is_string()) {
+        } else if (node.is_string() && !names_a_unit(key.str())) {
           m.vehicle_text[std::string(key.str())] = std::string(*node.value<std::string_view>());
         } else {
           const double v = number(node, field);
@@ -84,7 +101,7 @@ class Reader {
         }
       }
     }
-    if (const toml::table* can = root["can"].as_table()) {
+    if (const toml::table* can = table(root, "can")) {
       if (const toml::node* ifs = can->get("interfaces")) {
         const toml::array* arr = ifs->as_array();
         if (arr == nullptr) fail(ifs, "can.interfaces", "expected an array of names");

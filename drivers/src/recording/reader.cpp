@@ -69,6 +69,19 @@ class Fields {
     fail(i, "expected an integer");
     return 0;
   }
+  // A capture-clock stamp as can.log bounds it: nanoseconds from 0 to 9e18 (year 2255 as UNIX time).
+  CaptureTime stamp(std::size_t i) {
+    const std::int64_t ns = i64(i);
+    if (ns < 0 || ns > kMaxStampNs) fail(i, "stamp out of range 0..9000000000000000000 ns");
+    return capture_time_from_ns(ns);
+  }
+  // UTC in ns since 1970 when given; an empty field is a receiver that does not say (0).
+  std::int64_t utc_or_zero(std::size_t i) {
+    if (row_[i].empty()) return 0;
+    const std::int64_t ns = i64(i);
+    if (ns < 0 || ns > kMaxStampNs) fail(i, "UTC out of range 0..9000000000000000000 ns");
+    return ns;
+  }
   double f64(std::size_t i) {
     if (auto v = parse_f64(row_[i])) return *v;
     fail(i, "expected a finite number");
@@ -99,47 +112,54 @@ class Fields {
   void fail(std::size_t i, std::string m) {
     if (!error_) error_.emplace(i, std::move(m));
   }
+  static constexpr std::int64_t kMaxStampNs = 9'000'000'000'000'000'000;
   std::span<const std::string_view> row_;
   FieldError error_;
 };
 
 constexpr std::string_view kAccelColumns[] = {"t_ns", "sensor", "x_mps2", "y_mps2", "z_mps2"};
-constexpr std::string_view kGnssColumns[] = {"t_ns",      "utc_ns",     "lat_deg", "lon_deg", "alt_m",
-                                             "speed_mps", "course_deg", "mode",    "hdop"};
+// Many receivers and loggers give neither UTC nor course: those columns may be left out.
+constexpr std::string_view kGnssColumns[] = {"t_ns", "lat_deg", "lon_deg", "alt_m", "speed_mps", "mode"};
+constexpr std::string_view kGnssOptional[] = {"utc_ns", "course_deg", "hdop"};
 constexpr std::string_view kWeatherColumns[] = {"t_ns", "station", "air_temp_c", "pressure_pa", "wind_speed_mps", "wind_from_deg"};
 
 FieldError to_accel(std::span<const std::string_view> row, AccelSample& s) {
   Fields f(row);
-  s.t = capture_time_from_ns(f.i64(0));
+  s.t = f.stamp(0);
   s.sensor = f.small(1, 255);
   s.x_mps2 = f.f64(2);
   s.y_mps2 = f.f64(3);
   s.z_mps2 = f.f64(4);
+  // 200 g: beyond any accelerometer on a truck (shock sensors included).
+  f.within(2, s.x_mps2, -2000, 2000, "acceleration");
+  f.within(3, s.y_mps2, -2000, 2000, "acceleration");
+  f.within(4, s.z_mps2, -2000, 2000, "acceleration");
   return f.error();
 }
 
 FieldError to_gnss(std::span<const std::string_view> row, GnssFix& s) {
   Fields f(row);
-  s.t = capture_time_from_ns(f.i64(0));
-  s.utc_ns = f.i64(1);
-  s.lat_deg = f.f64(2);
-  s.lon_deg = f.f64(3);
-  s.alt_m = f.f64(4);
-  s.speed_mps = f.f64(5);
-  s.course_deg = f.f64(6);
-  s.mode = static_cast<GnssFixMode>(f.small(7, 5));
+  s.t = f.stamp(0);
+  s.lat_deg = f.f64(1);
+  s.lon_deg = f.f64(2);
+  s.alt_m = f.f64(3);
+  s.speed_mps = f.f64(4);
+  s.mode = static_cast<GnssFixMode>(f.small(5, 5));
+  s.utc_ns = f.utc_or_zero(6);
+  s.course_deg = f.f64_or_nan(7);
   s.hdop = f.f64_or_nan(8);  // gpsd reports HDOP only with satellites in view
-  f.within(4, s.alt_m, -1000, 10000, "height");
-  f.within(5, s.speed_mps, 0, 150, "speed");
-  if (!f.error() && (s.lat_deg < -90 || s.lat_deg > 90)) return std::make_pair(std::size_t{2}, std::string("latitude out of range"));
-  if (!f.error() && (s.lon_deg < -180 || s.lon_deg > 180))
-    return std::make_pair(std::size_t{3}, std::string("longitude out of range"));
+  f.within(1, s.lat_deg, -90, 90, "latitude");
+  f.within(2, s.lon_deg, -180, 180, "longitude");
+  f.within(3, s.alt_m, -1000, 10000, "height");
+  f.within(4, s.speed_mps, 0, 150, "speed");
+  f.within(7, s.course_deg, 0, 360, "course");
+  f.within(8, s.hdop, 0, 100, "HDOP");
   return f.error();
 }
 
 FieldError to_weather(std::span<const std::string_view> row, WeatherSample& s) {
   Fields f(row);
-  s.t = capture_time_from_ns(f.i64(0));
+  s.t = f.stamp(0);
   s.station = f.small(1, 255);
   s.air_temp_c = f.f64_or_nan(2);
   s.pressure_pa = f.f64_or_nan(3);
@@ -153,9 +173,10 @@ FieldError to_weather(std::span<const std::string_view> row, WeatherSample& s) {
   return f.error();
 }
 
-template <typename Sample, std::size_t N, typename Convert>
-Parsed<std::unique_ptr<Stream>> open_csv(const fs::path& path, const std::string_view (&cols)[N], const char* name, Convert convert) {
-  auto csv = CsvReader::open(path.string(), cols);
+template <typename Sample, typename Convert>
+Parsed<std::unique_ptr<Stream>> open_csv(const fs::path& path, std::span<const std::string_view> cols, const char* name,
+                                         Convert convert, std::span<const std::string_view> optional = {}) {
+  auto csv = CsvReader::open(path.string(), cols, optional);
   if (!csv) return csv.error();
   return std::unique_ptr<Stream>(new CsvStream<Sample, Convert>(std::move(csv.value()), name, convert));
 }
@@ -216,6 +237,10 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned 
   const fs::path dir(path);
   if (fs::exists(dir / kMetaFile)) {
     std::ifstream in(dir / kMetaFile);
+    if (fs::is_directory(dir / kMetaFile, ec) || !in) {
+      return ParseError{(dir / kMetaFile).string(), 0, "",
+                        fs::is_directory(dir / kMetaFile, ec) ? "Is a directory" : "cannot be read"};
+    }
     std::stringstream text;
     text << in.rdbuf();
     auto meta = parse_metadata(text.str(), (dir / kMetaFile).string());
@@ -234,7 +259,8 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned 
     Parsed<std::unique_ptr<Stream>> (*open)(const fs::path&);
   } csvs[] = {
       {kAccelStream, kAccelFile, [](const fs::path& p) { return open_csv<AccelSample>(p, kAccelColumns, kAccelFile, to_accel); }},
-      {kGnssStream, kGnssFile, [](const fs::path& p) { return open_csv<GnssFix>(p, kGnssColumns, kGnssFile, to_gnss); }},
+      {kGnssStream, kGnssFile,
+       [](const fs::path& p) { return open_csv<GnssFix>(p, kGnssColumns, kGnssFile, to_gnss, kGnssOptional); }},
       {kWeatherStream, kWeatherFile,
        [](const fs::path& p) { return open_csv<WeatherSample>(p, kWeatherColumns, kWeatherFile, to_weather); }},
   };

@@ -19,10 +19,12 @@ class CsvReader {
  public:
   static constexpr std::size_t kMaxColumns = 32;
 
-  static Parsed<CsvReader> open(const std::string& path, std::span<const std::string_view> required);
+  // `optional` columns may be missing from the header: their fields then read as empty.
+  static Parsed<CsvReader> open(const std::string& path, std::span<const std::string_view> required,
+                                std::span<const std::string_view> optional = {});
 
   enum class Status : std::uint8_t { row, bad_row, end };
-  // Fills `row` with the next data row's fields in the order of `required`. A bad row is reported
+  // Fills `row` with the next data row's fields in the order of `required`, then `optional`. A bad row is reported
   // (error()) and the next call goes on with the following line; `end` with error() set means the
   // file could not be read.
   Status next(std::span<const std::string_view>& row);
@@ -37,8 +39,9 @@ class CsvReader {
       : lines_(std::move(lines)), names_(std::move(names)), map_(std::move(map)) {}
 
   LineReader lines_;
-  std::vector<std::string> names_;  // required column names
-  std::vector<std::size_t> map_;    // required column -> position in the file
+  std::vector<std::string> names_;  // required, then optional column names
+  std::vector<std::size_t> map_;    // column -> position in the file (kAbsent: not in it)
+  static constexpr std::size_t kAbsent = kMaxColumns;
   std::size_t file_columns_ = 0;
   std::array<std::string_view, kMaxColumns> split_{};
   std::array<std::string_view, kMaxColumns> row_{};
