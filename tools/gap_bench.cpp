@@ -116,6 +116,27 @@ void print_case(std::size_t i, const gap::CaseOutcome& o) {
       "brackets: linear; noise drives %.0f +- %.0f\n",
       o.result.chi2_raw, o.result.chi2_before, linear_truck, o.result.chi2_after, linear_after, o.result.null_chi2_mean,
       o.result.null_chi2_sd);
+  // The leading candidates and any hidden effect behind them, so that a decision rule can be
+  // judged from the bench's output without simulating again.
+  std::string lead;
+  for (std::size_t k = 0; k < d.singles.size(); ++k) {
+    const gap::Candidate& c = o.result.problem.candidates[d.singles[k].effects[0]];
+    const bool hidden = std::any_of(o.truth.effects.begin(), o.truth.effects.end(),
+                                    [&](const auto& e) { return sim::effect_info(e.first).name == c.name; });
+    if (k >= 4 && !hidden) continue;
+    char text[128];
+    std::snprintf(text, sizeof text, "%s %s%s %.1f (%.0f)", lead.empty() ? "" : ",", c.name.c_str(),
+                  c.stood_for_by.empty() ? "" : "*", d.singles[k].gain, c.null_gain);
+    lead += text;
+  }
+  if (d.best_pair) {
+    char text[160];
+    std::snprintf(text, sizeof text, "; pair %s + %s %.1f", o.result.problem.candidates[d.best_pair->effects[0]].name.c_str(),
+                  o.result.problem.candidates[d.best_pair->effects[1]].name.c_str(), d.best_pair->gain);
+    lead += text;
+  }
+  std::printf("      gains (noise drives' most; * never named):%s%s%s\n", lead.c_str(),
+              o.result.withheld.empty() ? "" : "; withheld: ", o.result.withheld.c_str());
   std::fflush(stdout);
 }
 
