@@ -21,7 +21,8 @@ const char* const kUsage =
     "  --route R            route file or built-in route name: cells for the live CRR\n"
     "  --results DIR        at exit, DIR/cells.csv and DIR/trip.json from the live filter\n"
     "  --no-gnss            do not connect to gpsd\n"
-    "  --replay REC         accelerometer, GNSS and weather streams from recording REC\n"
+    "  --replay REC         accelerometer, GNSS and weather streams from recording folder REC\n"
+    "                       (a can.log alone, with --replay-can)\n"
     "  --replay-rate R      their pace: 1 real time, N times faster, 0 as fast as read\n"
     "  --replay-can         CAN from the recording too, instead of the buses\n"
     "  --replay-origin FILE wait for `roadload replay --origin FILE` and replay in step with its CAN\n"
@@ -52,8 +53,9 @@ Parsed<CommandLine> parse_command_line(const std::vector<std::string>& args) {
   bool can_given = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
+    // An option's value, never the next option: `--can --no-gnss` lacks its interface.
     auto value = [&](std::string& out) -> bool {
-      if (i + 1 >= args.size()) return false;
+      if (i + 1 >= args.size() || args[i + 1].starts_with("--")) return false;
       out = args[++i];
       return true;
     };

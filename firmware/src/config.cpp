@@ -1,6 +1,7 @@
 #include "roadload/firmware/config.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
@@ -182,8 +183,13 @@ std::optional<ParseError> validate(const DaemonConfig& c) {
   if (!(r.segment_max.count() >= 10 && r.segment_max.count() <= 31'536'000)) {
     return field_error("recording.segment_max_s", "expected 10 to 31536000 (a year)");
   }
-  if (!(r.segment_max_mib >= 1)) return field_error("recording.segment_max_mib", "expected at least 1");
-  if (!(r.quota_mib >= 2 * r.segment_max_mib)) return field_error("recording.quota_mib", "expected at least twice segment_max_mib");
+  // Bounded so that their bytes fit the recorder's 64-bit counters with room to spare.
+  if (!(r.segment_max_mib >= 1 && r.segment_max_mib <= 1 << 20)) {
+    return field_error("recording.segment_max_mib", "expected 1 to 1048576 (1 TiB)");
+  }
+  if (!(r.quota_mib >= 2 * r.segment_max_mib && r.quota_mib <= 1 << 30)) {
+    return field_error("recording.quota_mib", "expected twice segment_max_mib to 1073741824 (1 PiB)");
+  }
   if (c.status.text_file.empty()) return field_error("status.text_file", "must not be empty");
   if (!(c.status.interval.count() >= 0.1 && c.status.interval.count() <= 60)) {
     return field_error("status.interval_s", "expected 0.1 to 60");
@@ -191,6 +197,19 @@ std::optional<ParseError> validate(const DaemonConfig& c) {
   if (!(c.replay.rate >= 0 && c.replay.rate <= 1000)) return field_error("replay.rate", "expected 0 (as fast as read) to 1000");
   if (c.replay.can && c.replay.recording.empty()) return field_error("replay.can", "needs replay.recording");
   if (!c.replay.origin_file.empty() && c.replay.recording.empty()) return field_error("replay.origin_file", "needs replay.recording");
+  if (!c.replay.recording.empty()) {
+    std::error_code ec;
+    const auto kind = std::filesystem::status(c.replay.recording, ec).type();
+    if (kind == std::filesystem::file_type::not_found) {
+      return field_error("replay.recording", "'" + c.replay.recording + "' does not exist");
+    }
+    // A plain file is a can.log alone: it has CAN to replay and nothing else.
+    if (kind != std::filesystem::file_type::directory && !c.replay.can) {
+      return field_error("replay.recording", "'" + c.replay.recording +
+                                                 "' is not a recording folder: accelerometers, GNSS and weather replay from one "
+                                                 "(a can.log alone replays with --replay-can)");
+    }
+  }
   return std::nullopt;
 }
 

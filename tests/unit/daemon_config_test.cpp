@@ -83,6 +83,31 @@ TEST(DaemonConfig, CommandLineErrorsNameTheOption) {
   auto needs = parse_command_line({"--replay-can"});
   ASSERT_FALSE(needs.ok());
   EXPECT_EQ(needs.error().field, "replay.can");
+  // The next option is not an option's value.
+  auto swallowed = parse_command_line({"--can", "--no-gnss"});
+  ASSERT_FALSE(swallowed.ok());
+  EXPECT_EQ(swallowed.error().field, "--can");
+}
+
+TEST(DaemonConfig, SizesThatWouldOverflowAreRefused) {
+  for (const char* text : {"[recording]\nsegment_max_mib = inf\nquota_mib = inf\n", "[recording]\nquota_mib = 1e300\n",
+                           "[recording]\nsegment_max_mib = nan\n"}) {
+    auto c = load_config(write_temp(text));
+    ASSERT_FALSE(c.ok()) << text;
+    EXPECT_TRUE(c.error().field == "recording.segment_max_mib" || c.error().field == "recording.quota_mib") << c.error().to_string();
+  }
+}
+
+// Replay needs a recording folder; a can.log alone has CAN and nothing else to replay.
+TEST(DaemonConfig, ReplayOfSomethingThatIsNoRecordingIsRefused) {
+  auto missing = parse_command_line({"--replay", "/nonexistent/recording"});
+  ASSERT_FALSE(missing.ok());
+  EXPECT_EQ(missing.error().field, "replay.recording");
+  const std::string file = write_temp("(1.000000) can0 18FEF100#0011223344556677\n");
+  auto plain = parse_command_line({"--replay", file});
+  ASSERT_FALSE(plain.ok());
+  EXPECT_NE(plain.error().message.find("--replay-can"), std::string::npos) << plain.error().to_string();
+  EXPECT_TRUE(parse_command_line({"--replay", file, "--replay-can"}).ok());
 }
 
 }  // namespace
