@@ -4,6 +4,7 @@
 #include <systemd/sd-daemon.h>
 
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "roadload/firmware/daemon.hpp"
 #include "roadload/firmware/sources.hpp"
 #include "roadload/firmware/status_log.hpp"
+#include "roadload/io/directory_lock.hpp"
 #include "roadload/io/posix_time.hpp"
 #include "roadload/recording/metadata_vehicle.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
@@ -157,6 +159,13 @@ int run(const CommandLine& cl) {
   for (int s : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&signals, s);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
+  // One daemon per data directory, before anything is written there.
+  std::optional<io::DirectoryLock> lock;
+  if (c.recording.enabled) {
+    auto taken = io::DirectoryLock::take(c.recording.data_dir);
+    if (!taken) return fail(taken.error().to_string());
+    lock.emplace(std::move(taken.value()));
+  }
   Estimation est;
   if (auto e = load_estimation(c, est)) return fail(e->to_string());
   io::MonotonicClock clock;

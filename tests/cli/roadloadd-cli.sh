@@ -62,6 +62,9 @@ grep -q '"crr_not_identified":"' "$work/status.jsonl" || fail "status.jsonl neve
 "$roadloadd" --replay "$work/sim" --replay-can --data-dir "$work/rec2" --status "$work/s.log" --status-json '' 2>/dev/null &
 pid=$!
 for _ in $(seq 50); do [[ -s $work/s.log ]] && (($(wc -l <"$work/s.log") >= 2)) && break; sleep 0.1; done
+# A second daemon on the same data directory is refused while the first runs, naming the holder.
+expect_status 1 "$roadloadd" --replay "$work/sim" --replay-can --data-dir "$work/rec2" --status "$work/s2.log" --status-json ''
+grep -q "in use by another roadloadd (pid $pid)" "$work/err" || fail "second daemon on one data directory: $(cat "$work/err")"
 mv "$work/s.log" "$work/s.log.1"
 kill -HUP "$pid"
 for _ in $(seq 30); do [[ -s $work/s.log ]] && break; sleep 0.1; done
