@@ -132,7 +132,8 @@ std::optional<RecorderConfig> recorder_config(const RecordingConfig& r) {
   return rc;
 }
 
-// Runs until SIGTERM/SIGINT (or the replays end, with --exit-when-done); SIGHUP reopens and rotates.
+// Runs until SIGTERM/SIGINT (or the replays end, with --exit-when-done). SIGHUP reopens the status
+// files for logrotate; it must not cut a drive in two, so a new segment takes SIGUSR1.
 void serve(Daemon& daemon, StatusLog& log, const CommandLine& cl, const sigset_t& signals) {
   const timespec wait = io::to_timespec(std::chrono::round<Nanoseconds>(cl.config.status.interval));
   for (;;) {
@@ -140,6 +141,9 @@ void serve(Daemon& daemon, StatusLog& log, const CommandLine& cl, const sigset_t
     if (sig == SIGTERM || sig == SIGINT) return;
     if (sig == SIGHUP) {
       log.reopen();
+      continue;
+    }
+    if (sig == SIGUSR1) {
       daemon.rotate_recording();
       continue;
     }
@@ -156,7 +160,7 @@ int run(const CommandLine& cl) {
   // Signals are taken synchronously by the main thread; every thread started later inherits the mask.
   sigset_t signals;
   sigemptyset(&signals);
-  for (int s : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&signals, s);
+  for (int s : {SIGTERM, SIGINT, SIGHUP, SIGUSR1}) sigaddset(&signals, s);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   // One daemon per data directory, before anything is written there.

@@ -31,8 +31,9 @@ const char* const kUsage =
     "  --version            print the version and exit\n"
     "  -h, --help           this text\n"
     "\n"
-    "Signals: SIGTERM/SIGINT flush and exit; SIGHUP reopens the status files and starts a new\n"
-    "recording segment (for logrotate).\n";
+    "Signals: SIGTERM/SIGINT flush and exit; SIGHUP reopens the status files (logrotate) without\n"
+    "cutting the recording; SIGUSR1 ends the recording segment and starts a\n"
+    "new one.\n";
 
 namespace {
 

@@ -57,8 +57,8 @@ grep -Eq 'WARN CRR not identified yet: (its uncertainty exceeds the limit|the dr
   fail "no status line says why the CRR is not identified: $(grep -m1 'not identified' "$work/status.log")"
 grep -q '"crr_not_identified":"' "$work/status.jsonl" || fail "status.jsonl never names why the CRR is not identified"
 
-# SIGHUP (logrotate): the status files are reopened by name and a new segment begins; SIGTERM
-# flushes and exits cleanly with everything recorded.
+# SIGHUP (logrotate): the status files are reopened by name and the segment goes on; SIGUSR1 starts
+# a new segment; SIGTERM flushes and exits cleanly with everything recorded.
 "$roadloadd" --replay "$work/sim" --replay-can --data-dir "$work/rec2" --status "$work/s.log" --status-json '' 2>/dev/null &
 pid=$!
 for _ in $(seq 50); do [[ -s $work/s.log ]] && (($(wc -l <"$work/s.log") >= 2)) && break; sleep 0.1; done
@@ -69,6 +69,9 @@ mv "$work/s.log" "$work/s.log.1"
 kill -HUP "$pid"
 for _ in $(seq 30); do [[ -s $work/s.log ]] && break; sleep 0.1; done
 [[ -s $work/s.log ]] || fail "after SIGHUP no new status log was opened"
+segs=("$work"/rec2/*/)
+((${#segs[@]} == 1)) || fail "SIGHUP cut the recording: ${#segs[@]} segments"
+kill -USR1 "$pid"
 sleep 1.2
 kill -TERM "$pid"
 rc=0
@@ -76,9 +79,9 @@ wait "$pid" || rc=$?
 ((rc == 0)) || fail "roadloadd exited $rc on SIGTERM"
 grep -q '^roadloadd stopped: [0-9]* lines recorded, 0 lost' "$work/s.log" || fail "no clean stop line: $(tail -n 1 "$work/s.log")"
 segs=("$work"/rec2/*/)
-((${#segs[@]} == 2)) || fail "SIGHUP should start a second segment; found ${#segs[@]}"
+((${#segs[@]} == 2)) || fail "SIGUSR1 should start a second segment; found ${#segs[@]}"
 frames=$(cat "$work"/rec2/*/can.log | wc -l)
-((frames > 0)) || fail "nothing recorded across the SIGHUP"
+((frames > 0)) || fail "nothing recorded across the signals"
 cmp -s <(cat "$work"/rec2/*/can.log | cut -d' ' -f3) <(head -n "$frames" "$work/sim/can.log" | cut -d' ' -f3) ||
   fail "the two segments together are not the drive's first $frames frames"
 

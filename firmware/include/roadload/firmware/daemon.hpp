@@ -96,7 +96,7 @@ class Daemon {
   void stop();
   // There are replay sources and every one has reached its end (live sources never do).
   bool replays_finished();
-  // SIGHUP: the recording starts a new segment.
+  // SIGUSR1: the recording starts a new segment.
   void rotate_recording() { rotate_.store(true, std::memory_order_relaxed); }
   // The status now; rates are over the time since the previous call.
   StatusReport report();

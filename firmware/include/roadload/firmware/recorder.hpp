@@ -1,7 +1,7 @@
 #pragma once
 // The daemon's recording: a data directory of segments, each a recording folder
 // (docs/recording-format.md) named by its UTC start, `20261122T054012Z-0001`. A segment ends after
-// segment_max_s or segment_max_mib, or on SIGHUP; the oldest segments are deleted while the
+// segment_max_s or segment_max_mib, or on SIGUSR1; the oldest segments are deleted while the
 // directory holds more than the quota. Lines reach the kernel within a second and the disk at
 // every fsync interval, so a crash or SIGKILL loses at most that interval and every file reads
 // back whole. A write error (disk full) is reported and retried each tick; the lines that did not
@@ -52,7 +52,7 @@ class Recorder {
   void write(const WeatherSample& s);
   // Flushes each second, syncs at the fsync interval, rotates, keeps the quota, retries failures.
   void tick(CaptureTime now);
-  // Ends the current segment; the next write or tick starts another (SIGHUP, shutdown).
+  // Ends the current segment; the next write or tick starts another (SIGUSR1, shutdown).
   void end_segment();
   const RecorderStatus& status() const { return status_; }
 
