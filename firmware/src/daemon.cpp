@@ -244,6 +244,7 @@ void Daemon::estimate_loop() {
       j1939_.cadence = cadence_.counters();
       j1939_.tp_completed = tp.completed;
       j1939_.tp_incomplete = tp.timed_out + tp.superseded + tp.aborted;
+      j1939_.tp_anomalies = tp.orphan_packets + tp.timed_out + tp.superseded + tp.bad_sequence + tp.malformed + tp.no_free_session;
     }
     if (stopping && n == 0) break;
     if (n == 0) clock_.sleep_until(clock_.now() + kIdleSleep, kIdleSleep);
@@ -267,6 +268,8 @@ StatusReport Daemon::report() {
   r.j1939.gaps_recent = r.j1939.cadence.gaps - last_j1939_.cadence.gaps;
   r.j1939.repeats_recent = r.j1939.cadence.repeats - last_j1939_.cadence.repeats;
   r.j1939.tp_incomplete_recent = r.j1939.tp_incomplete - last_j1939_.tp_incomplete;
+  r.j1939.tp_anomalies_recent = r.j1939.tp_anomalies - last_j1939_.tp_anomalies;
+  r.j1939.tp_anomaly_rate = static_cast<double>(r.j1939.tp_anomalies_recent) / dt_s;
   last_j1939_ = r.j1939;
   r.recording_enabled = recorder_.has_value();
   if (r.estimate.cell >= 0 && static_cast<std::size_t>(r.estimate.cell) < setup_.cells.size()) {

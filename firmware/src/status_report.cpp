@@ -56,6 +56,10 @@ std::vector<std::string> warnings_for(const StatusReport& r) {
     w.push_back("j1939: " + std::to_string(j.gaps_recent) + " gaps in periodic messages (frames lost before the gateway)");
   if (j.repeats_recent > 0) w.push_back("j1939: " + std::to_string(j.repeats_recent) + " frames repeated");
   if (j.tp_incomplete_recent > 0) w.push_back("j1939: " + std::to_string(j.tp_incomplete_recent) + " transport sessions incomplete");
+  if (j.tp_anomaly_rate >= kTpFloodPerSecond) {
+    w.push_back("SECURITY j1939: transport-protocol flood, " + fmt("%.0f", j.tp_anomaly_rate) +
+                " orphan or unfinished transport frames/s (a denial-of-service pattern; sessions stay bounded)");
+  }
   if (r.sync.clock_steps > 0) w.push_back("wall clock stepped " + std::to_string(r.sync.clock_steps) + "x (data unaffected)");
   if (r.estimate.started && !r.estimate.identified) {
     w.push_back(std::string("CRR not identified yet: ") +
@@ -130,6 +134,7 @@ std::string format_json(const StatusReport& r) {
   j += ",\"j1939\":{\"gaps\":" + std::to_string(r.j1939.cadence.gaps) + ",\"repeats\":" + std::to_string(r.j1939.cadence.repeats) +
        ",\"untracked\":" + std::to_string(r.j1939.cadence.untracked) + ",\"too_fast\":" + std::to_string(r.j1939.cadence.too_fast) +
        ",\"tp_completed\":" + std::to_string(r.j1939.tp_completed) + ",\"tp_incomplete\":" + std::to_string(r.j1939.tp_incomplete) +
+       ",\"tp_anomalies\":" + std::to_string(r.j1939.tp_anomalies) + ",\"tp_anomaly_rate\":" + fmt("%.1f", r.j1939.tp_anomaly_rate) +
        "}";
   j += ",\"warnings\":[";
   for (std::size_t i = 0; i < r.warnings.size(); ++i) j += (i ? "," : "") + results::json_quote(r.warnings[i]);

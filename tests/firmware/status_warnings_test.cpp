@@ -41,5 +41,20 @@ TEST(StatusWarnings, AQuietIntervalWarnsOfNothing) {
   EXPECT_TRUE(warnings_for(r).empty());
 }
 
+// A transport-protocol flood (orphan TP.DT, RTS never answered) is a security warning with its rate;
+// the odd orphan of a noisy bus is not.
+TEST(StatusWarnings, ATransportFloodIsASecurityWarningWithItsRate) {
+  StatusReport r;
+  r.j1939.tp_anomalies_recent = 3;
+  r.j1939.tp_anomaly_rate = 3;
+  EXPECT_TRUE(warnings_for(r).empty());
+  r.j1939.tp_anomalies_recent = 341;
+  r.j1939.tp_anomaly_rate = 341;
+  const auto w = warnings_for(r);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].rfind("SECURITY j1939: transport-protocol flood, 341 ", 0), 0u) << w[0];
+  EXPECT_NE(format_json(r).find("\"tp_anomaly_rate\":341.0"), std::string::npos) << format_json(r);
+}
+
 }  // namespace
 }  // namespace roadload::firmware

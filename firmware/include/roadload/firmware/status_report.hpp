@@ -34,9 +34,17 @@ struct J1939Report {
   j1939::CadenceCounters cadence;
   std::uint64_t tp_completed = 0;
   std::uint64_t tp_incomplete = 0;  // timed out, superseded by a new announcement, or aborted
+  // Transport frames no sender would send: data packets with no session open, sessions announced
+  // and never finished, packets out of sequence, control frames malformed, announcements with no
+  // session left to take them. A few a day are a noisy bus; dozens a second are a flood.
+  std::uint64_t tp_anomalies = 0;
   // In the last interval.
-  std::uint64_t gaps_recent = 0, repeats_recent = 0, tp_incomplete_recent = 0;
+  std::uint64_t gaps_recent = 0, repeats_recent = 0, tp_incomplete_recent = 0, tp_anomalies_recent = 0;
+  double tp_anomaly_rate = 0;  // per second over the last interval
 };
+
+// The rate of transport anomalies above which the status warns of a flood: a sound bus shows none.
+inline constexpr double kTpFloodPerSecond = 20.0;
 
 struct SyncReport {
   std::uint64_t clock_steps = 0;      // wall-clock steps seen under the CAN stamps
