@@ -104,7 +104,11 @@ void TruthRecorder::observe(const TruckState& s, const Environment& env, double 
     next_axle_s_ += 0.01;
     line_.clear();
     line_.num(std::llround(s.t_s * 1e9));
-    for (const auto& o : s.axles) line_.sep().num(o.tire_force_n, 1).sep().num(o.damper_power_w, 2).sep().num(o.tire_power_w, 2);
+    // The state holds room for the most axles a truck may have; the file holds this truck's.
+    for (std::size_t i = 0; i < truck_.axles.size(); ++i) {
+      const AxleOutputs& o = s.axles[i];
+      line_.sep().num(o.tire_force_n, 1).sep().num(o.damper_power_w, 2).sep().num(o.tire_power_w, 2);
+    }
     axles_.write(line_.finish());
   }
 }

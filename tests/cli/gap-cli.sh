@@ -37,6 +37,7 @@ assert g["where"] and g["where"][0]["channel"] == "torque_nm", g["where"][:2]
 assert g["residual_after"] < 0.5 * g["residual_before"] < 0.5 * g["residual_raw"], (g["residual_raw"], g["residual_before"], g["residual_after"])
 PY
 head -1 "$work/f.csv" | grep -qx "run,channel,where,half,real,model,sigma,z,calibrated,after" || fail "features CSV header"
+expect_csv "$work/f.csv"
 
 # The library is kept for the next drive of this truck on this road: the same drive again reads it
 # and says the same; a damaged library is named, removed and built again.

@@ -60,4 +60,5 @@ awk -F, 'NR > 2 && $4 != "" { exit 1 }' "$work/one.csv" || fail "a grade from on
 sed -i '5s/^\([0-9]*,[0-9]*,\)[^,]*,/\1abc,/' "$work/one/gnss.csv"
 expect_status 65 "$roadload" grade --route $route "$work/one" --out "$work/one.csv" --min-passes 1 -q
 grep -q "one/gnss.csv:5: lat_deg" "$work/err" || fail "malformed fix not named: $(cat "$work/err")"
+expect_csv "$work/survey.csv" "$work/gnss.csv"
 echo "grade-cli: PASS"

@@ -31,4 +31,6 @@ grep -q "torque-bias = 0.02" "$work/truth/truth.toml" || fail "truth.toml does n
 grep -qiE "torque-bias|wind-gusts|effects" "$work/rec/meta.toml" && fail "meta.toml reveals an effect"
 expect_status 0 "$roadload" decode --pgn-stats "$work/rec"
 grep -q "^61444,EEC1," "$work/out" || fail "decode finds no EEC1 in the simulated log"
+cp "$work/out" "$work/pgn-stats.csv"
+expect_csv "$work/rec" "$work/truth" "$work/pgn-stats.csv"
 echo "simulate-cli: PASS"
