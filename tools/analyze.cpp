@@ -137,7 +137,7 @@ template <typename T>
 std::optional<int> failed_input(const Parsed<T>& p) {
   if (p) return std::nullopt;
   std::fprintf(stderr, "roadload analyze: %s\n", p.error().to_string().c_str());
-  return p.error().line > 0 ? kExitDataErr : kExitNoInput;
+  return exit_for(p.error());
 }
 
 // The analyzer's settings: the recording's vehicle, then what the options say of the truck.
@@ -284,7 +284,7 @@ int analyze(const AnalyzeOptions& o) {
   auto reader = recording::RecordingReader::open(o.recording);
   if (!reader) {
     std::fprintf(stderr, "roadload analyze: %s\n", reader.error().to_string().c_str());
-    return reader.error().line > 0 ? kExitDataErr : kExitNoInput;
+    return exit_for(reader.error());
   }
   const recording::Metadata& meta = reader.value().metadata();
   auto described = recording_vehicle("analyze", meta, o.vehicle);

@@ -77,7 +77,7 @@ std::variant<int, AeroDrive> aero_drive(const std::string& path, const AeroOptio
       o.runs);
   if (failed) {
     std::fprintf(stderr, "roadload calibrate: %s\n", failed->to_string().c_str());
-    return failed->line > 0 ? kExitDataErr : kExitNoInput;
+    return exit_for(*failed);
   }
   return d;
 }
@@ -103,7 +103,7 @@ std::variant<int, CalibrationDrives> calibration_drives(const AeroOptions& o, co
   auto losses = load_engine_loss_file(o.engine_losses);
   if (!losses) {
     std::fprintf(stderr, "roadload calibrate: %s\n", losses.error().to_string().c_str());
-    return losses.error().line > 0 ? kExitDataErr : kExitNoInput;
+    return exit_for(losses.error());
   }
   std::vector<LoadedRoute> routes;
   for (const std::string& r : o.routes) {

@@ -3,6 +3,8 @@
 #include <span>
 #include <string_view>
 
+#include "roadload/parse_error.hpp"
+
 namespace roadload::cli {
 
 using Args = std::span<char* const>;  // arguments after the subcommand name
@@ -32,5 +34,9 @@ inline constexpr int kExitUsage = 64;
 inline constexpr int kExitNoInput = 66;
 inline constexpr int kExitCantCreate = 73;  // an output file could not be written
 inline constexpr int kExitNoPerm = 77;      // an operation needed a privilege the process lacks
+
+// A file that was read and found malformed (its error names a line) is bad data; one that could
+// not be opened or read at all is missing input.
+inline int exit_for(const ParseError& e) { return e.line > 0 ? kExitDataErr : kExitNoInput; }
 
 }  // namespace roadload::cli

@@ -145,7 +145,7 @@ int run_diagnosis(OptionParser& opt) {
     auto run = gap::load_real_run(reals[i], model_name, db, vehicle, route_name.empty() ? std::string() : resolve_route(route_name));
     if (!run) {
       std::fprintf(stderr, "roadload gap: %s\n", run.error().to_string().c_str());
-      return run.error().line > 0 ? kExitDataErr : kExitNoInput;
+      return exit_for(run.error());
     }
     run_lines.push_back(gap::describe(run.value()));
     runs.push_back(std::move(run.value()));

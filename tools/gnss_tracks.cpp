@@ -52,7 +52,7 @@ std::optional<int> read_recorded_track(std::string_view command, const std::stri
   auto reader = recording::RecordingReader::open(path, recording::kGnssStream | recording::kCanStream);
   if (!reader) {
     std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), reader.error().to_string().c_str());
-    return reader.error().line > 0 ? kExitDataErr : kExitNoInput;
+    return exit_for(reader.error());
   }
   t.path = path;
   if (auto rc = antenna_height(command, path, o, reader.value().metadata(), t)) return rc;

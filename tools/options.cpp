@@ -107,7 +107,7 @@ std::optional<int> load_definitions(std::string_view command, const std::vector<
   for (const std::string& path : paths) {
     if (auto err = load_dbc_file(db, path)) {
       std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), err->to_string().c_str());
-      return kExitNoInput;
+      return exit_for(*err);
     }
   }
   return std::nullopt;
@@ -118,7 +118,7 @@ std::variant<LoadedRoute, int> load_route(std::string_view command, const std::s
   auto route = load_route_file(resolve_route(name));
   if (!route) {
     std::fprintf(stderr, "roadload %.*s: %s\n", n, command.data(), route.error().to_string().c_str());
-    return kExitNoInput;
+    return exit_for(route.error());
   }
   auto geometry = RouteGeometry::build(route.value().points);
   if (!geometry) {
@@ -131,7 +131,7 @@ std::variant<LoadedRoute, int> load_route(std::string_view command, const std::s
     auto grade = load_grade_file(loaded.file.grade_file, loaded.geometry.length_m());
     if (!grade) {
       std::fprintf(stderr, "roadload %.*s: %s\n", n, command.data(), grade.error().to_string().c_str());
-      return grade.error().line > 0 ? kExitDataErr : kExitNoInput;
+      return exit_for(grade.error());
     }
     loaded.grade = std::move(grade.value());
   }
@@ -142,7 +142,7 @@ std::variant<Vehicle, int> load_vehicle(std::string_view command, const std::str
   auto vehicle = load_vehicle_file(resolve_vehicle(name_or_path));
   if (vehicle) return std::move(vehicle.value());
   std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), vehicle.error().to_string().c_str());
-  return vehicle.error().line > 0 ? kExitDataErr : kExitNoInput;
+  return exit_for(vehicle.error());
 }
 
 std::variant<RecordingVehicle, int> recording_vehicle(std::string_view command, const recording::Metadata& meta,

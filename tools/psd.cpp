@@ -58,7 +58,7 @@ bool wanted(const Options& o, const recording::SensorInfo& s) {
 
 int fail_data(const ParseError& e) {
   std::fprintf(stderr, "roadload psd: %s\n", e.to_string().c_str());
-  return e.line > 0 ? kExitDataErr : kExitNoInput;
+  return exit_for(e);
 }
 
 // Feeds every row of `path` to the channels; the first malformed row ends it with its error.

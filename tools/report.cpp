@@ -50,14 +50,14 @@ int run_report(Args args) {
   auto results = results::read_results_dir(results_dir);
   if (!results) {
     std::fprintf(stderr, "roadload report: %s\n", results.error().to_string().c_str());
-    return results.error().line > 0 ? kExitDataErr : kExitNoInput;
+    return exit_for(results.error());
   }
   std::optional<Truth> truth;
   if (!truth_dir.empty()) {
     auto t = read_truth(truth_dir);
     if (!t) {
       std::fprintf(stderr, "roadload report: %s\n", t.error().to_string().c_str());
-      return t.error().line > 0 ? kExitDataErr : kExitNoInput;
+      return exit_for(t.error());
     }
     truth = std::move(t.value());
   }

@@ -105,7 +105,7 @@ int fail(const ParseError& e, int status) {
 // The scenario as the options change it.
 std::variant<sim::Scenario, int> scenario_of(const SimulateOptions& o) {
   auto scenario = sim::load_scenario(o.scenario, data_dir());
-  if (!scenario) return fail(scenario.error(), scenario.error().line > 0 ? kExitDataErr : kExitNoInput);
+  if (!scenario) return fail(scenario.error(), exit_for(scenario.error()));
   if (!o.vehicle.empty()) {
     auto v = load_vehicle("simulate", o.vehicle);
     if (const int* rc = std::get_if<int>(&v)) return *rc;

@@ -156,7 +156,7 @@ int identify(const Options& o) {
     auto reader = recording::RecordingReader::open(path, recording::kCanStream | recording::kGnssStream);
     if (!reader) {
       std::fprintf(stderr, "roadload vehicle: %s\n", reader.error().to_string().c_str());
-      return reader.error().line > 0 ? kExitDataErr : kExitNoInput;
+      return exit_for(reader.error());
     }
     if (!prior && reader.value().metadata().vehicle_file) prior = *reader.value().metadata().vehicle_file;
     if (!prior) {

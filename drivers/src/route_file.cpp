@@ -82,7 +82,11 @@ Parsed<RouteFile> load_route_file(const std::string& path) {
     d.name = f.required_text(root, "name", "");
     d.source = f.text(root, "source", "").value_or("");
     d.default_crr = f.number(root, "default_crr", "", d.default_crr);
+    if (!(d.default_crr > 0 && d.default_crr <= 0.05)) f.fail(root.get("default_crr"), "default_crr", "outside 0..0.05");
     d.default_iri_m_per_km = f.number(root, "default_iri_m_per_km", "", d.default_iri_m_per_km);
+    if (!(d.default_iri_m_per_km > 0 && d.default_iri_m_per_km < 50)) {
+      f.fail(root.get("default_iri_m_per_km"), "default_iri_m_per_km", "outside 0..50 m/km");
+    }
     if (auto geometry = f.text(root, "geometry", "")) {
       if (root.contains("point")) f.fail(root.get("geometry"), "geometry", "give the geometry or [[point]] tables, not both");
       auto line = load_geo_line(beside(path, *geometry));

@@ -12,7 +12,7 @@ expect_status 64 "$roadload" analyze --out "$work/res"
 expect_status 66 "$roadload" analyze "$work/none" --out "$work/res"
 grep -q "none: No such file" "$work/err" || fail "a missing recording is not named: $(cat "$work/err")"
 printf 'name = "bad"\n[[point]]\nlat_deg = 95\nlon_deg = 0\nelev_m = 0\n' >"$work/bad.toml"
-expect_status 66 "$roadload" analyze "$work/none" --route "$work/bad.toml" --out "$work/res"
+expect_status 65 "$roadload" analyze "$work/none" --route "$work/bad.toml" --out "$work/res"
 grep -q "bad.toml" "$work/err" || fail "route error does not name the file: $(cat "$work/err")"
 
 "$roadload" simulate --scenario th66-55mph --seed 5 --out "$work/rec" --truth "$work/truth" -q ||

@@ -33,6 +33,8 @@ class TomlFields {
     if (n == nullptr) return std::nullopt;
     auto v = n->value<double>();
     if (!v) fail(n, where + std::string(key), "expected a number");
+    // TOML's nan and inf are no setting of anything physical.
+    if (!std::isfinite(*v)) fail(n, where + std::string(key), "expected a finite number");
     return *v;
   }
   double number(const toml::table& t, std::string_view key, const std::string& where, double fallback) const {
