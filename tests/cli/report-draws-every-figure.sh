@@ -42,6 +42,19 @@ page=$work/report.html
 ! grep -qi '<script' "$page" || fail "the page carries a script"
 ! grep -Eo '(src|href)="[a-z]+:[^"]*"' "$page" | grep -q . || fail "the page links outside itself"
 
+# No attribute holds a number that is not one (a bar from 0 on a log axis gave height="inf"), and no
+# table is a header without rows.
+/usr/bin/python3 - "$page" <<'PY' || fail "the page has a broken figure or an empty table"
+import re, sys
+html = open(sys.argv[1]).read()
+bad = sorted(set(re.findall(r'\b[a-z-]+="[^"]*(?<![a-z])(?:-?inf|nan|NaN|-?Infinity)(?![a-z])[^"]*"', html)))
+for table in re.findall(r"<table\b.*?</table>", html, re.S):
+    if "<td" not in table:
+        bad.append("a table without rows: " + re.sub(r"\s+", " ", table)[:120])
+print("\n".join(bad[:10]))
+sys.exit(1 if bad else 0)
+PY
+
 cells=$(($(wc -l <"$work/res/cells.csv") - 1))
 rows=$(sed -n '/id="crr"/,/<\/table>/p' "$page" | grep -c '<tr><td>' || true)
 ((rows == cells)) || fail "the CRR table has $rows rows for $cells cells"

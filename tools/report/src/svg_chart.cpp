@@ -208,7 +208,10 @@ class Canvas {
         }
       }
       const double x = c_.stacked ? centre(i) - width / 2 : centre(i) - band() * 0.4 + width * static_cast<double>(index);
-      const double y0 = y_(base), y1 = y_(base + sr.y[i]);
+      // On a log axis a bar rises from the axis's foot, zero lying infinitely far below it; a
+      // value that is not positive has no place on it.
+      if (y_.log && base + sr.y[i] <= 0) continue;
+      const double y0 = y_.log && base <= 0 ? y_(y_.lo) : y_(base), y1 = y_(base + sr.y[i]);
       out_ += "<rect class=\"datum\" stroke=\"none\" x=\"" + num(x) + "\" y=\"" + num(std::min(y0, y1)) + "\" width=\"" + num(width) +
               "\" height=\"" + num(std::max(std::abs(y1 - y0), 0.5)) + "\"><title>" +
               escape_html(c_.categories[i] + " " + sr.name + ": " + format_number(sr.y[i], 4)) + "</title></rect>";
