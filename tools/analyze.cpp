@@ -18,6 +18,7 @@
 #include "roadload/engine_loss_file.hpp"
 #include "roadload/grade_file.hpp"
 #include "roadload/grade_profile.hpp"
+#include "roadload/gravity_check.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/torque_scale_consider.hpp"
@@ -266,13 +267,29 @@ std::optional<std::variant<Road, int>> given_road(const AnalyzeOptions& o) {
 
 // The recording through the analyzer in capture-time order. A logger without a receiver of its
 // own: the truck's VP1 places the drive, merged in time order.
-void drive(DriveAnalyzer& analyzer, recording::RecordingReader& reader, const RecordedTrack& track) {
+void drive(DriveAnalyzer& analyzer, recording::RecordingReader& reader, const RecordedTrack& track, GravityCheck* gravity = nullptr) {
   const bool from_bus = track.source.rfind("J1939", 0) == 0;
   std::size_t bus_fix = 0;
   while (const recording::Record* r = reader.next()) {
     const CaptureTime t = std::visit([](const auto& s) { return s.t; }, *r);
     while (from_bus && bus_fix < track.fixes.size() && track.fixes[bus_fix].t <= t) analyzer.push(track.fixes[bus_fix++]);
+    if (const auto* a = std::get_if<AccelSample>(r); a != nullptr && gravity != nullptr) gravity->push(*a);
     std::visit([&](const auto& s) { analyzer.push(s); }, *r);
+  }
+}
+
+// A sensor whose z lacks gravity is named with what that means; its numbers are not dropped.
+void tell_gravity(const GravityCheck& gravity, const recording::Metadata& meta) {
+  for (const GravityCheck::Finding& f : gravity.implausible()) {
+    std::string name = "sensor " + std::to_string(f.sensor);
+    for (const recording::SensorInfo& s : meta.sensors) {
+      if (s.id == f.sensor) name = s.name + (s.position.empty() ? "" : " (" + s.position + ")");
+    }
+    std::fprintf(stderr,
+                 "roadload analyze: accelerometer %s: mean z %.2f m/s^2 over %llu samples, where the format's z includes "
+                 "gravity, up as mounted (+9.81): mounted upside down or on its side, or gravity taken out; its contact "
+                 "forces and dynamic power are suspect\n",
+                 name.c_str(), f.mean_z_mps2, static_cast<unsigned long long>(f.samples));
   }
 }
 
@@ -305,6 +322,7 @@ int analyze(const AnalyzeOptions& o) {
   }
   const PavementGroups groups = pavement_groups(road.cells);
   Accelerometers acc;
+  GravityCheck gravity;
   // The torque scale's second run reads the force balance's streams again; its parse errors are the
   // first run's and are not told twice.
   bool reread = true;
@@ -313,7 +331,7 @@ int analyze(const AnalyzeOptions& o) {
     if (grade) analyzer.set_grade(*grade);
     if (which == TorqueScaleRun::held) {
       attach(acc, analyzer, o, vehicle, meta, groups);
-      drive(analyzer, reader.value(), track);
+      drive(analyzer, reader.value(), track, &gravity);
     } else if (auto again = recording::RecordingReader::open(
                    o.recording, recording::kCanStream | recording::kGnssStream | recording::kWeatherStream)) {
       drive(analyzer, again.value(), track);
@@ -327,6 +345,7 @@ int analyze(const AnalyzeOptions& o) {
   DriveAnalysis analysis = analyse_with_torque_scale(std::get<AnalyzerConfig>(cfg), run);
   if (!reread) return kExitNoInput;
   for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
+  tell_gravity(gravity, meta);
   std::vector<CellResult>& results = analysis.cells;
   TripResult& trip = analysis.trip;
   for (const std::string* why : {static_cast<const std::string*>(&road.unplaced), &assumed}) {

@@ -123,6 +123,10 @@ CASES = [
     ("accel word for number", field("accel.csv", 11, "x_mps2", "zero"), ANALYZE, 65, r"accel\.csv:11: x_mps2: expected a finite number"),
     ("accel missing column", drop_column("accel.csv", "z_mps2"), ANALYZE, 65, r"accel\.csv:1: z_mps2: required column missing"),
     ("accel 1 MB line", long_line("accel.csv", 20, 1_500_000), ANALYZE, 65, r"accel\.csv:20: line longer than 65536 bytes"),
+    ("accel upside down is named, not refused", lambda rec: (rec / "accel.csv").write_text(
+        "".join((l if i == 0 or l.startswith("#") else ",".join(l.split(",")[:4] + [str(-float(l.split(",")[4]))])) + "\n"
+                for i, l in enumerate((rec / "accel.csv").read_text().splitlines()))),
+     ANALYZE, 0, r"accelerometer \S+ \(tractor-front-axle-left\): mean z -9\.\d+ m/s\^2 over \d+ samples.*upside down"),
     # gnss.csv
     ("gnss latitude 95", field("gnss.csv", 3, "lat_deg", "95"), ANALYZE, 65, r"gnss\.csv:3: lat_deg: latitude out of range"),
     ("gnss longitude 200", field("gnss.csv", 4, "lon_deg", "200"), ANALYZE, 65, r"gnss\.csv:4: lon_deg: longitude out of range"),
