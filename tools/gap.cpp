@@ -140,6 +140,7 @@ int run_diagnosis(OptionParser& opt) {
   }
   std::vector<gap::RealRun> runs;
   std::vector<std::string> run_lines;
+  bool malformed = false;  // diagnosed on the good lines, and told by the exit status
   for (std::size_t i = 0; i < reals.size(); ++i) {
     const std::string model_name = models.empty() ? std::string() : models[models.size() == 1 ? 0 : i];
     auto run = gap::load_real_run(reals[i], model_name, db, vehicle, route_name.empty() ? std::string() : resolve_route(route_name));
@@ -147,14 +148,22 @@ int run_diagnosis(OptionParser& opt) {
       std::fprintf(stderr, "roadload gap: %s\n", run.error().to_string().c_str());
       return exit_for(run.error());
     }
+    const recording::ErrorLog& bad = run.value().recorded.malformed;
+    for (const ParseError& e : bad.kept()) std::fprintf(stderr, "roadload gap: %s\n", e.to_string().c_str());
+    if (bad.count() > 0) {
+      std::fprintf(stderr, "roadload gap: %s: %llu malformed lines skipped\n", reals[i].c_str(),
+                   static_cast<unsigned long long>(bad.count()));
+      malformed = true;
+    }
     run_lines.push_back(gap::describe(run.value()));
     runs.push_back(std::move(run.value()));
   }
   if (dry_run) {
     for (const std::string& line : run_lines) std::printf("%s\n", line.c_str());
-    return kExitOk;
+    return malformed ? kExitDataErr : kExitOk;
   }
-  return diagnose(runs, run_lines, db, options, cache_dir, quiet, {json, features});
+  const int rc = diagnose(runs, run_lines, db, options, cache_dir, quiet, {json, features});
+  return rc == kExitOk && malformed ? kExitDataErr : rc;
 }
 
 }  // namespace

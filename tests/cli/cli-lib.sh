@@ -6,9 +6,10 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/$cli_name.XXXXXX")
 trap 'rm -rf -- "$work"' EXIT
 fail() { echo "$cli_name: FAIL: $*" >&2; exit 1; }
 # Each CSV file (or every *.csv of a folder) reads back with Python's csv module and pandas.
+# $work/out and $work/err stay the last command's.
 expect_csv() {
-  /usr/bin/python3 "$(dirname "${BASH_SOURCE[0]}")/csv-parses.py" "$@" >"$work/out" 2>"$work/err" ||
-    fail "CSV that does not read back: $(cat "$work/err")"
+  /usr/bin/python3 "$(dirname "${BASH_SOURCE[0]}")/csv-parses.py" "$@" >"$work/csv.out" 2>"$work/csv.err" ||
+    fail "CSV that does not read back: $(cat "$work/csv.err")"
 }
 expect_status() {
   local want=$1; shift

@@ -108,9 +108,16 @@ assert abs(rows["CdA"]["fitted"] - 5.8 * 1.15) < abs(5.8 - 5.8 * 1.15), rows["Cd
 assert g["residual_before"] < 0.5 * g["residual_raw"], (g["residual_raw"], g["residual_before"])
 PY
 
-# A damaged recording is refused with its file and line, not diagnosed.
+# A damaged line is skipped and named as every command skips it; the diagnosis goes on (from the
+# cached library) and the exit status tells of the damage. A recording damaged beyond 1 % of its
+# lines is refused.
 cp -r "$work/rec" "$work/bad"
 sed -i '20s/.*/(12.5) can0 not-a-frame/' "$work/bad/can.log"
-expect_status 65 "$roadload" gap --real "$work/bad" --model mnroad-mainline-30mph -q
+expect_status 65 "$roadload" gap --real "$work/bad" --noise-runs 3 --jobs 2 -q
 grep -q "can.log:20" "$work/err" || fail "damaged line not named: $(cat "$work/err")"
+grep -q "1 malformed lines skipped" "$work/err" || fail "the count of skipped lines not told: $(cat "$work/err")"
+grep -q "^effect: torque-bias" "$work/out" || fail "one damaged line stopped the diagnosis: $(grep -A3 '^effect' "$work/out")"
+sed -i '0~40s/.*/garbage/' "$work/bad/can.log"
+expect_status 65 "$roadload" gap --real "$work/bad" --noise-runs 3 --jobs 2 -q
+grep -q "more than 1 %, too damaged to diagnose" "$work/err" || fail "a badly damaged recording was diagnosed: $(cat "$work/err")"
 echo "gap-cli: PASS: $named"

@@ -1,5 +1,6 @@
 #include "roadload/recording/reader.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -185,7 +186,16 @@ Parsed<std::unique_ptr<Stream>> open_csv(const fs::path& path, std::span<const s
 
 void ErrorLog::add(ParseError e) {
   ++count_;
+  auto file = std::find_if(by_file_.begin(), by_file_.end(), [&](const auto& f) { return f.first == e.file; });
+  if (file == by_file_.end()) file = by_file_.insert(by_file_.end(), {e.file, 0});
+  ++file->second;
   if (kept_.size() < kMaxKept) kept_.push_back(std::move(e));
+}
+
+std::uint64_t ErrorLog::count_in(std::string_view name) const {
+  std::uint64_t n = 0;
+  for (const auto& [file, count] : by_file_) n += std::string_view(file).ends_with(name) ? count : 0;
+  return n;
 }
 
 Parsed<std::unique_ptr<CandumpStream>> CandumpStream::open(const std::string& path) {

@@ -73,15 +73,25 @@ Parsed<RecordedRun> read_run(const std::string& path, const j1939::Database& db,
   if (!reader) return reader.error();
   if (!reader.value().has_metadata())
     return ParseError{path, 0, recording::kMetaFile, "missing: the re-simulation needs the vehicle"};
-  RecordedRun run{reader.value().metadata(), {}};
+  RecordedRun run{reader.value().metadata(), {}, {}};
   FeatureExtractor x(db, layout, run.meta, base);
-  while (const recording::Record* r = reader.value().next()) std::visit([&](const auto& s) { x.push(s); }, *r);
+  // Records per stream, in the order of recording::Record's alternatives.
+  std::array<std::uint64_t, std::variant_size_v<recording::Record>> records{};
+  while (const recording::Record* r = reader.value().next()) {
+    std::visit([&](const auto& s) { x.push(s); }, *r);
+    ++records[r->index()];
+  }
   const auto& errors = reader.value().errors();
-  if (errors.count() > 0) {
+  const std::array<const char*, 4> files{recording::kCanFile, recording::kAccelFile, recording::kGnssFile, recording::kWeatherFile};
+  for (std::size_t k = 0; k < files.size() && k < records.size(); ++k) {
+    const std::uint64_t bad = errors.count_in(files[k]), lines = records[k] + bad;
+    if (bad == 0 || static_cast<double>(bad) <= 0.01 * static_cast<double>(lines)) continue;
     ParseError first = errors.kept().front();
-    first.message += " (" + std::to_string(errors.count()) + " malformed lines in all)";
+    first.message += " (" + std::to_string(bad) + " malformed lines of " + std::to_string(lines) + " in " + files[k] +
+                     ": more than 1 %, too damaged to diagnose)";
     return first;
   }
+  run.malformed = errors;
   run.features = x.finish();
   if (run.features.conditions.speed_samples == 0) return ParseError{path, 0, "CCVS1", "no wheel speed: nothing to re-simulate"};
   return run;
@@ -112,7 +122,7 @@ sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, c
 
 RecordedRun simulate_run(const sim::Scenario& scenario, std::uint64_t seed, const j1939::Database& db, const RunLayout& layout) {
   sim::Simulation simulation(scenario, seed, db);
-  RecordedRun run{simulation.metadata(), {}};
+  RecordedRun run{simulation.metadata(), {}, {}};
   FeatureExtractor x(db, layout, run.meta, scenario.vehicle);
   ExtractorSink sink(x);
   simulation.run(sink, nullptr);

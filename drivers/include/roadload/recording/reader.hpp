@@ -28,10 +28,13 @@ class ErrorLog {
   void add(ParseError e);
   std::uint64_t count() const { return count_; }
   const std::vector<ParseError>& kept() const { return kept_; }
+  // The errors in files whose path ends with `name` (a stream: "can.log", "accel.csv", ...).
+  std::uint64_t count_in(std::string_view name) const;
 
  private:
   std::uint64_t count_ = 0;
   std::vector<ParseError> kept_;
+  std::vector<std::pair<std::string, std::uint64_t>> by_file_;  // a recording has a handful of files
 };
 
 struct StreamCounts {

@@ -7,6 +7,7 @@
 
 #include "roadload/gap/features.hpp"
 #include "roadload/parse_error.hpp"
+#include "roadload/recording/reader.hpp"
 #include "roadload/sim/scenario.hpp"
 
 namespace roadload::gap {
@@ -17,10 +18,12 @@ RunLayout layout_for(const sim::RouteDef& route);
 struct RecordedRun {
   recording::Metadata meta;
   RunFeatures features;
+  recording::ErrorLog malformed;  // lines skipped as the format says, each to be told
 };
 
-// Reads a recording folder. Malformed lines are an error: a diagnosis of damaged data would
-// blame the model for the damage.
+// Reads a recording folder. Malformed lines are skipped and kept in `malformed`, as every command
+// skips them; beyond 1 % of the records read the recording is refused: a diagnosis of damaged data
+// would blame the model for the damage.
 // `base` is the vehicle the recording's metadata is read over (the model's).
 Parsed<RecordedRun> read_run(const std::string& path, const j1939::Database& db, const RunLayout& layout, const Vehicle& base);
 
