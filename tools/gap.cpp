@@ -81,6 +81,33 @@ int diagnose(const std::vector<gap::RealRun>& runs, const std::vector<std::strin
   return kExitOk;
 }
 
+// The runs to diagnose, each described, and whether any line of them was malformed (diagnosed on
+// the good lines, and told by the exit status).
+struct LoadedRuns {
+  std::vector<gap::RealRun> runs;
+  std::vector<std::string> run_lines;
+  bool malformed = false;
+};
+
+int load_run(const std::string& real, const std::string& model_name, const j1939::Database& db, const std::optional<Vehicle>& vehicle,
+             const std::string& route_name, LoadedRuns& loaded) {
+  auto run = gap::load_real_run(real, model_name, db, vehicle, route_name.empty() ? std::string() : resolve_route(route_name));
+  if (!run) {
+    std::fprintf(stderr, "roadload gap: %s\n", run.error().to_string().c_str());
+    return exit_for(run.error());
+  }
+  const recording::ErrorLog& bad = run.value().recorded.malformed;
+  for (const ParseError& e : bad.kept()) std::fprintf(stderr, "roadload gap: %s\n", e.to_string().c_str());
+  if (bad.count() > 0) {
+    std::fprintf(stderr, "roadload gap: %s: %llu malformed lines skipped\n", real.c_str(),
+                 static_cast<unsigned long long>(bad.count()));
+    loaded.malformed = true;
+  }
+  loaded.run_lines.push_back(gap::describe(run.value()));
+  loaded.runs.push_back(std::move(run.value()));
+  return kExitOk;
+}
+
 int run_diagnosis(OptionParser& opt) {
   std::vector<std::string> reals, models;
   std::string json, features, vehicle_name, route_name, cache_dir = gap::default_cache_dir();
@@ -138,26 +165,12 @@ int run_diagnosis(OptionParser& opt) {
     if (const int* rc = std::get_if<int>(&v)) return *rc;
     vehicle = std::move(std::get<Vehicle>(v));
   }
-  std::vector<gap::RealRun> runs;
-  std::vector<std::string> run_lines;
-  bool malformed = false;  // diagnosed on the good lines, and told by the exit status
+  LoadedRuns loaded;
   for (std::size_t i = 0; i < reals.size(); ++i) {
     const std::string model_name = models.empty() ? std::string() : models[models.size() == 1 ? 0 : i];
-    auto run = gap::load_real_run(reals[i], model_name, db, vehicle, route_name.empty() ? std::string() : resolve_route(route_name));
-    if (!run) {
-      std::fprintf(stderr, "roadload gap: %s\n", run.error().to_string().c_str());
-      return exit_for(run.error());
-    }
-    const recording::ErrorLog& bad = run.value().recorded.malformed;
-    for (const ParseError& e : bad.kept()) std::fprintf(stderr, "roadload gap: %s\n", e.to_string().c_str());
-    if (bad.count() > 0) {
-      std::fprintf(stderr, "roadload gap: %s: %llu malformed lines skipped\n", reals[i].c_str(),
-                   static_cast<unsigned long long>(bad.count()));
-      malformed = true;
-    }
-    run_lines.push_back(gap::describe(run.value()));
-    runs.push_back(std::move(run.value()));
+    if (const int rc = load_run(reals[i], model_name, db, vehicle, route_name, loaded); rc != kExitOk) return rc;
   }
+  const auto& [runs, run_lines, malformed] = loaded;
   if (dry_run) {
     for (const std::string& line : run_lines) std::printf("%s\n", line.c_str());
     return malformed ? kExitDataErr : kExitOk;
