@@ -2,18 +2,23 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "roadload/firmware/config.hpp"
+#include "roadload/geo_files.hpp"
 #include "roadload/j1939/dbc.hpp"
 #include "roadload/j1939/transport.hpp"
 #include "roadload/recording/candump.hpp"
 #include "roadload/recording/metadata.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/results/json.hpp"
+#include "roadload/route_file.hpp"
+#include "roadload/vehicle_file.hpp"
 
 namespace roadload::fuzz {
 namespace {
@@ -26,6 +31,31 @@ void require(bool ok, const char* what) {
     std::fprintf(stderr, "fuzz property violated: %s\n", what);
     std::abort();
   }
+}
+
+// A scratch folder of this process: the loaders that take a path read the input from a file in it.
+const std::filesystem::path& scratch() {
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("roadload-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+std::string as_file(const std::string& name, std::string_view bytes) {
+  const std::string path = (scratch() / name).string();
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  return path;
+}
+
+// Whatever a loader refuses, it says why and where.
+template <typename T>
+bool refused(const Parsed<T>& p) {
+  if (p) return false;
+  require(!p.error().message.empty(), "an error says what is wrong");
+  require(!p.error().file.empty(), "an error names its file");
+  return true;
 }
 
 }  // namespace
@@ -67,11 +97,7 @@ void metadata(const std::uint8_t* data, std::size_t size) {
 
 // The input is split at the first NUL byte into accel.csv and can.log of a recording folder.
 void recording(const std::uint8_t* data, std::size_t size) {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("roadload-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
+  const std::filesystem::path& dir = scratch();
   const std::string_view all = text(data, size);
   const std::size_t split = std::min(all.find('\0'), all.size());
   std::ofstream(dir / "accel.csv", std::ios::trunc) << all.substr(0, split);
@@ -116,6 +142,47 @@ void transport(const std::uint8_t* data, std::size_t size) {
     if (auto m = tp.push(f)) require(!m->data.empty() && m->data.size() <= 4096, "message size bounded");
   }
   require(tp.open_sessions() <= cfg.max_sessions + cfg.max_etp_sessions, "sessions bounded");
+}
+
+// A vehicle file as --vehicle reads it: a truck that loads has a mass and a drag area that are
+// numbers a model can use.
+void vehicle(const std::uint8_t* data, std::size_t size) {
+  const auto v = load_vehicle_file(as_file("vehicle.toml", text(data, size)));
+  if (refused(v)) return;
+  require(std::isfinite(v.value().mass_kg()) && v.value().mass_kg() > 0, "a loaded truck has a positive mass");
+  require(std::isfinite(v.value().cda_m2) && v.value().cda_m2 > 0, "a loaded truck has a positive drag area");
+}
+
+// A route file: cells that load lie in order, each of positive length, with a CRR a tire can have.
+void route(const std::uint8_t* data, std::size_t size) {
+  const auto r = load_route_file(as_file("route.toml", text(data, size)));
+  if (refused(r)) return;
+  double end = -1e300;
+  for (const CellDef& c : r.value().cells) {
+    require(c.start_m < c.end_m, "a cell has a positive length");
+    require(c.start_m >= end - 1e-6, "cells do not overlap");
+    end = c.end_m;
+    require(!c.crr || (*c.crr > 0 && *c.crr <= 0.05), "a cell's CRR is one a tire can have");
+  }
+  require(r.value().default_crr > 0 && r.value().default_crr <= 0.05, "the default CRR is one a tire can have");
+}
+
+// A road's line from GIS: the first byte chooses GeoJSON (even) or GPX (odd); what loads is finite.
+void geo_line(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return;
+  const auto line = load_geo_line(as_file(data[0] % 2 == 0 ? "road.geojson" : "road.gpx", text(data + 1, size - 1)));
+  if (refused(line)) return;
+  for (const GeoPoint& p : line.value()) {
+    require(std::isfinite(p.lat_deg) && std::abs(p.lat_deg) <= 90 && std::isfinite(p.lon_deg) && std::abs(p.lon_deg) <= 180,
+            "a point lies on the Earth");
+  }
+}
+
+// roadloadd's configuration: one that loads passes the daemon's own validation.
+void daemon_config(const std::uint8_t* data, std::size_t size) {
+  const auto c = firmware::load_config(as_file("roadloadd.toml", text(data, size)));
+  if (refused(c)) return;
+  require(!firmware::validate(c.value()), "a loaded configuration is valid");
 }
 
 }  // namespace roadload::fuzz

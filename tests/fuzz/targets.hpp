@@ -13,6 +13,10 @@ void json(const std::uint8_t* data, std::size_t size);
 void metadata(const std::uint8_t* data, std::size_t size);
 void recording(const std::uint8_t* data, std::size_t size);
 void transport(const std::uint8_t* data, std::size_t size);
+void vehicle(const std::uint8_t* data, std::size_t size);
+void route(const std::uint8_t* data, std::size_t size);
+void geo_line(const std::uint8_t* data, std::size_t size);
+void daemon_config(const std::uint8_t* data, std::size_t size);
 
 struct Target {
   std::string_view name;
@@ -20,8 +24,8 @@ struct Target {
 };
 
 inline constexpr Target kTargets[] = {
-    {"candump_line", candump_line}, {"dbc", dbc}, {"json", json}, {"metadata", metadata}, {"recording", recording},
-    {"transport", transport},
+    {"candump_line", candump_line}, {"dbc", dbc},         {"json", json},   {"metadata", metadata}, {"recording", recording},
+    {"transport", transport},       {"vehicle", vehicle}, {"route", route}, {"geo_line", geo_line}, {"daemon_config", daemon_config},
 };
 
 }  // namespace roadload::fuzz

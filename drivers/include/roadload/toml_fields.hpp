@@ -2,15 +2,21 @@
 // Reading TOML configuration (routes, scenarios, vehicles) with errors that name file, line and field.
 #include <toml++/toml.h>
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <initializer_list>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "roadload/parse_error.hpp"
+#include "roadload/toml_text.hpp"
 
 namespace roadload::detail {
 
@@ -113,9 +119,18 @@ class TomlFields {
   std::string source_;
 };
 
-// Parses a TOML file; syntax errors come back with their line.
+// Parses a TOML file; syntax errors come back with their line, UTF-8 outside strings and comments
+// too (toml_text.hpp).
 inline Parsed<toml::table> parse_toml_file(const std::string& path) {
-  toml::parse_result r = toml::parse_file(path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return ParseError{path, 0, "file", "Is a directory"};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return ParseError{path, 0, "file", std::string("cannot be opened: ") + std::strerror(errno)};
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (const auto line = non_ascii_outside_strings(text)) {
+    return ParseError{path, *line, "syntax", "a character that is not ASCII outside a string or comment"};
+  }
+  toml::parse_result r = toml::parse(text, path);
   if (!r) {
     const auto& e = r.error();
     const bool missing = e.source().begin.line == 0;

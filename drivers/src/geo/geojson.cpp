@@ -114,6 +114,9 @@ Parsed<std::vector<GeoSection>> read_geojson(const std::string& path) {
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
     return ParseError{path, line_at(text, e.byte > 0 ? e.byte - 1 : 0), "", "not JSON: " + std::string(e.what())};
+  } catch (const json::exception& e) {
+    // A number beyond a double (88e898) is no parse error to the library but an out_of_range.
+    return ParseError{path, 1, "", "not JSON that can be read: " + std::string(e.what())};
   }
   try {
     if (!doc.is_object()) fail("", "expected a GeoJSON object");

@@ -56,6 +56,7 @@ void start(void* data, const XML_Char* name, const XML_Char** attrs) {
     s.where = r.element + "[" + std::to_string(r.element == "trk" ? r.tracks++ : r.routes++) + "]";
     r.sections.push_back(std::move(s));
     r.in_line = true;
+    r.in_point = false;  // a line opened inside a point (malformed, yet well-formed XML) starts without one
   } else if (r.in_line && (r.element == "trkpt" || r.element == "rtept")) {
     GeoPoint p{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(),
                std::numeric_limits<double>::quiet_NaN()};
@@ -81,7 +82,7 @@ void end(void* data, const XML_Char* name) {
     r.in_line = false;
   } else if (element == "trkpt" || element == "rtept") {
     r.in_point = false;
-  } else if (r.in_point && element == "ele") {
+  } else if (r.in_point && element == "ele" && !r.sections.back().line.empty()) {
     const auto v = number(r.text);
     if (!v) return r.fail("ele", "not a number: \"" + r.text + "\"");
     r.sections.back().line.back().elev_m = *v;
