@@ -32,8 +32,7 @@ const char* const kUsage =
     "  -h, --help           this text\n"
     "\n"
     "Signals: SIGTERM/SIGINT flush and exit; SIGHUP reopens the status files (logrotate) without\n"
-    "cutting the recording; SIGUSR1 ends the recording segment and starts a\n"
-    "new one.\n";
+    "cutting the recording; SIGUSR1 ends the recording segment and starts a new one.\n";
 
 namespace {
 

@@ -133,8 +133,7 @@ inline Parsed<toml::table> parse_toml_file(const std::string& path) {
   toml::parse_result r = toml::parse(text, path);
   if (!r) {
     const auto& e = r.error();
-    const bool missing = e.source().begin.line == 0;
-    return ParseError{path, static_cast<long>(e.source().begin.line), missing ? "file" : "syntax", std::string(e.description())};
+    return ParseError{path, static_cast<long>(e.source().begin.line), "syntax", std::string(e.description())};
   }
   return std::move(r).table();
 }

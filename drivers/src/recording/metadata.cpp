@@ -37,8 +37,6 @@ class Reader {
     return std::string(*n->value<std::string_view>());
   }
 
-  // A vehicle number a truck can have: finite; a mass (its name ends in _kg) above 0 and below
-  // 200 t; an axle's position between 0 and 50 m behind the front axle.
   // A free key named with its unit holds a number: text there is a mistake, not a label.
   static bool names_a_unit(std::string_view key) {
     for (std::string_view unit :
@@ -56,6 +54,8 @@ class Reader {
     return n->as_table();
   }
 
+  // A vehicle number a truck can have: finite; a mass (its name ends in _kg) above 0 and below
+  // 200 t; an axle's position between 0 and 50 m behind the front axle.
   static const char* unphysical(std::string_view key, double v) {
     if (!std::isfinite(v)) return "not a finite number";
     if (key.ends_with("_kg") && !(v > 0 && v < 200'000)) return "a mass must lie between 0 and 200,000 kg";

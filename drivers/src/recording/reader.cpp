@@ -246,11 +246,9 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned 
   }
   const fs::path dir(path);
   if (fs::exists(dir / kMetaFile)) {
+    if (fs::is_directory(dir / kMetaFile, ec)) return ParseError{(dir / kMetaFile).string(), 0, "", "Is a directory"};
     std::ifstream in(dir / kMetaFile);
-    if (fs::is_directory(dir / kMetaFile, ec) || !in) {
-      return ParseError{(dir / kMetaFile).string(), 0, "",
-                        fs::is_directory(dir / kMetaFile, ec) ? "Is a directory" : "cannot be read"};
-    }
+    if (!in) return ParseError{(dir / kMetaFile).string(), 0, "", "cannot be read"};
     std::stringstream text;
     text << in.rdbuf();
     auto meta = parse_metadata(text.str(), (dir / kMetaFile).string());

@@ -37,7 +37,7 @@ void as_coast(sim::Scenario& s, const RunConditions& c) {
 
 // The built-in scenario whose route the first fix lies on: for a cruise the one whose set speed is
 // nearest the drive's mean; for a coast-down a coast scenario of that route with the nearest entry
-// speed, else that route's cruise nearest the entry speed.
+// speed, else that route's cruise nearest the entry speed (load_real_run turns it into a coast).
 Parsed<sim::Scenario> nearest_builtin(const RunConditions& c, const std::string& recording) {
   if (!c.have_fix) return ParseError{recording, 0, recording::kGnssFile, "no GNSS fix: name the model with --model"};
   const bool coast = coasting(c);
@@ -60,7 +60,6 @@ Parsed<sim::Scenario> nearest_builtin(const RunConditions& c, const std::string&
   }
   if (!best)
     return ParseError{recording, 0, recording::kGnssFile, "the drive lies on no built-in route: name the model with --model"};
-  if (coast) as_coast(*best, c);
   return *best;
 }
 
