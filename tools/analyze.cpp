@@ -21,6 +21,7 @@
 #include "roadload/gravity_check.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
+#include "roadload/results/json.hpp"
 #include "roadload/torque_scale_consider.hpp"
 #include "roadload/track_route.hpp"
 
@@ -189,14 +190,22 @@ void attach(Accelerometers& acc, DriveAnalyzer& analyzer, const AnalyzeOptions& 
 }
 
 // RESULTS/cells.csv, trip.json and the PSD files.
+// `sensor_warnings` go into trip.json beside the numbers they put in doubt.
 int write_results(const AnalyzeOptions& o, const std::vector<CellResult>& cells, const TripResult& trip, const Accelerometers& acc,
-                  const PavementGroups& groups, const std::optional<VibrationSummary>& spectra) {
+                  const PavementGroups& groups, const std::optional<VibrationSummary>& spectra,
+                  const std::vector<std::string>& sensor_warnings) {
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   const VibrationAnalysis* va = acc.vibration ? &*acc.vibration : nullptr;
-  for (auto err : {results::write_cells_csv(o.out + "/cells.csv", cells, acc.axle_names, va),
-                   results::write_trip_json(o.out + "/trip.json", trip, spectra ? vibration_json(*spectra) : std::string()),
-                   va ? write_psd_files(o.out, *va, groups) : std::nullopt}) {
+  std::string extra = spectra ? vibration_json(*spectra) : std::string();
+  if (!sensor_warnings.empty()) {
+    extra += std::string(extra.empty() ? "" : ",\n") + "  \"accelerometer_warnings\": [";
+    for (std::size_t i = 0; i < sensor_warnings.size(); ++i) extra += (i ? ", " : "") + results::json_quote(sensor_warnings[i]);
+    extra += "]";
+  }
+  for (auto err :
+       {results::write_cells_csv(o.out + "/cells.csv", cells, acc.axle_names, va),
+        results::write_trip_json(o.out + "/trip.json", trip, extra), va ? write_psd_files(o.out, *va, groups) : std::nullopt}) {
     if (err) {
       std::fprintf(stderr, "roadload analyze: %s\n", err->to_string().c_str());
       return kExitCantCreate;
@@ -278,19 +287,25 @@ void drive(DriveAnalyzer& analyzer, recording::RecordingReader& reader, const Re
   }
 }
 
-// A sensor whose z lacks gravity is named with what that means; its numbers are not dropped.
-void tell_gravity(const GravityCheck& gravity, const recording::Metadata& meta) {
+// A sensor whose z lacks gravity is named with what that means, on standard error and in trip.json;
+// its numbers are not dropped.
+std::vector<std::string> tell_gravity(const GravityCheck& gravity, const recording::Metadata& meta) {
+  std::vector<std::string> out;
   for (const GravityCheck::Finding& f : gravity.implausible()) {
     std::string name = "sensor " + std::to_string(f.sensor);
     for (const recording::SensorInfo& s : meta.sensors) {
       if (s.id == f.sensor) name = s.name + (s.position.empty() ? "" : " (" + s.position + ")");
     }
-    std::fprintf(stderr,
-                 "roadload analyze: accelerometer %s: mean z %.2f m/s^2 over %llu samples, where the format's z includes "
-                 "gravity, up as mounted (+9.81): mounted upside down or on its side, or gravity taken out; its contact "
-                 "forces and dynamic power are suspect\n",
-                 name.c_str(), f.mean_z_mps2, static_cast<unsigned long long>(f.samples));
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "accelerometer %s: mean z %.2f m/s^2 over %llu samples, where the format's z includes gravity, up as "
+                  "mounted (+9.81): mounted upside down or on its side, or gravity taken out; its contact forces and dynamic "
+                  "power are suspect",
+                  name.c_str(), f.mean_z_mps2, static_cast<unsigned long long>(f.samples));
+    std::fprintf(stderr, "roadload analyze: %s\n", text);
+    out.emplace_back(text);
   }
+  return out;
 }
 
 int analyze(const AnalyzeOptions& o) {
@@ -345,7 +360,7 @@ int analyze(const AnalyzeOptions& o) {
   DriveAnalysis analysis = analyse_with_torque_scale(std::get<AnalyzerConfig>(cfg), run);
   if (!reread) return kExitNoInput;
   for (const auto& e : reader.value().errors().kept()) std::fprintf(stderr, "roadload analyze: %s\n", e.to_string().c_str());
-  tell_gravity(gravity, meta);
+  const std::vector<std::string> sensor_warnings = tell_gravity(gravity, meta);
   std::vector<CellResult>& results = analysis.cells;
   TripResult& trip = analysis.trip;
   for (const std::string* why : {static_cast<const std::string*>(&road.unplaced), &assumed}) {
@@ -353,7 +368,7 @@ int analyze(const AnalyzeOptions& o) {
   }
   std::optional<VibrationSummary> spectra;
   if (acc.vibration) spectra = summarize(*acc.vibration, groups, trip.fuel.time_s, trip.fuel.distance_m);
-  if (const int rc = write_results(o, results, trip, acc, groups, spectra); rc != kExitOk) return rc;
+  if (const int rc = write_results(o, results, trip, acc, groups, spectra, sensor_warnings); rc != kExitOk) return rc;
   std::optional<Truth> truth;
   if (!o.truth_dir.empty()) {
     auto t = read_truth(o.truth_dir);

@@ -95,7 +95,7 @@ ANALYZE = ["analyze", "{rec}", "--out", "{work}/out"]
 VEHICLE = (CONFIG / "vehicles" / "mnroad-truck.toml").read_text()
 ROUTE = (CONFIG / "routes" / "flat-track.toml").read_text()
 
-# (name, damage, command, exit status, what stderr must say)
+# (name, damage, command, exit status, what stderr must say[, what the results must hold])
 CASES = [
     # can.log
     ("can.log garbage line", replace_line("can.log", 3, "garbage"), ANALYZE, 65, r"can\.log:3: timestamp: expected a candump"),
@@ -126,7 +126,8 @@ CASES = [
     ("accel upside down is named, not refused", lambda rec: (rec / "accel.csv").write_text(
         "".join((l if i == 0 or l.startswith("#") else ",".join(l.split(",")[:4] + [str(-float(l.split(",")[4]))])) + "\n"
                 for i, l in enumerate((rec / "accel.csv").read_text().splitlines()))),
-     ANALYZE, 0, r"accelerometer \S+ \(tractor-front-axle-left\): mean z -9\.\d+ m/s\^2 over \d+ samples.*upside down"),
+     ANALYZE, 0, r"accelerometer \S+ \(tractor-front-axle-left\): mean z -9\.\d+ m/s\^2 over \d+ samples.*upside down",
+     lambda work: '"accelerometer_warnings": ["accelerometer' in (work / "out" / "trip.json").read_text()),
     # gnss.csv
     ("gnss latitude 95", field("gnss.csv", 3, "lat_deg", "95"), ANALYZE, 65, r"gnss\.csv:3: lat_deg: latitude out of range"),
     ("gnss longitude 200", field("gnss.csv", 4, "lon_deg", "200"), ANALYZE, 65, r"gnss\.csv:4: lon_deg: longitude out of range"),
@@ -198,7 +199,7 @@ CASES = [
 
 
 def run(case):
-    name, damage, argv, want_rc, want = case
+    name, damage, argv, want_rc, want, *check = case  # check: what the results must hold
     rec = work / re.sub(r"[^a-z0-9]+", "-", name.lower())
     shutil.copytree(base, rec)
     if damage is not None:
@@ -214,6 +215,8 @@ def run(case):
         problems.append(f"stderr lacks /{want}/")
     if p.returncode < 0:
         problems.append(f"killed by signal {-p.returncode}")
+    if check and p.returncode == 0 and not check[0](work):
+        problems.append("the results do not say it")
     shutil.rmtree(rec, ignore_errors=True)
     return problems, p.stderr
 
