@@ -15,5 +15,5 @@ function(roadload_man_page target section summary)
     DEPENDS ${target}
     COMMENT "help2man ${target}.${section}")
   add_custom_target(${target}-man ALL DEPENDS ${page})
-  install(FILES ${page} DESTINATION share/man/man${section})
+  install(FILES ${page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man${section})
 endfunction()

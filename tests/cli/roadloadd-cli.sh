@@ -87,8 +87,9 @@ cmp -s <(cat "$work"/rec2/*/can.log | cut -d' ' -f3) <(head -n "$frames" "$work/
 
 # The unit file, with ExecStart pointing at this build, passes systemd's own checks.
 if command -v systemd-analyze >/dev/null; then
-  sed "s|/usr/sbin/roadloadd|$roadloadd|" "$unit" >"$work/roadloadd.service"
-  expect_status 0 systemd-analyze verify "$work/roadloadd.service"
+  sed "s|^ExecStart=[^ ]*/roadloadd |ExecStart=$roadloadd |" "$unit" >"$work/roadloadd.service"
+  # The man page it names is installed by the package (tests/package checks it there).
+  expect_status 0 systemd-analyze verify --man=no "$work/roadloadd.service"
   [[ ! -s $work/err ]] || fail "systemd-analyze verify: $(cat "$work/err")"
   systemd-analyze security --offline=yes "$work/roadloadd.service" >"$work/security" 2>&1 || true
   exposure=$(sed -n 's/.*Overall exposure level for roadloadd.service: \([0-9.]*\).*/\1/p' "$work/security")

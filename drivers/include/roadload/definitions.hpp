@@ -8,7 +8,10 @@
 
 namespace roadload {
 
-// $ROADLOAD_DATADIR when set, else the data directory fixed at build time (config/ of the source).
+// Where the built-in definitions, routes, scenarios and vehicles are: $ROADLOAD_DATADIR when set;
+// else share/roadload beside the running program's bin or sbin folder, when it holds
+// j1939-core.dbc (an installed copy, whatever its prefix); else config/ of the source tree the
+// program was built from (a program run from its build folder).
 std::string data_dir();
 // data_dir()/j1939-core.dbc.
 std::string core_dbc_path();
