@@ -9,6 +9,7 @@
 #include "command.hpp"
 #include "options.hpp"
 #include "roadload/j1939/assembler.hpp"
+#include "roadload/j1939/cadence.hpp"
 #include "roadload/j1939/database.hpp"
 #include "roadload/recording/reader.hpp"
 
@@ -23,7 +24,9 @@ constexpr const char* kHelp =
     "  --pgn N         only this PGN (decimal or 0x hex); repeatable\n"
     "  --dbc FILE      load FILE after the built-in definitions (overrides the same PGN); repeatable\n"
     "  -h, --help      this text\n\n"
-    "A summary of frame kinds, skipped lines and transport counters goes to standard error.\n"
+    "A summary of frame kinds, skipped lines, transport counters and the frames that the J1939 cadence\n"
+    "judges lost or repeated (the count roadloadd's status gives, over the same stamps) goes to\n"
+    "standard error.\n"
     "Malformed lines are reported with file, line and field and make the exit status 65.\n";
 
 struct PgnStats {
@@ -95,7 +98,8 @@ void print_pgn_stats(std::FILE* out, const std::map<j1939::Pgn, PgnStats>& stats
   }
 }
 
-void print_summary(const KindCounts& k, const recording::RecordingReader& rec, const j1939::TpCounters& tp) {
+void print_summary(const KindCounts& k, const recording::RecordingReader& rec, const j1939::TpCounters& tp,
+                   const j1939::CadenceCounters& cadence) {
   std::uint64_t ignored = 0;
   for (const auto& s : rec.streams()) ignored += s->counts().ignored_lines;
   std::fprintf(stderr,
@@ -107,6 +111,8 @@ void print_summary(const KindCounts& k, const recording::RecordingReader& rec, c
                " timed_out=%" PRIu64 " superseded=%" PRIu64 " duplicates=%" PRIu64 " orphans=%" PRIu64 " malformed=%" PRIu64 "\n",
                tp.completed, tp.bam_started, tp.rts_started, tp.etp_started, tp.aborted, tp.timed_out, tp.superseded,
                tp.duplicate_packets, tp.orphan_packets, tp.malformed);
+  std::fprintf(stderr, "cadence: gaps=%" PRIu64 " repeats=%" PRIu64 " untracked=%" PRIu64 " too_fast=%" PRIu64 "\n", cadence.gaps,
+               cadence.repeats, cadence.untracked, cadence.too_fast);
   for (const ParseError& e : rec.errors().kept()) std::fprintf(stderr, "%s\n", e.to_string().c_str());
   if (rec.errors().count() > rec.errors().kept().size()) {
     std::fprintf(stderr, "... and %" PRIu64 " more malformed lines\n", rec.errors().count() - rec.errors().kept().size());
@@ -157,10 +163,13 @@ int run_decode(Args args) {
   j1939::MessageAssembler assembler;
   std::map<j1939::Pgn, PgnStats> stats;
   KindCounts kinds;
+  // The same judge of lost and repeated frames as roadloadd's status, over the same stamps.
+  j1939::CadenceMonitor cadence;
   while (const recording::Record* r = rec.value().next()) {
     const auto* frame = std::get_if<CanFrame>(r);
     if (frame == nullptr) continue;
     kinds.add(frame->kind);
+    cadence.push(*frame);
     if (pgn_stats && frame->kind == CanFrameKind::extended) {
       const j1939::Id id = j1939::parse_id(frame->id);
       PgnStats& s = stats[id.pgn()];
@@ -180,7 +189,7 @@ int run_decode(Args args) {
   }
   if (pgn_stats) print_pgn_stats(stdout, stats, db);
   std::fflush(stdout);
-  print_summary(kinds, rec.value(), assembler.transport().counters());
+  print_summary(kinds, rec.value(), assembler.transport().counters(), cadence.counters());
   return rec.value().errors().count() > 0 ? kExitDataErr : kExitOk;
 }
 

@@ -6,9 +6,13 @@
 # bunches frames, their capture stamps stop being the bus's, and the live filter swings beyond its
 # intervals (at 2x and 3x, 1 run in 3; docs/journal.md). Then compare:
 #   (a) the daemon's recording against the input, frame for frame and sample for sample;
-#   (b) its per-cell CRR (live filter) against `roadload analyze` of the same recording (smoother):
-#       within the live estimate's own 90 % interval plus the smoother's;
-#   (c) its status log: what a user would read at the end of the drive.
+#   (b) its per-cell CRR (live filter) against `roadload analyze` of the daemon's own recording
+#       (smoother, over the capture stamps the live filter saw): within the live estimate's own
+#       90 % interval plus the smoother's;
+#   (c) its status log: what a user would read at the end of the drive, its counts equal to what
+#       the recording's own stamps show.
+# Every verdict is on what the daemon could know, so none depends on how busy the host is: how UML
+# spaced the frames (the count of cadence gaps it caused) is printed, not judged.
 # usage (on the host; it boots UML itself): replay-through-roadloadd.sh ROADLOADD_BIN ROADLOAD_BIN
 #   inside UML (run by the host half):       replay-through-roadloadd.sh --kernel-part DIR ROADLOADD_BIN ROADLOAD_BIN
 set -euo pipefail
@@ -34,8 +38,6 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/replay-daemon.XXXXXX")
 [[ -n ${ROADLOAD_KEEP:-} ]] || trap 'rm -rf -- "$work"' EXIT
 "$roadload" simulate --scenario mnroad-mainline-64mph --seed 11 --duration "$duration_s" --out "$work/sim" -q ||
   die "roadload simulate failed with status $?"
-"$roadload" analyze "$work/sim" --route "$route" --out "$work/offline" -q ||
-  die "roadload analyze failed with status $?"
 rc=0
 "$here/uml-run" --timeout 330 -- "$here/replay-through-roadloadd.sh" --kernel-part "$work" "$roadloadd" "$roadload" || rc=$?
 ((rc != 77)) || exit 77
@@ -52,7 +54,9 @@ for stream in accel.csv gnss.csv weather.csv; do
 done
 note "(a) PASS: $sent CAN frames and every sensor sample recorded as replayed"
 
-# (b) Per cell: the live filter against the smoother.
+# (b) Per cell: the live filter against the smoother over the same recording.
+"$roadload" analyze "${segs[0]}" --route "$route" --out "$work/offline" -q ||
+  die "roadload analyze of the daemon's recording failed with status $?"
 /usr/bin/python3 - "$work/offline/cells.csv" "$work/live/cells.csv" <<'PY' || die "(b) live and offline CRR per cell disagree"
 import csv, sys
 off = {r["cell"]: r for r in csv.DictReader(open(sys.argv[1]))}
@@ -82,14 +86,15 @@ last=$(grep -E '^[0-9]{4}-' "$work/status.log" | tail -n 1)
 # nothing was lost; the clocks never stepped.
 [[ $last == *"| vcan0 up "* && $last == *"| accel ended "*"drop 0 err 0"* && $last == *"| rec none "*"lost 0"* &&
   $last == *"| sync ok"* ]] || die "(c) last status line: $last"
-# No frame was lost or repeated ((a) shows it). UML's one CPU delays and bunches replayed frames by
-# more than the cadence monitor's tolerance now and then, and it reads some of that as gaps or
-# repeats (at five times real time, 5 to 207 of 43,451 frames in the runs of docs/journal.md,
-# 2026-11-25). A status that cried loss on every frame would show here; the fault test shows the
-# monitor counting frames that were really dropped.
+# No frame was lost or repeated ((a) shows it), yet UML's one CPU delays and bunches frames now and
+# then, and the kernel stamps them as they came: the cadence monitor counts what those stamps show.
+# The status must say exactly what `roadload decode` finds in the recorded stamps, however many.
 read -r gaps repeats < <(tail -n 1 "$work/status.jsonl" | grep -o '"gaps":[0-9]*,"repeats":[0-9]*' | tr -c '0-9\n' ' ')
-cadence=$((gaps + repeats))
-((cadence * 100 <= sent)) || die "(c) $cadence gaps and repeats reported in a clean drive of $sent frames"
+"$roadload" decode "${segs[0]}" >/dev/null 2>"$work/decode.err" || die "roadload decode of the recording failed"
+read -r rec_gaps rec_repeats < <(sed -n 's/^cadence: gaps=\([0-9]*\) repeats=\([0-9]*\) .*/\1 \2/p' "$work/decode.err")
+[[ -n $gaps && $gaps == "$rec_gaps" && $repeats == "$rec_repeats" ]] ||
+  die "(c) status counts ${gaps:-?} gaps ${repeats:-?} repeats; the recorded stamps show ${rec_gaps:-?} and ${rec_repeats:-?}"
+note "(c) cadence: $gaps gaps and $repeats repeats in $sent frames, as the recorded stamps show (host timing, not judged)"
 grep -Eq '\| rec 000001-[0-9]{8}T[0-9]{6}Z ' "$work/status.log" || die "(c) no status line named the recording segment"
 grep -q '"lines_lost":0' <(tail -n 1 "$work/status.jsonl") || die "(c) lines lost in the last JSON status"
 grep -q '^roadloadd stopped: [0-9]* lines recorded, 0 lost$' "$work/status.log" || die "(c) no clean stop line"
