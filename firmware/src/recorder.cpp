@@ -8,6 +8,7 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <random>
 #include <system_error>
 
 #include "roadload/recording/candump.hpp"
@@ -76,10 +77,22 @@ bool write_whole_file(const std::string& path, const std::string& text) {
   return ok;
 }
 
+// A run's id: 64 random bits from the kernel's pool, so two gateways (or two runs of one) never
+// share it and their segments are never joined into one drive.
+std::string new_recording_id() {
+  std::random_device entropy;
+  const std::uint64_t id = (static_cast<std::uint64_t>(entropy()) << 32) | entropy();
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(id));
+  return text;
+}
+
 }  // namespace
 
 Recorder::Recorder(RecorderConfig config, recording::Metadata meta, std::vector<std::string> interfaces)
     : config_(std::move(config)), meta_(std::move(meta)), interfaces_(std::move(interfaces)) {
+  meta_.recording_id = new_recording_id();
+  meta_.segment = 0;
   scan_data_dir();
 }
 
@@ -118,9 +131,11 @@ bool Recorder::start_segment(CaptureTime now) {
     note_error(folder, ec.value());
     return false;
   }
+  ++meta_.segment;
   if (!write_whole_file(folder + "/" + recording::kMetaFile, recording::format_metadata(meta_))) {
     note_error(folder + "/meta.toml", errno);
     fs::remove_all(folder, ec);
+    --meta_.segment;
     return false;
   }
   ++sequence_;

@@ -69,6 +69,53 @@ TEST(Recorder, SegmentsRotateBySizeAndReadBackWhole) {
   EXPECT_EQ(rec.status().lines_lost, 0u);
 }
 
+// The segments of one run carry its id and their places in it, so they join back into the drive:
+// given in reverse, every frame comes back once and in order.
+TEST(Recorder, SegmentsOfOneRunJoinIntoTheWholeDrive) {
+  RecorderConfig c;
+  c.data_dir = fresh_dir("recorder-join");
+  c.segment_max_bytes = 200'000;
+  {
+    Recorder rec(c, recording::Metadata{}, {"can0"});
+    CaptureTime now = capture_time_from_ns(0);
+    rec.tick(now);
+    for (std::int64_t i = 0; i < 20'000; ++i) {
+      rec.write(frame(i));
+      if (i % 100 == 0) rec.tick(now += Nanoseconds{25'000'000});
+    }
+  }
+  std::vector<std::string> given;
+  for (const auto& s : segments(c.data_dir)) given.insert(given.begin(), s.string());
+  ASSERT_GE(given.size(), 4u);
+  auto ordered = recording::join_segments(given);
+  ASSERT_TRUE(ordered) << ordered.error().to_string();
+  auto r = recording::RecordingReader::open_drive(ordered.value());
+  ASSERT_TRUE(r);
+  EXPECT_FALSE(r.value().metadata().recording_id.empty());
+  EXPECT_EQ(r.value().metadata().segment, 1);
+  std::int64_t i = 0;
+  while (const auto* rec = r.value().next()) {
+    const auto* f = std::get_if<CanFrame>(rec);
+    ASSERT_NE(f, nullptr);
+    ASSERT_EQ(f->t, frame(i).t) << "frame " << i;
+    ++i;
+  }
+  EXPECT_EQ(i, 20'000);
+  EXPECT_EQ(r.value().errors().count(), 0u);
+  EXPECT_EQ(r.value().streams().at(0)->counts().records, 20'000u);
+
+  // A second run's segment is another drive.
+  Recorder second(c, recording::Metadata{}, {"can0"});
+  second.tick(capture_time_from_ns(0));
+  second.write(frame(30'000));
+  second.end_segment();
+  const auto all = segments(c.data_dir);
+  const std::vector<std::string> mixed{all.front().string(), all.back().string()};
+  auto refused = recording::join_segments(mixed);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().field, "recording_id") << refused.error().to_string();
+}
+
 TEST(Recorder, QuotaDeletesTheOldestSegments) {
   RecorderConfig c;
   c.data_dir = fresh_dir("recorder-quota");

@@ -83,6 +83,11 @@ class Reader {
     m.version = integer(*version, "version");
     if (m.version != kFormatVersion) fail(version, "version", "unsupported format version");
     m.created_by = text(root, "created_by", "");
+    m.recording_id = text(root, "recording_id", "");
+    if (const toml::node* segment = root.get("segment")) {
+      m.segment = integer(*segment, "segment");
+      if (m.segment < 1) fail(segment, "segment", "expected a segment number from 1");
+    }
     if (const toml::table* clock = table(root, "clock")) {
       m.clock_source = text(*clock, "source", "clock.");
       if (const toml::node* off = clock->get("utc_offset_ns")) m.utc_offset_ns = integer(*off, "clock.utc_offset_ns");
@@ -188,6 +193,8 @@ std::string format_metadata(const Metadata& m) {
   std::ostringstream o;
   o << "format = \"roadload-recording\"\nversion = " << m.version << "\n";
   if (!m.created_by.empty()) o << "created_by = " << quoted(m.created_by) << "\n";
+  if (!m.recording_id.empty()) o << "recording_id = " << quoted(m.recording_id) << "\n";
+  if (m.segment > 0) o << "segment = " << m.segment << "\n";
   o << "\n[clock]\nsource = " << quoted(m.clock_source) << "\n";
   if (m.utc_offset_ns) o << "utc_offset_ns = " << *m.utc_offset_ns << "\n";
   o << "\n[vehicle]\n";

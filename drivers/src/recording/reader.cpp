@@ -198,10 +198,35 @@ std::uint64_t ErrorLog::count_in(std::string_view name) const {
   return n;
 }
 
-Parsed<std::unique_ptr<CandumpStream>> CandumpStream::open(const std::string& path) {
+Parsed<std::unique_ptr<CandumpStream>> CandumpStream::open(const std::string& path, const InterfaceTable* interfaces) {
   auto lines = LineReader::open(path);
   if (!lines) return lines.error();
-  return std::unique_ptr<CandumpStream>(new CandumpStream(std::move(lines.value())));
+  std::unique_ptr<CandumpStream> s(new CandumpStream(std::move(lines.value())));
+  if (interfaces != nullptr) s->ifaces_ = *interfaces;
+  return s;
+}
+
+const char* stream_file(unsigned bit) {
+  switch (bit) {
+    case kCanStream: return kCanFile;
+    case kAccelStream: return kAccelFile;
+    case kGnssStream: return kGnssFile;
+    default: return kWeatherFile;
+  }
+}
+
+Parsed<std::unique_ptr<Stream>> open_stream(unsigned bit, const std::filesystem::path& dir, const InterfaceTable* interfaces) {
+  const fs::path p = dir / stream_file(bit);
+  switch (bit) {
+    case kCanStream: {
+      auto can = CandumpStream::open(p.string(), interfaces);
+      if (!can) return can.error();
+      return std::unique_ptr<Stream>(std::move(can.value()));
+    }
+    case kAccelStream: return open_csv<AccelSample>(p, kAccelColumns, kAccelFile, to_accel);
+    case kGnssStream: return open_csv<GnssFix>(p, kGnssColumns, kGnssFile, to_gnss, kGnssOptional);
+    default: return open_csv<WeatherSample>(p, kWeatherColumns, kWeatherFile, to_weather);
+  }
 }
 
 bool CandumpStream::next_frame(CanFrame& out, ErrorLog& errors) {
@@ -256,25 +281,9 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned 
     r.meta_ = std::move(meta.value());
     r.has_meta_ = true;
   }
-  if ((streams & kCanStream) != 0 && fs::exists(dir / kCanFile)) {
-    auto can = CandumpStream::open((dir / kCanFile).string());
-    if (!can) return can.error();
-    r.streams_.push_back(std::move(can.value()));
-  }
-  const struct {
-    unsigned bit;
-    const char* file;
-    Parsed<std::unique_ptr<Stream>> (*open)(const fs::path&);
-  } csvs[] = {
-      {kAccelStream, kAccelFile, [](const fs::path& p) { return open_csv<AccelSample>(p, kAccelColumns, kAccelFile, to_accel); }},
-      {kGnssStream, kGnssFile,
-       [](const fs::path& p) { return open_csv<GnssFix>(p, kGnssColumns, kGnssFile, to_gnss, kGnssOptional); }},
-      {kWeatherStream, kWeatherFile,
-       [](const fs::path& p) { return open_csv<WeatherSample>(p, kWeatherColumns, kWeatherFile, to_weather); }},
-  };
-  for (const auto& c : csvs) {
-    if ((streams & c.bit) == 0 || !fs::exists(dir / c.file)) continue;
-    auto s = c.open(dir / c.file);
+  for (unsigned bit : kStreamBits) {
+    if ((streams & bit) == 0 || !fs::exists(dir / stream_file(bit))) continue;
+    auto s = open_stream(bit, dir, nullptr);
     if (!s) return s.error();
     r.streams_.push_back(std::move(s.value()));
   }
@@ -285,7 +294,7 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned 
 const InterfaceTable& RecordingReader::interfaces() const {
   static const InterfaceTable kNone;
   for (const auto& s : streams_) {
-    if (const auto* can = dynamic_cast<const CandumpStream*>(s.get())) return can->interfaces();
+    if (const InterfaceTable* t = s->interfaces()) return *t;
   }
   return kNone;
 }

@@ -33,7 +33,12 @@ struct SensorInfo {
 
 struct Metadata {
   std::int64_t version = kFormatVersion;
-  std::string created_by;                           // program and version that wrote it
+  std::string created_by;  // program and version that wrote it
+  // One run of a logger that cuts its drive into segments: every segment carries the run's id and
+  // its place in it (1, 2, ...), so a reader can join them back into one drive. Empty / 0: a
+  // recording of one piece.
+  std::string recording_id;
+  std::int64_t segment = 0;
   std::string clock_source;                         // where capture stamps came from: "kernel", "simulated", ...
   std::optional<std::int64_t> utc_offset_ns;        // UTC = capture + offset, when a GNSS fix gave one
   std::map<std::string, std::string> vehicle_text;  // vin, name, ...

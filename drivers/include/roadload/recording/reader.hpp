@@ -4,8 +4,10 @@
 // Malformed lines are counted, the first of them kept with file, line and field, and skipped:
 // the caller decides whether that is fatal, and nothing is dropped without being reported.
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
@@ -49,6 +51,8 @@ class Stream {
   // Next good record of this stream; false at the end. Bad lines go to `errors`.
   virtual bool next(Record& out, ErrorLog& errors) = 0;
   virtual const char* name() const = 0;
+  // The interface names of a CAN stream's frames; null for the others.
+  virtual const InterfaceTable* interfaces() const { return nullptr; }
   const StreamCounts& counts() const { return counts_; }
 
  protected:
@@ -58,12 +62,13 @@ class Stream {
 // A candump -L log, also usable alone (decode of a bare log, benchmarks).
 class CandumpStream final : public Stream {
  public:
-  static Parsed<std::unique_ptr<CandumpStream>> open(const std::string& path);
+  // `interfaces`: the names a previous segment of the drive gave indices to, kept for this one.
+  static Parsed<std::unique_ptr<CandumpStream>> open(const std::string& path, const InterfaceTable* interfaces = nullptr);
   bool next(Record& out, ErrorLog& errors) override;
   // The same without the variant, for the tight decode loop.
   bool next_frame(CanFrame& out, ErrorLog& errors);
   const char* name() const override { return kCanFile; }
-  const InterfaceTable& interfaces() const { return ifaces_; }
+  const InterfaceTable* interfaces() const override { return &ifaces_; }
 
  private:
   explicit CandumpStream(LineReader lines) : lines_(std::move(lines)) {}
@@ -80,11 +85,26 @@ enum StreamMask : unsigned {
   kWeatherStream = 8,
   kAllStreams = 15,
 };
+inline constexpr unsigned kStreamBits[] = {kCanStream, kAccelStream, kGnssStream, kWeatherStream};
+// A stream's file in a recording folder, and the stream read from it.
+const char* stream_file(unsigned bit);
+Parsed<std::unique_ptr<Stream>> open_stream(unsigned bit, const std::filesystem::path& dir, const InterfaceTable* interfaces);
+
+// What a command given several recordings reads: one path is itself; several must be segments of
+// one roadloadd run (the same recording_id in meta.toml, segment numbers following each other,
+// given in any order), returned in order. Anything else is an error naming the path and why: the
+// command refuses it as a usage error (64) rather than read some of it.
+Parsed<std::vector<std::string>> join_segments(std::span<const std::string> paths);
 
 class RecordingReader {
  public:
   // `path` is a recording folder or a candump log file.
   static Parsed<RecordingReader> open(const std::string& path, unsigned streams = kAllStreams);
+  // The segments of one drive as join_segments ordered them, read as one recording: each stream
+  // runs through its file in every segment in turn, the interface names carried across, and the
+  // first segment's meta.toml stands for the drive. A segment whose stamps start before the
+  // previous one's end is reported as a malformed line of its file.
+  static Parsed<RecordingReader> open_drive(std::span<const std::string> segments, unsigned streams = kAllStreams);
 
   // Next record across all streams, earliest stamp first (ties: can, accel, gnss, weather).
   const Record* next();
