@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "analyze_options.hpp"
+#include "analyze_provenance.hpp"
 #include "analyze_results.hpp"
 #include "analyze_vibration.hpp"
 #include "command.hpp"
@@ -73,15 +75,6 @@ constexpr const char* kHelp =
     "  --dbc FILE      load FILE after the built-in definitions; repeatable\n"
     "  -q, --quiet     no table on standard output\n"
     "  -h, --help      this text\n";
-
-struct AnalyzeOptions {
-  std::string recording, route, out, truth_dir, grade_file, losses_file, vehicle;
-  double survey_sigma = 0;
-  std::optional<double> mass, cda_m2, cda_sigma_m2, cda_torque_correlation, cda_per_torque_scale_m2;
-  std::optional<double> torque_scale, torque_scale_sigma;
-  std::vector<std::string> dbcs;
-  bool quiet = false, estimate_cda = false;
-};
 
 // The options, or the exit status when there is nothing to analyse (help, a bad option).
 std::variant<AnalyzeOptions, int> parse(Args args) {
@@ -191,21 +184,23 @@ void attach(Accelerometers& acc, DriveAnalyzer& analyzer, const AnalyzeOptions& 
 
 // RESULTS/cells.csv, trip.json and the PSD files.
 // `sensor_warnings` go into trip.json beside the numbers they put in doubt.
-int write_results(const AnalyzeOptions& o, const std::vector<CellResult>& cells, const TripResult& trip, const Accelerometers& acc,
-                  const PavementGroups& groups, const std::optional<VibrationSummary>& spectra,
-                  const std::vector<std::string>& sensor_warnings) {
+int write_results(const AnalyzeOptions& o, const DriveAnalysis& a, const Accelerometers& acc, const PavementGroups& groups,
+                  const std::optional<VibrationSummary>& spectra, const std::vector<std::string>& sensor_warnings,
+                  const Provenance& provenance) {
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   const VibrationAnalysis* va = acc.vibration ? &*acc.vibration : nullptr;
-  std::string extra = spectra ? vibration_json(*spectra) : std::string();
+  std::string extra = provenance_json(provenance) + ",\n" + results::pavements_json(a.pavements);
+  if (spectra) extra += ",\n" + vibration_json(*spectra);
   if (!sensor_warnings.empty()) {
-    extra += std::string(extra.empty() ? "" : ",\n") + "  \"accelerometer_warnings\": [";
+    extra += ",\n  \"accelerometer_warnings\": [";
     for (std::size_t i = 0; i < sensor_warnings.size(); ++i) extra += (i ? ", " : "") + results::json_quote(sensor_warnings[i]);
     extra += "]";
   }
   for (auto err :
-       {results::write_cells_csv(o.out + "/cells.csv", cells, acc.axle_names, va),
-        results::write_trip_json(o.out + "/trip.json", trip, extra), va ? write_psd_files(o.out, *va, groups) : std::nullopt}) {
+       {results::write_cells_csv(o.out + "/cells.csv", a.cells, acc.axle_names, va),
+        results::write_pavements_csv(o.out + "/pavements.csv", a.pavements),
+        results::write_trip_json(o.out + "/trip.json", a.trip, extra), va ? write_psd_files(o.out, *va, groups) : std::nullopt}) {
     if (err) {
       std::fprintf(stderr, "roadload analyze: %s\n", err->to_string().c_str());
       return kExitCantCreate;
@@ -355,7 +350,7 @@ int analyze(const AnalyzeOptions& o) {
       reread = false;
     }
     analyzer.finish();
-    return DriveAnalysis{analyzer.cells(), analyzer.trip()};
+    return DriveAnalysis{analyzer.cells(), analyzer.trip(), analyzer.pavements(groups)};
   };
   DriveAnalysis analysis = analyse_with_torque_scale(std::get<AnalyzerConfig>(cfg), run);
   if (!reread) return kExitNoInput;
@@ -364,11 +359,14 @@ int analyze(const AnalyzeOptions& o) {
   std::vector<CellResult>& results = analysis.cells;
   TripResult& trip = analysis.trip;
   for (const std::string* why : {static_cast<const std::string*>(&road.unplaced), &assumed}) {
-    if (!why->empty()) withhold(trip, results, *why);
+    if (why->empty()) continue;
+    withhold(trip, results, *why);
+    for (PavementResult& p : analysis.pavements) withhold(p.crr, *why);
   }
   std::optional<VibrationSummary> spectra;
   if (acc.vibration) spectra = summarize(*acc.vibration, groups, trip.fuel.time_s, trip.fuel.distance_m);
-  if (const int rc = write_results(o, results, trip, acc, groups, spectra, sensor_warnings); rc != kExitOk) return rc;
+  const Provenance origin = provenance(o, meta, vehicle, assumed, track, std::get<AnalyzerConfig>(cfg));
+  if (const int rc = write_results(o, analysis, acc, groups, spectra, sensor_warnings, origin); rc != kExitOk) return rc;
   std::optional<Truth> truth;
   if (!o.truth_dir.empty()) {
     auto t = read_truth(o.truth_dir);
@@ -378,6 +376,7 @@ int analyze(const AnalyzeOptions& o) {
   const VibrationAnalysis* va = acc.vibration ? &*acc.vibration : nullptr;
   if (!o.quiet) print_cells(results, truth ? &*truth : nullptr);
   print_trip(trip, results, truth ? &*truth : nullptr, va);
+  print_pavements(analysis.pavements);
   if (spectra) print_vibration(*spectra);
   if (spectra && truth) print_vibration_truth(*acc.vibration, road.cells, *truth);
   return reader.value().errors().count() > 0 ? kExitDataErr : kExitOk;

@@ -67,6 +67,18 @@ void print_against_truth(const char* what, const std::vector<CellResult>& cells,
 
 }  // namespace
 
+void print_pavements(const std::vector<PavementResult>& pavements) {
+  for (const PavementResult& p : pavements) {
+    const CellResult& c = p.crr;
+    if (c.samples == 0) {
+      std::fprintf(stderr, "analyze: pavement %-16s %s\n", c.id.c_str(), c.reason.c_str());
+      continue;
+    }
+    std::fprintf(stderr, "analyze: pavement %-16s CRR %.5f [%.5f, %.5f] %s, rolling %.2f L/100 km over %.0f m\n", c.id.c_str(), c.crr,
+                 c.crr_lo, c.crr_hi, c.identified ? "identified" : "NOT identified", p.rolling_l_per_100km(), p.distance_m);
+  }
+}
+
 void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth,
                 const VibrationAnalysis* vibration) {
   std::fprintf(stderr,

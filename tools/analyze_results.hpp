@@ -18,6 +18,9 @@ using results::read_truth;
 using results::Truth;
 
 void print_cells(const std::vector<CellResult>& cells, const Truth* truth);
+// The answer per pavement type: CRR with its interval, identified or not, and the rolling
+// resistance's fuel per 100 km on it.
+void print_pavements(const std::vector<PavementResult>& pavements);
 // With the accelerometers' analysis, the tires' own CRR too (tire_crr.hpp).
 void print_trip(const TripResult& trip, const std::vector<CellResult>& cells, const Truth* truth, const VibrationAnalysis* vibration);
 

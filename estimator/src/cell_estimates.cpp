@@ -34,6 +34,13 @@ CellResult cell_result(const CellSpan& span, const CellTally& tally, std::option
 CellEstimates::CellEstimates(std::vector<CellSpan> cells, double truck_length_m, bool smoothed)
     : cells_(std::move(cells)), state_(cells_.size()), truck_length_m_(truck_length_m), smoothed_(smoothed) {}
 
+void CellEstimates::add(CellTally& sum, const CellTally& t) {
+  sum.seen += t.seen;
+  sum.samples += t.samples;
+  sum.speed_sum_mps += t.speed_sum_mps;
+  for (std::size_t k = 0; k < t.why.size(); ++k) sum.why[k] += t.why[k];
+}
+
 bool CellEstimates::inside(const CellSpan& c, double s_front_m, double s_cg_m) const {
   return c.end_m - c.start_m > truck_length_m_ ? s_front_m - truck_length_m_ >= c.start_m && s_front_m < c.end_m
                                                : s_cg_m >= c.start_m && s_cg_m < c.end_m;

@@ -335,4 +335,21 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
   return out;
 }
 
+std::vector<PavementResult> DriveAnalyzer::pavements(const PavementGroups& groups) const {
+  const std::vector<CellResult> crr = cells_.group_results(groups, cell_limits(),
+                                                           [this](std::span<const std::size_t> steps) { return crr_mean(steps); });
+  const std::vector<FuelBreakdown>& fuel = fuel_.cells();
+  std::vector<PavementResult> out(crr.size());
+  for (std::size_t g = 0; g < crr.size(); ++g) out[g].crr = crr[g];
+  for (std::size_t i = 0; i < groups.cell_group.size(); ++i) {
+    const int g = groups.cell_group[i];
+    if (g < 0 || static_cast<std::size_t>(g) >= out.size()) continue;
+    ++out[static_cast<std::size_t>(g)].cells;
+    if (i >= fuel.size()) continue;
+    out[static_cast<std::size_t>(g)].rolling_l += fuel[i].liters(FuelUse::rolling);
+    out[static_cast<std::size_t>(g)].distance_m += fuel[i].distance_m;
+  }
+  return out;
+}
+
 }  // namespace roadload

@@ -95,13 +95,15 @@ std::string join_reasons(const std::vector<std::string>& reasons) {
   return s;
 }
 
+void withhold(CellResult& c, const std::string& why) {
+  c.identified = false;
+  c.reason = c.reason.empty() ? "CRR not identified: " + why : c.reason + "; " + why;
+}
+
 void withhold(TripResult& trip, std::vector<CellResult>& cells, const std::string& why) {
   trip.identified = false;
   trip.not_identified.insert(trip.not_identified.begin(), why);
-  for (CellResult& c : cells) {
-    c.identified = false;
-    c.reason = c.reason.empty() ? "CRR not identified: " + why : c.reason + "; " + why;
-  }
+  for (CellResult& c : cells) withhold(c, why);
 }
 
 }  // namespace roadload

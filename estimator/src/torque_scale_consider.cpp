@@ -28,6 +28,9 @@ DriveAnalysis widen_by_shift(DriveAnalysis held, const DriveAnalysis& shifted, c
   for (std::size_t i = 0; i < held.cells.size() && i < shifted.cells.size(); ++i) {
     widen_cell(held.cells[i], shifted.cells[i], cfg, drive);
   }
+  for (std::size_t i = 0; i < held.pavements.size() && i < shifted.pavements.size(); ++i) {
+    widen_cell(held.pavements[i].crr, shifted.pavements[i].crr, cfg, drive);
+  }
   return held;
 }
 

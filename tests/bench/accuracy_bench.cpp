@@ -158,7 +158,7 @@ void tally(const sim::Scenario& sc, const sim::Simulation& sim, const sim::test:
     DriveAnalyzer a(db, route, sim::test::cell_spans(sc), c);
     if (which == TorqueScaleRun::held) a.attach(&va);
     sim::test::analyze(a, sink, which == TorqueScaleRun::held);
-    return DriveAnalysis{a.cells(), a.trip()};
+    return DriveAnalysis{a.cells(), a.trip(), {}};
   });
   const TripResult& trip = analysis.trip;
   DriveAnalyzer bound(db, route, sim::test::cell_spans(sc), nuisance_known(cfg));

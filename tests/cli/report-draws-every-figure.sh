@@ -60,6 +60,17 @@ rows=$(sed -n '/id="crr"/,/<\/table>/p' "$page" | grep -c '<tr><td>' || true)
 ((rows == cells)) || fail "the CRR table has $rows rows for $cells cells"
 
 grep -q 'id="gap"' "$work/report.html" || fail "no sim-to-real section although gap.json is there"
+# The top answers per pavement type, and says which truck, route, date and calibration.
+/usr/bin/python3 - "$work/report.html" "$work/res/pavements.csv" <<'PY' || fail "the answer per pavement is not at the top"
+import csv, re, sys
+page, pavements = open(sys.argv[1]).read(), list(csv.DictReader(open(sys.argv[2])))
+top = page[: page.index('id="crr"')]
+assert 'class="provenance"' in top and "mnroad-truck" in top and "mnroad-mainline-westbound" in top, "no provenance"
+assert re.search(r"driven <b>\d{4}-\d\d-\d\dT", top), "no drive date"
+rows = re.findall(r"<tr><td>([^<]+)</td><td>(0\.\d{5} \[0\.\d{5}, 0\.\d{5}\]|\u2013)</td>", top)
+want = [p["pavement"] for p in pavements]
+assert [r[0] for r in rows] == want and len(want) >= 2, f"answer rows {rows} against pavements.csv {want}"
+PY
 grep -q "brake-drag = 118.2 N" "$work/report.html" || fail "the gap section does not name the effect"
 # Not grep -q: it would stop reading, and under pipefail sed's broken pipe would fail the check.
 sed -n '/id="gap"/,$p' "$work/report.html" | grep "<td>CdA</td><td>6.2 m2</td><td>5.81</td>" >/dev/null ||
@@ -83,12 +94,21 @@ if [[ -z $chromium ]]; then
   echo "report-cli: SKIPPED the rendering (no chromium)"
   exit 77
 fi
-# After layout, each figure's drawn marks: those with class "datum" whose box is not empty.
+# After layout, each figure's drawn marks: those with class "datum" whose box is not empty; and
+# the pairs of marker labels (mode numbers) whose boxes overlap, which must be none. The script
+# goes in on one line through sed's s###: no // comments and no ampersands (sed's match).
 check='<pre id="roadload-check"></pre><script>
 const out = {};
+let overlaps = 0;
 for (const f of document.querySelectorAll("figure")) {
   out[f.id] = [...f.querySelectorAll(".datum")].filter(e => { const b = e.getBBox(); return b.width > 0 || b.height > 0; }).length;
+  const boxes = [...f.querySelectorAll(".marker-label")].map(e => e.getBoundingClientRect());
+  for (let i = 0; i < boxes.length; ++i) for (let j = i + 1; j < boxes.length; ++j) {
+    const a = boxes[i], b = boxes[j];
+    if ((a.left < b.right) + (b.left < a.right) + (a.top < b.bottom) + (b.top < a.bottom) === 4) ++overlaps;
+  }
 }
+out["overlapping-labels"] = overlaps;
 document.getElementById("roadload-check").textContent = JSON.stringify(out);
 </script>'
 sed "s#</body>#${check//$'\n'/ }</body>#" "$page" >"$work/check.html"
@@ -104,6 +124,8 @@ want = {"crr-per-cell": cells, "rolling-fuel-per-cell": cells, "fuel-breakdown-p
         "trip-fuel-breakdown": 6, "contact-forces": cells, "dynamic-power-per-cell": cells, "psd-trip": 3,
         "gap-channels": 4, "gap-tables": 12}
 bad = [f"{k}: {drawn.get(k, 0)} marks, expected at least {n}" for k, n in want.items() if drawn.get(k, 0) < n]
+labels = drawn.pop("overlapping-labels", None)
+if labels != 0: bad.append(f"{labels} pairs of marker labels overlap")
 bad += [f"{k}: nothing drawn" for k, n in drawn.items() if n == 0]
 groups = [k for k in drawn if k.startswith("psd-") and k != "psd-trip"]
 if len(groups) < 2: bad.append(f"spectra per pavement group: {groups}")

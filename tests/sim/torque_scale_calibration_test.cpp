@@ -48,7 +48,7 @@ DriveAnalysis analyse_drive(const Drive& d, const AnalyzerConfig& cfg, const j19
   EXPECT_TRUE(route.has_value());
   DriveAnalyzer analyzer(db, *route, test::cell_spans(d.sc), cfg);
   test::analyze(analyzer, d.drive.sink);
-  return {analyzer.cells(), analyzer.trip()};
+  return {analyzer.cells(), analyzer.trip(), {}};
 }
 
 std::vector<CellResult> analyse(const Drive& d, const AnalyzerConfig& cfg, const j1939::Database& db) {

@@ -38,10 +38,16 @@ TripResult good_trip(double crr, double mass_kg) {
 
 TEST(TorqueScaleConsider, EachSigmaWidensByItsShiftAndTheChecksRunAgain) {
   AnalyzerConfig cfg;
-  DriveAnalysis held{{cell(0.0060, 0.0003), cell(0.0050, 0.0005), CellResult{}}, good_trip(0.0055, 30000)};
-  DriveAnalysis shifted{{cell(0.0064, 0.0003), cell(0.0042, 0.0005), CellResult{}}, good_trip(0.0057, 31200)};
+  DriveAnalysis held{{cell(0.0060, 0.0003), cell(0.0050, 0.0005), CellResult{}},
+                     good_trip(0.0055, 30000),
+                     {PavementResult{cell(0.0060, 0.0003), 2, 0, 0}}};
+  DriveAnalysis shifted{{cell(0.0064, 0.0003), cell(0.0042, 0.0005), CellResult{}},
+                        good_trip(0.0057, 31200),
+                        {PavementResult{cell(0.0064, 0.0003), 2, 0, 0}}};
   const DriveAnalysis out = widen_by_shift(held, shifted, cfg);
   EXPECT_NEAR(out.cells[0].crr_sigma, 0.0005, 1e-12);
+  // A pavement's estimate widens as a cell's does.
+  EXPECT_NEAR(out.pavements[0].crr.crr_sigma, 0.0005, 1e-12);
   EXPECT_DOUBLE_EQ(out.cells[0].crr, 0.0060);
   EXPECT_NEAR(out.cells[0].crr_hi - out.cells[0].crr, cfg.interval_z * 0.0005, 1e-12);
   EXPECT_TRUE(out.cells[0].identified) << out.cells[0].reason;
@@ -58,7 +64,7 @@ TEST(TorqueScaleConsider, ADriveThatFailsItsChecksStaysNotIdentified) {
   AnalyzerConfig cfg;
   TripResult t = good_trip(0.0055, 30000);
   t.wind_samples = 0;
-  const DriveAnalysis out = widen_by_shift({{cell(0.0060, 0.0003)}, t}, {{cell(0.0060, 0.0003)}, t}, cfg);
+  const DriveAnalysis out = widen_by_shift({{cell(0.0060, 0.0003)}, t, {}}, {{cell(0.0060, 0.0003)}, t, {}}, cfg);
   EXPECT_FALSE(out.trip.identified);
   EXPECT_FALSE(out.cells[0].identified);
   EXPECT_NE(out.cells[0].reason.find("no wind was measured"), std::string::npos) << out.cells[0].reason;
@@ -74,7 +80,7 @@ TEST(TorqueScaleConsider, TheSecondRunHoldsTheScaleOneSigmaOffAndTheFirstHoldsIt
     sigmas.push_back(c.filter.truck.torque_scale_sigma);
     held.push_back(c.filter.torque_scale_held);
     cda.push_back(c.filter.truck.cda_prior_m2);
-    return DriveAnalysis{{}, good_trip(0.0055, 30000)};
+    return DriveAnalysis{{}, good_trip(0.0055, 30000), {}};
   });
   ASSERT_EQ(sigmas.size(), 2u);
   EXPECT_EQ(sigmas[0], 0.0);

@@ -14,6 +14,7 @@
 #include "roadload/drive_results.hpp"
 #include "roadload/drive_signals.hpp"
 #include "roadload/identification.hpp"
+#include "roadload/pavement_groups.hpp"
 
 namespace roadload {
 
@@ -66,12 +67,37 @@ class CellEstimates {
     return out;
   }
 
+  // Each pavement group's result over all its cells' usable ticks together (`groups.cell_group`
+  // gives each cell's group). Smoothed only: a live filter's estimate belongs to a place, not to a
+  // pavement spread along the route, so live every group says so.
+  template <typename Mean>
+  std::vector<CellResult> group_results(const PavementGroups& groups, const CellLimits& limits, Mean&& mean) const {
+    std::vector<CellResult> out;
+    for (std::size_t g = 0; g < groups.names.size(); ++g) {
+      CellSpan span{groups.names[g], 0, 0};
+      CellTally tally;
+      std::vector<std::size_t> steps;
+      for (std::size_t i = 0; i < cells_.size() && i < groups.cell_group.size(); ++i) {
+        if (groups.cell_group[i] != static_cast<int>(g)) continue;
+        span.end_m += cells_[i].end_m - cells_[i].start_m;
+        add(tally, state_[i].tally);
+        steps.insert(steps.end(), state_[i].steps.begin(), state_[i].steps.end());
+      }
+      std::optional<CrrMean> crr;
+      if (smoothed_ && !steps.empty()) crr = mean(std::span<const std::size_t>(steps));
+      out.push_back(cell_result(span, tally, crr, limits));
+      if (!smoothed_ && tally.samples > 0) out.back().reason = "per pavement only from the smoothed drive (roadload analyze)";
+    }
+    return out;
+  }
+
   const std::vector<CellSpan>& spans() const { return cells_; }
   // The cell at a place along the route; -1 off the cells.
   int cell_at(double s_m) const;
 
  private:
   bool inside(const CellSpan& c, double s_front_m, double s_cg_m) const;
+  static void add(CellTally& sum, const CellTally& t);
 
   struct Cell {
     CellTally tally;

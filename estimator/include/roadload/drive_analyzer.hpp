@@ -90,6 +90,9 @@ class DriveAnalyzer {
   void finish();
 
   std::vector<CellResult> cells() const;
+  // Each pavement type's CRR and rolling fuel over its cells (`groups` of this drive's cells), once
+  // finished.
+  std::vector<PavementResult> pavements(const PavementGroups& groups) const;
   TripResult trip() const { return trip_; }
   LiveEstimate live() const { return live_; }
   const j1939::TpCounters& transport() const { return feed_.transport(); }

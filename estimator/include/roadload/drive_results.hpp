@@ -41,6 +41,17 @@ struct CellResult {
   std::vector<AxleForceStats> contact;  // per axle of the attached ContactForces' layout (Eq. 2.1)
 };
 
+// A pavement type's answer: its CRR over every usable tick on its cells together (the smoother's
+// variance of that mean, not an average of the cells' CRRs, whose errors the filter shares), and
+// what rolling on it costs in fuel.
+struct PavementResult {
+  CellResult crr;         // id: the pavement's name; start_m 0, end_m the length of its cells
+  std::size_t cells = 0;  // of the route's
+  double rolling_l = 0;   // the rolling resistance's share of the fuel burnt on it
+  double distance_m = 0;  // driven on it
+  double rolling_l_per_100km() const { return distance_m > 0 ? rolling_l / distance_m * 1e5 : 0.0; }
+};
+
 struct TripResult {
   std::size_t ticks = 0, usable_ticks = 0;
   std::size_t coasting_ticks = 0;                      // of the usable, in neutral: the road's load without the engine

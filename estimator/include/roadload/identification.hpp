@@ -55,6 +55,7 @@ std::vector<std::string> trip_failures(const TripResult& trip, bool usable, doub
 // A reason from outside the drive's own checks (the truck assumed, the drive not placed): the trip
 // and every cell are withheld from "identified" with it.
 void withhold(TripResult& trip, std::vector<CellResult>& cells, const std::string& why);
+void withhold(CellResult& cell, const std::string& why);
 
 // "a; b; c".
 std::string join_reasons(const std::vector<std::string>& reasons);

@@ -17,6 +17,7 @@ namespace roadload {
 struct DriveAnalysis {
   std::vector<CellResult> cells;
   TripResult trip;
+  std::vector<PavementResult> pavements;  // widened like the cells
 };
 
 enum class TorqueScaleRun { held, shifted };

@@ -123,29 +123,28 @@ Figure trip_fuel_breakdown(const results::JsonValue& trip, const results::Truth*
   return {std::move(c), "The trip's fuel broken down by force (seed report Figures 2.2, 6.4 and 6.5)."};
 }
 
+// The axles' static loads differ by tens of kN and the rear four carry nearly the same, so their
+// means would sit on one another; what a pavement changes is the dynamic part, drawn here side by
+// side per cell. The means are in the table beneath (contact_table).
 std::optional<Figure> contact_forces(const NumberTable& cells) {
   const std::vector<std::string> axles = axle_names(cells);
   if (axles.empty()) return std::nullopt;
   Chart c{"contact-forces",
           {"pavement cell", false, false},
-          {"contact force (kN), mean \u00b1 1 sd", false, false},
+          {"dynamic contact force, standard deviation (kN)", false, true},
           cell_ids(cells),
           false,
           {},
           {}};
   for (const std::string& a : axles) {
-    Series s{a, Series::Style::points, {}, column(cells, "fz_" + a + "_mean_n"), {}, {}};
-    const std::vector<double> sd = column(cells, "fz_" + a + "_std_n");
-    for (std::size_t i = 0; i < s.y.size(); ++i) {
-      s.y[i] /= 1000;
-      s.lo.push_back(s.y[i] - sd[i] / 1000);
-      s.hi.push_back(s.y[i] + sd[i] / 1000);
-    }
+    Series s{a, Series::Style::bars, {}, column(cells, "fz_" + a + "_dynamic_std_n"), {}, {}};
+    for (double& v : s.y) v /= 1000;
     c.series.push_back(std::move(s));
   }
   return Figure{std::move(c),
-                "Tire contact force per axle from the accelerometers (Eq. 2.1), mean and standard deviation in each cell "
-                "(seed report Figure 6.1)."};
+                "The dynamic part of each axle's tire contact force from the accelerometers (Eq. 2.1): its standard "
+                "deviation in each cell, the load the pavement's roughness adds and takes away (seed report Figure 6.1 "
+                "draws the mean and standard deviation; the means are in the table)."};
 }
 
 std::optional<Figure> dynamic_power_per_cell(const NumberTable& cells, const results::Truth* truth) {

@@ -5,6 +5,7 @@
 
 #include "roadload/fuel_breakdown.hpp"
 #include "roadload/report/html_blocks.hpp"
+#include "roadload/report/report_answer.hpp"
 #include "roadload/report/report_figures.hpp"
 #include "roadload/report/report_gap.hpp"
 
@@ -20,7 +21,8 @@ constexpr const char* kStyle =
     "figure{margin:1em 0}figure svg{width:100%;max-width:760px;height:auto}figcaption{font-size:.9em;color:#444}"
     "table{border-collapse:collapse;font-size:.85em;margin:.5em 0}th,td{border:1px solid #ccc;padding:2px 6px;text-align:right}"
     "h3{font-size:1.05em}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.summary td{text-align:left}"
-    ".warn{color:#a00}nav a{margin-right:1em}";
+    ".warn{color:#a00}nav a{margin-right:1em}.answer td:last-child{text-align:left;max-width:32em}"
+    ".answer{font-size:1em}.provenance{font-size:.9em;color:#333}";
 
 double at(const NumberTable& t, std::size_t row, const std::string& column) {
   const auto c = t.column(column);
@@ -126,6 +128,37 @@ std::string sync_health(const JsonValue& trip) {
   return table_html({"sync and data health", "value"}, rows, "summary");
 }
 
+// Each axle's contact force over the cells it was measured on: mean (its static load), standard
+// deviation and its dynamic part's, averaged over the cells.
+std::string contact_table(const NumberTable& cells) {
+  std::vector<std::vector<std::string>> rows;
+  for (const std::string& a : axle_names(cells)) {
+    std::vector<std::string> row{a};
+    for (const char* what : {"_mean_n", "_std_n", "_dynamic_std_n"}) {
+      double sum = 0;
+      std::size_t n = 0;
+      for (double v : cells.values("fz_" + a + what)) {
+        if (!std::isfinite(v)) continue;
+        sum += v;
+        ++n;
+      }
+      row.push_back(format_number(n > 0 ? sum / static_cast<double>(n) / 1000 : NAN, 4));
+    }
+    rows.push_back(std::move(row));
+  }
+  return table_html({"axle", "mean (kN)", "standard deviation (kN)", "of it dynamic (kN)"}, rows);
+}
+
+// A spectrum with a positive value somewhere: a pavement the drive never reached has none.
+bool has_data(const results::Spectrum& s) {
+  for (const auto& psd : s.psd) {
+    for (double v : psd) {
+      if (std::isfinite(v) && v > 0) return true;
+    }
+  }
+  return false;
+}
+
 std::string summary(const JsonValue& trip, const NumberTable& cells) {
   const auto n = [&](const std::string& path) { return trip.number_at(path).value_or(std::nan("")); };
   const JsonValue* ident = trip.find("crr_identified");
@@ -153,10 +186,12 @@ std::string render_report(const ReportInput& in) {
   body += "<h1>" + escape_html(in.title) + "</h1>\n<p>Results from <code>" + escape_html(r.dir) + "</code>" +
           (in.truth ? ", beside the simulation's ground truth" : "") + ".</p>\n";
   body +=
-      "<nav><a href=\"#crr\">CRR</a><a href=\"#fuel\">fuel</a><a href=\"#forces\">contact forces</a>"
+      "<nav><a href=\"#answer\">per pavement</a><a href=\"#crr\">CRR</a><a href=\"#fuel\">fuel</a><a href=\"#forces\">contact "
+      "forces</a>"
       "<a href=\"#dynamic\">dynamic rolling resistance</a><a href=\"#spectra\">spectra</a><a href=\"#health\">sync health</a>";
   if (r.gap || r.gap_tables) body += "<a href=\"#gap\">sim-to-real gap</a>";
   body += "</nav>\n";
+  body += "<h2 id=\"answer\">Per pavement</h2>\n" + answer_section(r.trip);
   body += summary(r.trip, cells);
   body += "<h2 id=\"crr\">Rolling resistance per cell</h2>\n" + figure_html(crr_per_cell(cells, in.truth)) +
           cell_table(cells, in.truth);
@@ -164,7 +199,7 @@ std::string render_report(const ReportInput& in) {
   body += figure_html(trip_fuel_breakdown(r.trip, in.truth)) + trip_fuel_table(r.trip);
   body += "<h2 id=\"forces\">Contact forces</h2>\n";
   if (auto f = contact_forces(cells)) {
-    body += figure_html(*f);
+    body += figure_html(*f) + contact_table(cells);
   } else {
     body += "<p class=\"warn\">No contact forces: the drive had no usable accelerometers.</p>\n";
   }
@@ -175,7 +210,13 @@ std::string render_report(const ReportInput& in) {
     body += "<p class=\"warn\">No dynamic rolling resistance: the drive had no usable accelerometers.</p>\n";
   }
   body += "<h2 id=\"spectra\">Spectra</h2>\n";
-  for (const results::Spectrum& s : r.spectra) body += figure_html(spectrum(s, r.trip));
+  for (const results::Spectrum& s : r.spectra) {
+    if (has_data(s)) {
+      body += figure_html(spectrum(s, r.trip));
+    } else {
+      body += "<p class=\"warn\">No spectrum on " + escape_html(s.group) + ": no accelerometer sample was taken on it.</p>\n";
+    }
+  }
   if (r.spectra.empty()) body += "<p class=\"warn\">No spectra in the results.</p>\n";
   body += "<h2 id=\"health\">Sync health</h2>\n" + sync_health(r.trip);
   body += gap_section(r.gap ? &*r.gap : nullptr, r.gap_tables ? &*r.gap_tables : nullptr);

@@ -81,13 +81,13 @@ class Canvas {
   }
 
   std::string draw() {
-    out_ = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + num(kWidth) + " " + num(kHeight) +
-           "\" role=\"img\" font-family=\"sans-serif\" font-size=\"11\">";
+    out_.clear();
     axes();
     for (std::size_t s = 0; s < c_.series.size(); ++s) series(s);
-    markers();
+    const double height = kHeight + markers();
     legend();
-    return out_ + "</svg>";
+    return "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + num(kWidth) + " " + num(height) +
+           "\" role=\"img\" font-family=\"sans-serif\" font-size=\"11\">" + out_ + "</svg>";
   }
 
  private:
@@ -246,15 +246,44 @@ class Canvas {
     }
   }
 
-  void markers() {
+  // Each marker's line carries a number at the top, in the first of a few rows where it clears its
+  // neighbours (modes a few hertz apart sit pixels apart on a log axis); the numbers' key runs
+  // beneath the chart. Returns the height the key adds.
+  double markers() {
+    constexpr double kClear = 15, kRow = 14, kKeyRow = 15;
+    std::vector<std::pair<double, const Marker*>> shown;
     for (const Marker& m : c_.markers) {
-      if (!std::isfinite(m.x) || m.x < x_.lo || m.x > x_.hi) continue;
-      const double x = x_(m.x);
-      out_ += "<line x1=\"" + num(x) + "\" x2=\"" + num(x) + "\" y1=\"" + num(kTop) + "\" y2=\"" + num(bottom_) + "\" stroke=\"" +
-              (m.strong ? "#b00" : "#555") + "\"" + (m.strong ? "" : " stroke-dasharray=\"3 3\"") + "/>";
-      out_ += text(x + 3, kTop + 10, m.label, "start",
-                   " transform=\"rotate(90 " + num(x + 3) + " " + num(kTop + 10) + ")\" fill=\"#333\"");
+      if (std::isfinite(m.x) && m.x >= x_.lo && m.x <= x_.hi) shown.emplace_back(x_(m.x), &m);
     }
+    std::sort(shown.begin(), shown.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<double> row_end;
+    std::vector<std::string> key;
+    for (const auto& [x, m] : shown) {
+      out_ += "<line x1=\"" + num(x) + "\" x2=\"" + num(x) + "\" y1=\"" + num(kTop) + "\" y2=\"" + num(bottom_) + "\" stroke=\"" +
+              (m->strong ? "#b00" : "#555") + "\"" + (m->strong ? "" : " stroke-dasharray=\"3 3\"") + "><title>" +
+              escape_html(m->label) + "</title></line>";
+      if (m->label.empty()) continue;
+      const std::string number = std::to_string(key.size() + 1);
+      key.push_back(number + " " + m->label);
+      std::size_t row = 0;
+      while (row < row_end.size() && x - row_end[row] < kClear) ++row;
+      if (row == row_end.size()) row_end.push_back(-1e9);
+      row_end[row] = x;
+      out_ += text(x, kTop + 11 + kRow * static_cast<double>(row), number, "middle",
+                   " class=\"marker-label\" fill=\"#333\" font-weight=\"bold\"");
+    }
+    // The key, wrapped to the chart's width.
+    double y = kHeight, line_x = kLeft;
+    for (const std::string& k : key) {
+      const double width = 6.2 * static_cast<double>(k.size()) + 18;
+      if (line_x + width > kWidth - kRight || y == kHeight) {
+        y += kKeyRow;
+        line_x = kLeft;
+      }
+      out_ += text(line_x, y, k, "start", " fill=\"#333\"");
+      line_x += width;
+    }
+    return y - kHeight + (key.empty() ? 0 : 6);
   }
 
   void legend() {

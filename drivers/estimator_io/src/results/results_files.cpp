@@ -69,6 +69,46 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
   return csv.value().close();
 }
 
+std::optional<ParseError> write_pavements_csv(const std::string& path, const std::vector<PavementResult>& pavements) {
+  auto csv = recording::OutputFile::create(path);
+  if (!csv) return csv.error();
+  csv.value().write(
+      "pavement,cells,length_m,samples,crr,crr_lo,crr_hi,crr_sigma,identified,speed_mps,rolling_l,distance_m,"
+      "rolling_l_per_100km,reason\n");
+  recording::LineBuilder line;
+  const double nan = std::nan("");
+  for (const PavementResult& p : pavements) {
+    const CellResult& c = p.crr;
+    const bool have = c.samples > 0 && c.crr_sigma > 0;
+    line.clear();
+    line.field(c.id).sep().num(static_cast<std::int64_t>(p.cells)).sep().num(c.end_m - c.start_m, 1).sep();
+    line.num(static_cast<std::int64_t>(c.samples)).sep();
+    line.num(have ? c.crr : nan, 6).sep().num(have ? c.crr_lo : nan, 6).sep().num(have ? c.crr_hi : nan, 6).sep();
+    line.num(have ? c.crr_sigma : nan, 6).sep().num(std::int64_t{c.identified ? 1 : 0}).sep();
+    line.num(have ? c.speed_mps : nan, 3).sep().num(p.rolling_l, 5).sep().num(p.distance_m, 1).sep();
+    line.num(p.distance_m > 0 ? p.rolling_l_per_100km() : nan, 4).sep().field(c.reason);
+    csv.value().write(line.finish());
+  }
+  return csv.value().close();
+}
+
+std::string pavements_json(const std::vector<PavementResult>& pavements) {
+  const auto n = [](double v) { return json_number(v); };
+  std::string j = "  \"pavements\": [";
+  for (std::size_t i = 0; i < pavements.size(); ++i) {
+    const PavementResult& p = pavements[i];
+    const CellResult& c = p.crr;
+    const bool have = c.samples > 0 && c.crr_sigma > 0;
+    j += std::string(i ? "," : "") + "\n    {\"pavement\": " + json_quote(c.id) + ", \"cells\": " + std::to_string(p.cells) +
+         ", \"length_m\": " + n(c.end_m - c.start_m) + ", \"samples\": " + std::to_string(c.samples);
+    j += ", \"crr\": " + (have ? n(c.crr) : "null") + ", \"crr_lo\": " + (have ? n(c.crr_lo) : "null") +
+         ", \"crr_hi\": " + (have ? n(c.crr_hi) : "null") + ", \"crr_identified\": " + (c.identified ? "true" : "false");
+    j += ", \"rolling_l_per_100km\": " + (p.distance_m > 0 ? n(p.rolling_l_per_100km()) : "null") +
+         ", \"distance_m\": " + n(p.distance_m) + ", \"reason\": " + json_quote(c.reason) + "}";
+  }
+  return j + (pavements.empty() ? "]" : "\n  ]");
+}
+
 std::optional<ParseError> write_trip_json(const std::string& path, const TripResult& trip, const std::string& extra) {
   const auto n = [](double v) { return json_number(v); };
   std::ofstream json(path);

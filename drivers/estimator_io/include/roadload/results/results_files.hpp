@@ -18,6 +18,11 @@ namespace roadload::results {
 // dynamic_l, dynamic_l_per_100km of the dampers and tires together.
 std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells,
                                           const std::vector<std::string>& axle_names, const VibrationAnalysis* vibration);
+// One row per pavement type: pavement,cells,length_m,samples,crr,crr_lo,crr_hi,crr_sigma,
+// identified,speed_mps,rolling_l,distance_m,rolling_l_per_100km,reason.
+std::optional<ParseError> write_pavements_csv(const std::string& path, const std::vector<PavementResult>& pavements);
+// The same as trip.json's "pavements" member (`"pavements": [...]`).
+std::string pavements_json(const std::vector<PavementResult>& pavements);
 // `extra`: further members of the top-level object, already formatted (may be empty).
 std::optional<ParseError> write_trip_json(const std::string& path, const TripResult& trip, const std::string& extra);
 

@@ -1,0 +1,63 @@
+#include "analyze_provenance.hpp"
+
+#include <cstdint>
+#include <cstdio>
+#include <ctime>
+
+#include "roadload/results/json.hpp"
+
+namespace roadload::cli {
+
+std::string iso_utc(std::int64_t utc_ns) {
+  const std::time_t s = static_cast<std::time_t>(utc_ns / 1'000'000'000);
+  std::tm utc{};
+  char text[32] = "";
+  if (gmtime_r(&s, &utc) != nullptr) std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, const Vehicle& vehicle, const std::string& assumed,
+                      const RecordedTrack& track, const AnalyzerConfig& cfg) {
+  Provenance p;
+  p.recordings = {o.recording};
+  p.recording_id = meta.recording_id;
+  p.vehicle = vehicle.name;
+  p.vin = vehicle.vin;
+  p.vehicle_source = !assumed.empty()     ? assumed
+                     : !o.vehicle.empty() ? "--vehicle " + o.vehicle
+                                          : std::string("the recording's meta.toml");
+  p.route = o.route.empty() ? "traced from the recording's GNSS (" + track.source + ")" : o.route;
+  for (const GnssFix& f : track.fixes) {
+    const std::int64_t utc = f.utc_ns > 0 ? f.utc_ns : meta.utc_offset_ns ? to_ns(f.t) + *meta.utc_offset_ns : 0;
+    if (utc <= 0) continue;
+    p.drive_start_utc = iso_utc(utc);
+    break;
+  }
+  p.engine_losses = o.losses_file.empty() ? "EEC3's nominal friction percent" : o.losses_file;
+  char cda[96];
+  std::snprintf(cda, sizeof cda, "%.3f m2 +- %.3f (%s)", cfg.filter.truck.cda_prior_m2, cfg.filter.truck.cda_sigma_m2,
+                o.cda_m2 ? "--cda" : "the vehicle file");
+  p.cda = cda;
+  if (o.torque_scale || o.torque_scale_sigma) {
+    char ts[64];
+    std::snprintf(ts, sizeof ts, "%+.4f +- %.4f", o.torque_scale.value_or(0), o.torque_scale_sigma.value_or(0));
+    p.torque_scale = ts;
+  }
+  return p;
+}
+
+std::string provenance_json(const Provenance& p) {
+  using results::json_quote;
+  const auto text = [](const std::string& v) { return v.empty() ? std::string("null") : json_quote(v); };
+  std::string j = "  \"provenance\": {\n    \"program\": " + json_quote(std::string("roadload ") + ROADLOAD_VERSION) +
+                  ",\n    \"recordings\": [";
+  for (std::size_t i = 0; i < p.recordings.size(); ++i) j += (i ? ", " : "") + json_quote(p.recordings[i]);
+  j += "],\n    \"recording_id\": " + text(p.recording_id) + ",\n    \"vehicle\": " + text(p.vehicle) +
+       ",\n    \"vin\": " + text(p.vin) + ",\n    \"vehicle_source\": " + text(p.vehicle_source) +
+       ",\n    \"route\": " + text(p.route) + ",\n    \"drive_start_utc\": " + text(p.drive_start_utc) +
+       ",\n    \"engine_losses\": " + text(p.engine_losses) + ",\n    \"cda\": " + text(p.cda) +
+       ",\n    \"torque_scale\": " + text(p.torque_scale) + "\n  }";
+  return j;
+}
+
+}  // namespace roadload::cli
