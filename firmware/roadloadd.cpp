@@ -217,12 +217,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "roadloadd: %s\n", cl.error().to_string().c_str());
     return 2;
   }
-  if (cl.value().help) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  if (cl.value().version) {
-    std::printf("roadloadd %s\n", ROADLOAD_VERSION);
+  if (!cl.value().print.empty()) {
+    std::fputs(cl.value().print.c_str(), stdout);
     return 0;
   }
   if (cl.value().print_config) {

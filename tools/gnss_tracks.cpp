@@ -3,7 +3,7 @@
 #include <cinttypes>
 #include <cstdio>
 
-#include "options.hpp"
+#include "files.hpp"
 #include "roadload/bus_position.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "roadload/recording/reader.hpp"

@@ -24,7 +24,7 @@ expect_status 64 "$roadload" replay "$work/none" --faults 'busoff@20'
 grep -q -- '--faults: busoff@20: expected a time and a positive duration' "$work/err" || fail "bad --faults: $(cat "$work/err")"
 
 expect_status 2 "$roadloadd" --can
-grep -q 'command line: --can: needs an interface name' "$work/err" || fail "bad --can: $(cat "$work/err")"
+grep -q 'command line: --can: 1 required IFACE missing' "$work/err" || fail "bad --can: $(cat "$work/err")"
 printf '[status]\ninterval_s = 0\n' >"$work/bad.toml"
 expect_status 2 "$roadloadd" --config "$work/bad.toml"
 grep -q "$work/bad.toml: status.interval_s: expected 0.1 to 60" "$work/err" || fail "bad config: $(cat "$work/err")"
