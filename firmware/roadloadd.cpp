@@ -215,14 +215,10 @@ int main(int argc, char** argv) {
   auto cl = parse_command_line(std::vector<std::string>(argv + 1, argv + argc));
   if (!cl) {
     std::fprintf(stderr, "roadloadd: %s\n", cl.error().to_string().c_str());
-    return 2;
+    return cl.error().file == kCommandLineSource ? kExitUsage : kExitConfig;
   }
-  if (cl.value().help) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  if (cl.value().version) {
-    std::printf("roadloadd %s\n", ROADLOAD_VERSION);
+  if (!cl.value().print.empty()) {
+    std::fputs(cl.value().print.c_str(), stdout);
     return 0;
   }
   if (cl.value().print_config) {

@@ -4,17 +4,20 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "analyze_options.hpp"
 #include "analyze_provenance.hpp"
 #include "analyze_results.hpp"
 #include "analyze_vibration.hpp"
 #include "command.hpp"
+#include "files.hpp"
 #include "gnss_tracks.hpp"
-#include "options.hpp"
 #include "roadload/contact_forces.hpp"
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/engine_loss_file.hpp"
@@ -31,101 +34,6 @@ namespace roadload::cli {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-constexpr const char* kHelp =
-    "usage: roadload analyze <recording> --out RESULTS [--route ROUTE] [options]\n\n"
-    "Estimates the coefficient of rolling resistance (CRR) along the drive and per pavement cell:\n"
-    "the J1939 force balance (EEC1, EEC3, EC1, ETC2, CCVS1) in an EKF over speed, CRR, CdA, a\n"
-    "torque bias and the speed's ripple from the road's roughness (the route's IRI per cell), with\n"
-    "grade from the route's survey, air from the weather station, position from GNSS and odometry,\n"
-    "then a fixed-interval smoother so each cell uses data on both sides of it.\n"
-    "Per cell also: the fuel breakdown (engine, driveline, accessories, aero, rolling, grade,\n"
-    "acceleration, braking; litres at 35.8 MJ/L) and, from the accelerometers, the contact force\n"
-    "per axle (report Eq. 2.1) and the power the dampers and tires dissipate (dynamic rolling\n"
-    "resistance, Eq. 2.7-2.8; the vehicle file's dampers and tire damping). Per pavement group\n"
-    "(surface and panel length): PSDs, vibration modes and the concrete joint line.\n\n"
-    "  --route R       route file or built-in route name (config/routes): geometry, grade, cells, IRI;\n"
-    "                  without it the drive's own GNSS traces the road (cells of 250 m, grade from that\n"
-    "                  one pass with its error: wide intervals), and without GNSS nothing is placed\n"
-    "  --out DIR       write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval; fuel breakdown per cell\n"
-    "                  in litres; damper_power_w,tire_power_w,...), DIR/trip.json, and the PSDs:\n"
-    "                  DIR/psd.csv (trip) and DIR/psd-<group>.csv (freq_hz, one column per accelerometer,\n"
-    "                  (m/s^2)^2/Hz), DIR/psd-spatial-<group>.csv (cycles_per_m, per cycle/m)\n"
-    "  --truth DIR     a simulation's ground truth: the true CRR beside each cell, RMSE and coverage, and\n"
-    "                  the true fuel breakdown beside the estimate\n"
-    "  --estimate-cda  fit CdA from the drive (drives across speeds); otherwise CdA keeps its prior\n"
-    "  --cda M2 [--cda-sigma M2]  CdA's prior and its standard error (default: the vehicle file's, the\n"
-    "                  type's value and spread); a measured value, for example `roadload calibrate --aero`\n"
-    "  --cda-torque-correlation R  between that CdA's error and the flywheel torque's (-1..1; what\n"
-    "                  `roadload calibrate --aero` prints: its CdA took up the engine-loss table's error)\n"
-    "  --cda-per-torque-scale M2  how that CdA moves with the ECU's torque scale (what `roadload calibrate\n"
-    "                  --aero` prints): the scale's second run moves CdA with it\n"
-    "  --torque-scale K [--torque-scale-sigma S]  the ECU's torque scale (true = EEC1's x (1 + K)) and its\n"
-    "                  standard error, as `roadload calibrate --torque-scale` measures them (default: 0 and\n"
-    "                  the vehicle file's prior sigma); the CdA moves with K as --cda-per-torque-scale says\n"
-    "  --grade FILE    grade and its sigma from FILE (`roadload grade`) instead of the route's survey\n"
-    "  --engine-losses FILE  the engine's friction + accessories by engine speed (`roadload calibrate`)\n"
-    "                  instead of EEC3's whole percent; engine speeds outside it are not used\n"
-    "  --survey-sigma M  the route survey's height error, carried into the force balance (default 0:\n"
-    "                  the survey taken as exact)\n"
-    "  --vehicle V     vehicle file or built-in name (config/vehicles): the truck's force balance, axles and\n"
-    "                  priors (default: the vehicle file the recording's meta.toml carries; a recording that\n"
-    "                  describes no truck is analysed as the default vehicle and nothing is identified)\n"
-    "  --mass KG       vehicle mass (default: meta.toml vehicle.mass_kg, else the vehicle file's axle loads)\n"
-    "  --dbc FILE      load FILE after the built-in definitions; repeatable\n"
-    "  -q, --quiet     no table on standard output\n"
-    "  -h, --help      this text\n";
-
-// The options, or the exit status when there is nothing to analyse (help, a bad option).
-std::variant<AnalyzeOptions, int> parse(Args args) {
-  OptionParser opt("analyze", args);
-  AnalyzeOptions o;
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (opt.flag("-q", "--quiet")) {
-      o.quiet = true;
-    } else if (opt.flag("--estimate-cda")) {
-      o.estimate_cda = true;
-    } else if (auto c = opt.real("--cda", 0.5, 30)) {
-      o.cda_m2 = *c;
-    } else if (auto cs = opt.real("--cda-sigma", 0.0001, 10)) {
-      o.cda_sigma_m2 = *cs;
-    } else if (auto cr = opt.real("--cda-torque-correlation", -1, 1)) {
-      o.cda_torque_correlation = *cr;
-    } else if (auto ps = opt.real("--cda-per-torque-scale", -100, 100)) {
-      o.cda_per_torque_scale_m2 = *ps;
-    } else if (auto ts = opt.real("--torque-scale", -0.5, 0.5)) {
-      o.torque_scale = *ts;
-    } else if (auto tss = opt.real("--torque-scale-sigma", 0, 0.5)) {
-      o.torque_scale_sigma = *tss;
-    } else if (auto g = opt.value("--grade")) {
-      o.grade_file = *g;
-    } else if (auto l = opt.value("--engine-losses")) {
-      o.losses_file = *l;
-    } else if (auto sg = opt.real("--survey-sigma", 0, 10)) {
-      o.survey_sigma = *sg;
-    } else if (auto r = opt.value("--route")) {
-      o.route = *r;
-    } else if (auto v = opt.value("--vehicle")) {
-      o.vehicle = *v;
-    } else if (auto out = opt.value("--out")) {
-      o.out = *out;
-    } else if (auto t = opt.value("--truth")) {
-      o.truth_dir = *t;
-    } else if (auto m = opt.real("--mass", 1000, 200000)) {
-      o.mass = *m;
-    } else if (auto d = opt.value("--dbc")) {
-      o.dbcs.emplace_back(*d);
-    } else if (opt.single_positional(o.recording, "RECORDING")) {
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
-  if (o.recording.empty()) return opt.fail("a recording is required");
-  if (o.out.empty()) return opt.fail("--out is required");
-  return o;
-}
 
 // A file the analysis reads beside the recording; prints its error and gives the exit status.
 template <typename T>
@@ -169,7 +77,7 @@ struct Accelerometers {
 
 void attach(Accelerometers& acc, DriveAnalyzer& analyzer, const AnalyzeOptions& o, const Vehicle& vehicle,
             const recording::Metadata& meta, const PavementGroups& groups) {
-  auto layout = recording::axle_layout(meta, vehicle, o.recording + "/meta.toml");
+  auto layout = recording::axle_layout(meta, vehicle, o.recordings.front() + "/meta.toml");
   if (!layout.layout)
     std::fprintf(stderr, "roadload analyze: contact forces and spectra not estimated: %s\n", layout.why_not.c_str());
   for (const std::string& why : layout.skipped) std::fprintf(stderr, "roadload analyze: no contact force for %s\n", why.c_str());
@@ -250,7 +158,7 @@ RecordedTrack drive_track(const AnalyzeOptions& o, const Vehicle& vehicle, const
   TrackOptions antenna;
   antenna.antenna_height_m = vehicle.gnss_antenna_height_m;
   antenna.print_errors = false;
-  read_recorded_track("analyze", o.recording, antenna, db, recorded, malformed);
+  read_recorded_track("analyze", o.recordings, antenna, db, recorded, malformed);
   return recorded;
 }
 
@@ -308,7 +216,7 @@ int analyze(const AnalyzeOptions& o) {
   if (auto rc = load_definitions("analyze", o.dbcs, db)) return *rc;
   auto found = given_road(o);
   if (found && std::holds_alternative<int>(*found)) return std::get<int>(*found);
-  auto reader = recording::RecordingReader::open(o.recording);
+  auto reader = recording::RecordingReader::open_drive(o.recordings);
   if (!reader) {
     std::fprintf(stderr, "roadload analyze: %s\n", reader.error().to_string().c_str());
     return exit_for(reader.error());
@@ -342,8 +250,8 @@ int analyze(const AnalyzeOptions& o) {
     if (which == TorqueScaleRun::held) {
       attach(acc, analyzer, o, vehicle, meta, groups);
       drive(analyzer, reader.value(), track, &gravity);
-    } else if (auto again = recording::RecordingReader::open(
-                   o.recording, recording::kCanStream | recording::kGnssStream | recording::kWeatherStream)) {
+    } else if (auto again = recording::RecordingReader::open_drive(
+                   o.recordings, recording::kCanStream | recording::kGnssStream | recording::kWeatherStream)) {
       drive(analyzer, again.value(), track);
     } else {
       std::fprintf(stderr, "roadload analyze: reading it again: %s\n", again.error().to_string().c_str());
@@ -384,10 +292,12 @@ int analyze(const AnalyzeOptions& o) {
 
 }  // namespace
 
-int run_analyze(Args args) {
-  auto o = parse(args);
-  if (const int* rc = std::get_if<int>(&o)) return *rc;
-  return analyze(std::get<AnalyzeOptions>(o));
+Run add_analyze(CLI::App& roadload) {
+  auto o = std::make_shared<AnalyzeOptions>();
+  CLI::App& cmd = *roadload.add_subcommand(
+      "analyze", "estimate CRR along a recorded drive per pavement cell and type (cells.csv, pavements.csv, trip.json)");
+  add_analyze_options(cmd, *o);
+  return [o] { return on_one_drive("analyze", o->recordings, [&] { return analyze(*o); }); };
 }
 
 }  // namespace roadload::cli

@@ -19,7 +19,7 @@ std::string iso_utc(std::int64_t utc_ns) {
 Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, const Vehicle& vehicle, const std::string& assumed,
                       const RecordedTrack& track, const AnalyzerConfig& cfg) {
   Provenance p;
-  p.recordings = {o.recording};
+  p.recordings = o.recordings;
   p.recording_id = meta.recording_id;
   p.vehicle = vehicle.name;
   p.vin = vehicle.vin;

@@ -4,12 +4,17 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "calibrate_aero.hpp"
 #include "command.hpp"
-#include "options.hpp"
+#include "files.hpp"
+#include "roadload/cli/help.hpp"
+#include "roadload/cli/values.hpp"
 #include "roadload/engine_loss_calibration.hpp"
 #include "roadload/engine_loss_file.hpp"
 #include "roadload/recording/reader.hpp"
@@ -17,8 +22,13 @@
 namespace roadload::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: roadload calibrate RECORDING... --out FILE [options]\n\n"
+const HelpText kHelp{
+    "usage: roadload calibrate RECORDING... --out FILE [options]\n"
+    "       roadload calibrate --aero SLOW FAST [SLOW FAST ...] --route ROUTE [--route ROUTE ...]\n"
+    "                          --engine-losses FILE [--out FILE]\n"
+    "       roadload calibrate --torque-scale POWERED COAST [POWERED COAST ...] --route ROUTE\n"
+    "                          [--route ROUTE ...] --engine-losses FILE\n"
+    "                          [--cda M2 --cda-sigma M2 --cda-per-torque-scale M2] [--out FILE]",
     "Measures the engine's own losses, friction plus the accessories it drives, at each engine speed\n"
     "the recordings hold steady while the truck stands in neutral (wheel speed below 0.1 m/s; ETC2\n"
     "current gear neutral, or ETC1 driveline disengaged). Nothing then reaches the flywheel, so EEC1's\n"
@@ -28,42 +38,63 @@ constexpr const char* kHelp =
     "gear), which this table removes. Hold each speed for 10 s or more; the first 3 s of a hold are\n"
     "the governor's approach and are left out. `roadload simulate --scenario engine-losses` drives such\n"
     "a calibration.\n\n"
-    "usage: roadload calibrate --aero SLOW FAST [SLOW FAST ...] --route ROUTE [--route ROUTE ...]\n"
-    "                          --engine-losses FILE [--out FILE]\n\n"
-    "Measures the truck's CdA from two drives over the same route's cells at two speeds (the report's\n"
-    "Mainline runs at 30 and 64 mph): a pavement's CRR is the same at both, the drag is not, so the CdA\n"
-    "that makes each cell's CRR agree is the truck's. At one speed the force balance cannot tell them\n"
-    "apart, and CdA's prior (the vehicle file's, the type's spread) is then most of each cell's interval.\n"
-    "The engine-loss table is required: EEC3's rounding differs between the two engine speeds and would be\n"
-    "fitted as drag. More pairs (the road's other direction on its own route, another day) give one\n"
-    "CdA from all their cells: give one --route per pair, in order, or one for every pair.\n"
+    "--aero measures the truck's CdA from two drives over the same route's cells at two speeds (the\n"
+    "report's Mainline runs at 30 and 64 mph): a pavement's CRR is the same at both, the drag is not, so\n"
+    "the CdA that makes each cell's CRR agree is the truck's. At one speed the force balance cannot tell\n"
+    "them apart, and CdA's prior (the vehicle file's, the type's spread) is then most of each cell's\n"
+    "interval. The engine-loss table is required: EEC3's rounding differs between the two engine speeds\n"
+    "and would be fitted as drag. More pairs (the road's other direction on its own route, another day)\n"
+    "give one CdA from all their cells: give one --route per pair, in order, or one for every pair.\n"
     "Prints the CdA with its standard error as `roadload analyze` options; --out writes them as CSV.\n\n"
-    "usage: roadload calibrate --torque-scale POWERED COAST [POWERED COAST ...] --route ROUTE [--route ROUTE ...]\n"
-    "                          --engine-losses FILE [--cda M2 --cda-sigma M2 --cda-per-torque-scale M2]\n"
-    "                          [--out FILE]\n\n"
-    "Measures the ECU's torque scale (EEC1's indicated torque against the engine's true one; J1939 states\n"
-    "it to a few percent) from a powered drive and a coast-down in neutral over the same cells. The\n"
-    "coast-down's CRR owes nothing to the engine's torque; the powered drive's moves with the scale by the\n"
-    "tractive force over the weight, so the scale at which each cell's CRRs agree is the ECU's. Coast from\n"
-    "cruise speed in neutral (ETC2 current gear 0) over the cells the powered drive crossed; a scenario\n"
-    "with mode = \"coast\" simulates one (coast-down-65mph on the flat track). The drag both drives meet\n"
-    "at other speeds passes CdA's error into the scale: give the CdA `--aero` measured, with its sigma\n"
-    "and its slope per unit of scale, and the two are solved together. Prints the scale with its\n"
-    "standard error as `roadload analyze` options; --out writes them as CSV.\n\n"
-    "  --out FILE        write FILE: rpm,loss_nm,sigma_nm,eec3_loss_nm,hold_s,samples, one line per hold\n"
-    "  --route R         (--aero, --torque-scale) route file or built-in route name: the cells both\n"
-    "                    drives cross; repeatable, one per pair\n"
-    "  --engine-losses FILE  (--aero, --torque-scale) the engine-loss table of the same truck\n"
-    "  --cda M2          (--aero, --torque-scale) the CdA the drives are analysed with (default: the vehicle\n"
-    "                    file's); the CdA fit does not depend on it beyond linearity\n"
-    "  --cda-sigma M2    (--torque-scale) that CdA's standard error, carried into the scale's sigma\n"
-    "  --cda-per-torque-scale M2  (--torque-scale) how that CdA moves with the scale, as --aero prints\n"
-    "                    it: the scale and the CdA are then solved together\n"
-    "  --vehicle V       (--aero, --torque-scale) vehicle file or built-in name (default: the one each\n"
-    "                    recording carries)\n"
-    "  --dbc FILE        load FILE after the built-in definitions; repeatable\n"
-    "  -q, --quiet       no table on standard output\n"
-    "  -h, --help        this text\n";
+    "--torque-scale measures the ECU's torque scale (EEC1's indicated torque against the engine's true\n"
+    "one; J1939 states it to a few percent) from a powered drive and a coast-down in neutral over the\n"
+    "same cells. The coast-down's CRR owes nothing to the engine's torque; the powered drive's moves with\n"
+    "the scale by the tractive force over the weight, so the scale at which each cell's CRRs agree is the\n"
+    "ECU's. Coast from cruise speed in neutral (ETC2 current gear 0) over the cells the powered drive\n"
+    "crossed; a scenario with mode = \"coast\" simulates one (coast-down-65mph on the flat track). The\n"
+    "drag both drives meet at other speeds passes CdA's error into the scale: give the CdA `--aero`\n"
+    "measured, with its sigma and its slope per unit of scale, and the two are solved together. Prints\n"
+    "the scale with its standard error as `roadload analyze` options; --out writes them as CSV."};
+
+struct CalibrateOptions {
+  std::vector<std::string> recordings, dbcs;
+  std::string out;
+  bool quiet = false, aero = false, scale = false;
+  AeroOptions ao;
+};
+
+void add_options(CLI::App& cmd, CalibrateOptions& o) {
+  cmd.add_option("RECORDING", o.recordings, "recording folders: standing holds, or the drives in pairs")->required();
+  cmd.add_flag("--aero", o.aero, "measure CdA from pairs of drives at two speeds");
+  cmd.add_flag("--torque-scale", o.scale, "measure the ECU's torque scale from pairs of a powered drive and a\ncoast-down");
+  cmd.add_option("-o,--out", o.out, "write FILE: rpm,loss_nm,sigma_nm,eec3_loss_nm,hold_s,samples, one line\nper hold")
+      ->type_name("FILE");
+  cmd.add_option("--route", o.ao.routes,
+                 "(--aero, --torque-scale) route file or built-in route name: the cells\n"
+                 "both drives cross; repeatable, one per pair")
+      ->type_name("R");
+  cmd.add_option("--engine-losses", o.ao.engine_losses, "(--aero, --torque-scale) the engine-loss table of the same truck")
+      ->type_name("FILE");
+  cmd.add_option("--cda", o.ao.cda_prior_m2,
+                 "(--aero, --torque-scale) the CdA the drives are analysed with\n"
+                 "(default: the vehicle file's); the CdA fit does not depend on it\n"
+                 "beyond linearity")
+      ->type_name("M2")
+      ->check(real_in(0.5, 30));
+  cmd.add_option("--cda-sigma", o.ao.cda_sigma_m2, "(--torque-scale) that CdA's standard error, carried into the scale's\nsigma")
+      ->type_name("M2")
+      ->check(real_in(0.0001, 10));
+  cmd.add_option("--cda-per-torque-scale", o.ao.cda_per_torque_scale_m2,
+                 "(--torque-scale) how that CdA moves with the scale, as --aero prints\n"
+                 "it: the scale and the CdA are then solved together")
+      ->type_name("M2")
+      ->check(real_in(-100, 100));
+  cmd.add_option("--vehicle", o.ao.vehicle,
+                 "(--aero, --torque-scale) vehicle file or built-in name (default: the one\neach recording carries)")
+      ->type_name("V");
+  cmd.add_option("--dbc", o.dbcs, "load FILE after the built-in definitions; repeatable")->type_name("FILE");
+  cmd.add_flag("-q,--quiet", o.quiet, "no table on standard output");
+}
 
 // Feeds every frame of one recording to the calibration; an exit code when it cannot be read.
 std::optional<int> read_recording(const std::string& path, EngineLossFrames& cal) {
@@ -89,14 +120,14 @@ void print_holds(const std::vector<EngineLossHold>& holds) {
 }
 
 // The drive-pair calibrations' own rules; a usage exit when one is broken.
-std::optional<int> check_pairs(OptionParser& opt, bool aero, std::size_t recordings, const AeroOptions& ao) {
+std::optional<int> check_pairs(bool aero, std::size_t recordings, const AeroOptions& ao) {
   const std::string mode = aero ? "--aero" : "--torque-scale";
   const char* pair = aero ? "one at each of two speeds" : "a powered drive and then a coast-down";
-  if (ao.routes.empty()) return opt.fail(mode + " needs --route");
-  if (recordings % 2 != 0) return opt.fail(mode + " takes drives in pairs, " + pair);
+  if (ao.routes.empty()) return usage_error("calibrate", mode + " needs --route");
+  if (recordings % 2 != 0) return usage_error("calibrate", mode + " takes drives in pairs, " + pair);
   if (ao.routes.size() != 1 && ao.routes.size() != recordings / 2)
-    return opt.fail(mode + " takes one --route, or one per pair of drives");
-  if (ao.engine_losses.empty()) return opt.fail(mode + " needs --engine-losses (roadload calibrate, standing)");
+    return usage_error("calibrate", mode + " takes one --route, or one per pair of drives");
+  if (ao.engine_losses.empty()) return usage_error("calibrate", mode + " needs --engine-losses (roadload calibrate, standing)");
   return std::nullopt;
 }
 
@@ -134,59 +165,30 @@ int run_engine_losses(const std::vector<std::string>& recordings, const std::str
   return kExitOk;
 }
 
+int calibrate(CalibrateOptions& o) {
+  if (o.aero && o.scale) return usage_error("calibrate", "--aero and --torque-scale are separate calibrations");
+  if (o.aero || o.scale) {
+    if (auto rc = check_pairs(o.aero, o.recordings.size(), o.ao)) return *rc;
+  } else if (o.out.empty()) {
+    return usage_error("calibrate", "--out is required");
+  }
+  j1939::Database db;
+  if (auto rc = load_definitions("calibrate", o.dbcs, db)) return *rc;
+  if (!o.aero && !o.scale) return run_engine_losses(o.recordings, o.out, o.quiet, db);
+  o.ao.recordings = o.recordings;
+  o.ao.out = o.out;
+  return o.aero ? run_calibrate_aero(o.ao, db) : run_calibrate_torque_scale(o.ao, db);
+}
+
 }  // namespace
 
-int run_calibrate(Args args) {
-  OptionParser opt("calibrate", args);
-  std::vector<std::string> recordings, dbcs;
-  std::string out;
-  bool quiet = false, aero = false, scale = false;
-  AeroOptions ao;
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (opt.flag("-q", "--quiet")) {
-      quiet = true;
-    } else if (opt.flag("--aero")) {
-      aero = true;
-    } else if (opt.flag("--torque-scale")) {
-      scale = true;
-    } else if (auto r = opt.value("--route")) {
-      ao.routes.emplace_back(*r);
-    } else if (auto l = opt.value("--engine-losses")) {
-      ao.engine_losses = *l;
-    } else if (auto c = opt.real("--cda", 0.5, 30)) {
-      ao.cda_prior_m2 = *c;
-    } else if (auto cs = opt.real("--cda-sigma", 0.0001, 10)) {
-      ao.cda_sigma_m2 = *cs;
-    } else if (auto ps = opt.real("--cda-per-torque-scale", -100, 100)) {
-      ao.cda_per_torque_scale_m2 = *ps;
-    } else if (auto v = opt.value("--vehicle")) {
-      ao.vehicle = *v;
-    } else if (auto f = opt.value("--out")) {
-      out = *f;
-    } else if (auto d = opt.value("--dbc")) {
-      dbcs.emplace_back(*d);
-    } else if (auto p = opt.positional()) {
-      recordings.emplace_back(*p);
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
-  if (recordings.empty()) return opt.fail("a recording is required");
-  if (aero && scale) return opt.fail("--aero and --torque-scale are separate calibrations");
-  if (aero || scale) {
-    if (auto rc = check_pairs(opt, aero, recordings.size(), ao)) return *rc;
-  } else if (out.empty()) {
-    return opt.fail("--out is required");
-  }
-
-  j1939::Database db;
-  if (auto rc = load_definitions("calibrate", dbcs, db)) return *rc;
-  if (!aero && !scale) return run_engine_losses(recordings, out, quiet, db);
-  ao.recordings = recordings;
-  ao.out = out;
-  return aero ? run_calibrate_aero(ao, db) : run_calibrate_torque_scale(ao, db);
+Run add_calibrate(CLI::App& roadload) {
+  auto o = std::make_shared<CalibrateOptions>();
+  CLI::App& cmd = *roadload.add_subcommand(
+      "calibrate", "measure the engine's losses by engine speed standing in neutral (replaces EEC3's whole percent)");
+  describe(cmd, kHelp);
+  add_options(cmd, *o);
+  return [o] { return calibrate(*o); };
 }
 
 }  // namespace roadload::cli

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "calibrate_aero.hpp"
-#include "options.hpp"
+#include "files.hpp"
 #include "roadload/aero_calibration.hpp"
 #include "roadload/engine_loss_file.hpp"
 #include "roadload/pavement_groups.hpp"

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "calibrate_aero.hpp"
-#include "options.hpp"
+#include "files.hpp"
 #include "roadload/recording/writer.hpp"
 #include "roadload/torque_scale_calibration.hpp"
 

@@ -3,11 +3,16 @@
 #include <cinttypes>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "command.hpp"
-#include "options.hpp"
+#include "files.hpp"
+#include "roadload/cli/help.hpp"
+#include "roadload/cli/values.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "roadload/j1939/cadence.hpp"
 #include "roadload/j1939/database.hpp"
@@ -16,18 +21,20 @@
 namespace roadload::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: roadload decode [options] <recording-folder | can.log>\n\n"
-    "Prints the J1939 signals of every message the definitions know, one line per message.\n\n"
-    "  --pgn-stats     CSV with one row per PGN: pgn,name,frames,sources,mean_period_ms,tp_messages\n"
-    "  --tp            one line per reassembled transport-protocol message (BAM, RTS/CTS, ETP)\n"
-    "  --pgn N         only this PGN (decimal or 0x hex); repeatable\n"
-    "  --dbc FILE      load FILE after the built-in definitions (overrides the same PGN); repeatable\n"
-    "  -h, --help      this text\n\n"
-    "A summary of frame kinds, skipped lines, transport counters and the frames that the J1939 cadence\n"
-    "judges lost or repeated (the count roadloadd's status gives, over the same stamps) goes to\n"
-    "standard error.\n"
-    "Malformed lines are reported with file, line and field and make the exit status 65.\n";
+const HelpText kHelp{"usage: roadload decode [options] <recording-folder | can.log>...",
+                     "Prints the J1939 signals of every message the definitions know, one line per message.",
+                     "A summary of frame kinds, skipped lines, transport counters and the frames that the J1939 cadence\n"
+                     "judges lost or repeated (the count roadloadd's status gives, over the same stamps) goes to\n"
+                     "standard error.\n"
+                     "Malformed lines are reported with file, line and field and make the exit status 65."};
+
+struct DecodeOptions {
+  bool pgn_stats = false;
+  bool tp_only = false;
+  std::vector<std::string> dbcs;
+  std::vector<j1939::Pgn> only;
+  std::vector<std::string> inputs;  // one recording or log, or one drive's segments
+};
 
 struct PgnStats {
   std::uint64_t frames = 0;
@@ -119,44 +126,15 @@ void print_summary(const KindCounts& k, const recording::RecordingReader& rec, c
   }
 }
 
-}  // namespace
-
-int run_decode(Args args) {
-  bool pgn_stats = false;
-  bool tp_only = false;
-  std::vector<std::string> dbcs;
-  std::vector<j1939::Pgn> only;
-  std::string input;
-  OptionParser opts("decode", args);
-  while (opts.more()) {
-    if (opts.help(kHelp)) return kExitOk;
-    if (opts.flag("--pgn-stats")) {
-      pgn_stats = true;
-    } else if (opts.flag("--tp")) {
-      tp_only = true;
-    } else if (auto v = opts.value("--dbc")) {
-      dbcs.emplace_back(*v);
-    } else if (auto n = opts.number("--pgn", 0, 0x3FFFF)) {
-      only.push_back(static_cast<j1939::Pgn>(*n));
-    } else if (opts.single_positional(input, "input")) {
-    } else {
-      return opts.fail_unknown();
-    }
-  }
-  if (opts.failed()) return kExitUsage;
-  if (input.empty()) {
-    std::fputs(kHelp, stderr);
-    return kExitUsage;
-  }
-
+int decode(const DecodeOptions& o) {
   j1939::Database db;
-  if (auto rc = load_definitions("decode", dbcs, db)) return *rc;
-  auto rec = recording::RecordingReader::open(input);
+  if (auto rc = load_definitions("decode", o.dbcs, db)) return *rc;
+  auto rec = recording::RecordingReader::open_drive(o.inputs);
   if (!rec) {
     std::fprintf(stderr, "roadload decode: %s\n", rec.error().to_string().c_str());
     return kExitNoInput;
   }
-  auto wanted = [&](j1939::Pgn p) { return only.empty() || std::find(only.begin(), only.end(), p) != only.end(); };
+  auto wanted = [&](j1939::Pgn p) { return o.only.empty() || std::find(o.only.begin(), o.only.end(), p) != o.only.end(); };
 
   static char out_buf[1 << 16];
   std::setvbuf(stdout, out_buf, _IOFBF, sizeof out_buf);
@@ -170,7 +148,7 @@ int run_decode(Args args) {
     if (frame == nullptr) continue;
     kinds.add(frame->kind);
     cadence.push(*frame);
-    if (pgn_stats && frame->kind == CanFrameKind::extended) {
+    if (o.pgn_stats && frame->kind == CanFrameKind::extended) {
       const j1939::Id id = j1939::parse_id(frame->id);
       PgnStats& s = stats[id.pgn()];
       if (s.frames++ == 0) s.first = frame->t;
@@ -179,18 +157,36 @@ int run_decode(Args args) {
     }
     const auto m = assembler.push(*frame);
     if (!m || !wanted(m->pgn)) continue;
-    if (pgn_stats) {
+    if (o.pgn_stats) {
       if (m->reassembled) ++stats[m->pgn].tp_messages;
-    } else if (tp_only) {
+    } else if (o.tp_only) {
       if (m->reassembled) print_tp(stdout, *m, rec.value().interfaces());
     } else if (const j1939::MessageDef* def = db.find(m->pgn)) {
       print_signals(stdout, *m, *def, rec.value().interfaces());
     }
   }
-  if (pgn_stats) print_pgn_stats(stdout, stats, db);
+  if (o.pgn_stats) print_pgn_stats(stdout, stats, db);
   std::fflush(stdout);
   print_summary(kinds, rec.value(), assembler.transport().counters(), cadence.counters());
   return rec.value().errors().count() > 0 ? kExitDataErr : kExitOk;
+}
+
+}  // namespace
+
+Run add_decode(CLI::App& roadload) {
+  auto o = std::make_shared<DecodeOptions>();
+  CLI::App& cmd = *roadload.add_subcommand("decode",
+                                           "print decoded J1939 signals, transport messages or per-PGN statistics of a recording");
+  describe(cmd, kHelp);
+  cmd.add_option("INPUT", o->inputs,
+                 "a recording folder or a candump -L log; several: the segments of\none roadloadd run, read as one drive")
+      ->required();
+  cmd.add_flag("--pgn-stats", o->pgn_stats, "CSV with one row per PGN:\npgn,name,frames,sources,mean_period_ms,tp_messages");
+  cmd.add_flag("--tp", o->tp_only, "one line per reassembled transport-protocol message (BAM,\nRTS/CTS, ETP)");
+  cmd.add_option("--pgn", o->only, "only this PGN (decimal or 0x hex); repeatable")->type_name("N")->transform(whole_in(0, 0x3FFFF));
+  cmd.add_option("--dbc", o->dbcs, "load FILE after the built-in definitions (overrides the same\nPGN); repeatable")
+      ->type_name("FILE");
+  return [o] { return on_one_drive("decode", o->inputs, [&] { return decode(*o); }); };
 }
 
 }  // namespace roadload::cli

@@ -2,13 +2,18 @@
 // effect causes it and how far it shrinks once that effect is added (docs/gap.md).
 #include <array>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "command.hpp"
+#include "files.hpp"
 #include "gap_commands.hpp"
-#include "options.hpp"
+#include "roadload/cli/help.hpp"
+#include "roadload/cli/values.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/gap/engine.hpp"
 #include "roadload/gap/library_cache.hpp"
@@ -19,46 +24,76 @@
 namespace roadload::cli {
 namespace {
 
-constexpr const char* kHelp =
+const HelpText kHelp{
     "usage: roadload gap --real RECORDING [--real RECORDING ...] [options]\n"
     "       roadload gap bench [--cases N] [--seed S] [--jobs N]\n"
-    "       roadload gap tables [--jobs N]\n\n"
+    "       roadload gap tables [--jobs N]",
     "Diagnoses the gap between the simulator and recorded drives: re-simulates each drive from what\n"
     "its recording says (route, speed, weather, mass), ranks where real and simulated channels\n"
     "differ beyond a calibrated noise floor, fits every candidate effect of `roadload simulate\n"
     "--list-effects` (and pairs) on half of the road's cells, judges them on the other half, names\n"
     "the best or none, and re-simulates with it to show how far the gap shrinks on held-out cells.\n"
-    "Only the recordings are read: never a simulation's ground truth.\n\n"
-    "  --real DIR          recording folder; repeat for several runs of the same truck\n"
-    "  --model S           scenario (built-in name or TOML file) for the runs, in order; one for all,\n"
-    "                      or none: the built-in scenario whose route the drive's first GNSS fix lies\n"
-    "                      on and whose speed is nearest, else a cruise on the road the drive's own\n"
-    "                      GNSS traces (gnss.csv; cells of 250 m, the heights of that one pass); a run\n"
-    "                      whose driveline is disengaged (ETC1) 80 % of the time is a coast-down\n"
-    "                      from its first speed, on a coast scenario of its route when one exists\n"
-    "  --route R           route file or built-in route name the runs drove (your own GNSS or GIS\n"
-    "                      sections): the model cruises it from where each drive starts\n"
-    "  --vehicle V         vehicle file or built-in name the model drives (default: the one each\n"
-    "                      recording carries, else the scenario's)\n"
-    "  --holdout H         what the fit never sees: cells (every other cell, default) or runs\n"
-    "                      (fit on the 1st, 3rd, ... runs, judge on the 2nd, 4th, ...)\n"
-    "  --json FILE         write the diagnosis as JSON (docs/gap.md)\n"
-    "  --features FILE     write every feature (real, model, noise floor, z, after) as CSV\n"
-    "  --noise-runs K      model seeds calibrating the noise floor (default 8)\n"
-    "  --cache DIR         where response libraries are kept for later drives of the same truck on\n"
-    "                      the same road (default $ROADLOAD_CACHE_DIR, else $XDG_CACHE_HOME/roadload/gap,\n"
-    "                      else ~/.cache/roadload/gap)\n"
-    "  --no-cache          build the library afresh and keep nothing\n"
-    "  --dry-run           print the model each run is compared with, and stop\n"
-    "  --jobs N            simulations at once (default: the number of CPUs)\n"
-    "  -q, --quiet         no progress on standard error\n"
-    "  -h, --help          this text\n\n"
+    "Only the recordings are read: never a simulation's ground truth.",
     "bench: generates drives with effects the diagnosis is not told (one or two at random\n"
     "magnitudes within their ranges, or none), diagnoses them blind and prints the confusion matrix,\n"
     "top-1 accuracy, held-out shrink and false alarms; the last line reads\n"
     "cases=N top1=F shrink=F false_alarm=F.\n"
     "tables: the seed report's Tables 6.5-6.6 (suspension power by pavement) against an IRI-only\n"
-    "simulation, the candidate effects that could close the difference, and the tables after.\n";
+    "simulation, the candidate effects that could close the difference, and the tables after."};
+
+struct DiagnosisOptions {
+  std::vector<std::string> reals, models;
+  std::string json, features, vehicle_name, route_name, holdout = "cells", cache_dir = gap::default_cache_dir();
+  gap::GapOptions options;
+  bool quiet = false, dry_run = false, no_cache = false;
+};
+
+// The runs and the model they are compared with.
+void add_runs(CLI::App& cmd, DiagnosisOptions& o) {
+  cmd.add_option("--real", o.reals, "recording folder; repeat for several runs of the same truck")->type_name("DIR");
+  cmd.add_option("--model", o.models,
+                 "scenario (built-in name or TOML file) for the runs, in order; one for\n"
+                 "all, or none: the built-in scenario whose route the drive's first GNSS\n"
+                 "fix lies on and whose speed is nearest, else a cruise on the road the\n"
+                 "drive's own GNSS traces (gnss.csv; cells of 250 m, the heights of that\n"
+                 "one pass); a run whose driveline is disengaged (ETC1) 80 % of the time\n"
+                 "is a coast-down from its first speed, on a coast scenario of its route\n"
+                 "when one exists")
+      ->type_name("S");
+  cmd.add_option("--route", o.route_name,
+                 "route file or built-in route name the runs drove (your own GNSS or GIS\n"
+                 "sections): the model cruises it from where each drive starts")
+      ->type_name("R");
+  cmd.add_option("--vehicle", o.vehicle_name,
+                 "vehicle file or built-in name the model drives (default: the one each\n"
+                 "recording carries, else the scenario's)")
+      ->type_name("V");
+  cmd.add_option("--holdout", o.holdout,
+                 "what the fit never sees: cells (every other cell, default) or runs\n"
+                 "(fit on the 1st, 3rd, ... runs, judge on the 2nd, 4th, ...)")
+      ->type_name("H")
+      ->check(one_of({"cells", "runs"}));
+  cmd.add_option("--noise-runs", o.options.noise_runs, "model seeds calibrating the noise floor (default 8)")
+      ->type_name("K")
+      ->transform(whole_in(3, 64));
+}
+
+// What is written, kept and shown.
+void add_outputs(CLI::App& cmd, DiagnosisOptions& o) {
+  cmd.add_option("--json", o.json, "write the diagnosis as JSON (docs/gap.md)")->type_name("FILE");
+  cmd.add_option("--features", o.features, "write every feature (real, model, noise floor, z, after) as CSV")->type_name("FILE");
+  cmd.add_option("--cache", o.cache_dir,
+                 "where response libraries are kept for later drives of the same truck on\n"
+                 "the same road (default $ROADLOAD_CACHE_DIR, else\n"
+                 "$XDG_CACHE_HOME/roadload/gap, else ~/.cache/roadload/gap)")
+      ->type_name("DIR");
+  cmd.add_flag("--no-cache", o.no_cache, "build the library afresh and keep nothing");
+  cmd.add_flag("--dry-run", o.dry_run, "print the model each run is compared with, and stop");
+  cmd.add_option("--jobs", o.options.jobs, "simulations at once (default: the number of CPUs)")
+      ->type_name("N")
+      ->transform(whole_in(1, 256));
+  cmd.add_flag("-q,--quiet", o.quiet, "no progress on standard error");
+}
 
 // The library (read from the cache when one there serves these runs), the diagnosis, and the files
 // asked for: {JSON, features CSV}, either empty for none.
@@ -108,51 +143,21 @@ int load_run(const std::string& real, const std::string& model_name, const j1939
   return kExitOk;
 }
 
-int run_diagnosis(OptionParser& opt) {
-  std::vector<std::string> reals, models;
-  std::string json, features, vehicle_name, route_name, cache_dir = gap::default_cache_dir();
-  gap::GapOptions options;
-  options.jobs = default_jobs();
-  bool quiet = false, dry_run = false;
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (opt.flag("-q", "--quiet")) {
-      quiet = true;
-    } else if (auto r = opt.value("--real")) {
-      reals.emplace_back(*r);
-    } else if (auto m = opt.value("--model")) {
-      models.emplace_back(*m);
-    } else if (auto v = opt.value("--vehicle")) {
-      vehicle_name = *v;
-    } else if (auto rt = opt.value("--route")) {
-      route_name = *rt;
-    } else if (auto j = opt.value("--json")) {
-      json = *j;
-    } else if (auto c = opt.value("--cache")) {
-      cache_dir = *c;
-    } else if (opt.flag("--no-cache")) {
-      cache_dir.clear();
-    } else if (opt.flag("--dry-run")) {
-      dry_run = true;
-    } else if (auto f = opt.value("--features")) {
-      features = *f;
-    } else if (auto h = opt.value("--holdout")) {
-      if (*h != "cells" && *h != "runs") return opt.fail("--holdout: expected cells or runs, not '" + std::string(*h) + "'");
-      options.holdout = *h == "runs" ? gap::Holdout::runs : gap::Holdout::cells;
-    } else if (auto k = opt.number("--noise-runs", 3, 64)) {
-      options.noise_runs = static_cast<std::size_t>(*k);
-    } else if (auto n = opt.number("--jobs", 1, 256)) {
-      options.jobs = static_cast<unsigned>(*n);
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
-  if (reals.empty()) return opt.fail("--real is required (a recording folder)");
-  if (models.size() > 1 && models.size() != reals.size()) return opt.fail("give one --model for all runs or one per --real");
-  if (!models.empty() && !route_name.empty()) return opt.fail("--model and --route: give one (a scenario names its own route)");
-  if (options.holdout == gap::Holdout::runs && reals.size() < 2) return opt.fail("--holdout runs needs at least two --real");
-  if (!quiet) options.progress = [](const std::string& line) { std::fprintf(stderr, "gap: %s\n", line.c_str()); };
+int run_diagnosis(DiagnosisOptions& o) {
+  const std::vector<std::string>& reals = o.reals;
+  const std::vector<std::string>& models = o.models;
+  const std::string& route_name = o.route_name;
+  gap::GapOptions& options = o.options;
+  options.holdout = o.holdout == "runs" ? gap::Holdout::runs : gap::Holdout::cells;
+  if (o.no_cache) o.cache_dir.clear();
+  if (reals.empty()) return usage_error("gap", "--real is required (a recording folder)");
+  if (models.size() > 1 && models.size() != reals.size())
+    return usage_error("gap", "give one --model for all runs or one per --real");
+  if (!models.empty() && !route_name.empty())
+    return usage_error("gap", "--model and --route: give one (a scenario names its own route)");
+  if (options.holdout == gap::Holdout::runs && reals.size() < 2)
+    return usage_error("gap", "--holdout runs needs at least two --real");
+  if (!o.quiet) options.progress = [](const std::string& line) { std::fprintf(stderr, "gap: %s\n", line.c_str()); };
 
   j1939::Database db;
   if (auto err = load_dbc_file(db, core_dbc_path())) {
@@ -160,8 +165,8 @@ int run_diagnosis(OptionParser& opt) {
     return kExitNoInput;
   }
   std::optional<Vehicle> vehicle;
-  if (!vehicle_name.empty()) {
-    auto v = load_vehicle("gap", vehicle_name);
+  if (!o.vehicle_name.empty()) {
+    auto v = load_vehicle("gap", o.vehicle_name);
     if (const int* rc = std::get_if<int>(&v)) return *rc;
     vehicle = std::move(std::get<Vehicle>(v));
   }
@@ -171,11 +176,11 @@ int run_diagnosis(OptionParser& opt) {
     if (const int rc = load_run(reals[i], model_name, db, vehicle, route_name, loaded); rc != kExitOk) return rc;
   }
   const auto& [runs, run_lines, malformed] = loaded;
-  if (dry_run) {
+  if (o.dry_run) {
     for (const std::string& line : run_lines) std::printf("%s\n", line.c_str());
     return malformed ? kExitDataErr : kExitOk;
   }
-  const int rc = diagnose(runs, run_lines, db, options, cache_dir, quiet, {json, features});
+  const int rc = diagnose(runs, run_lines, db, options, o.cache_dir, o.quiet, {o.json, o.features});
   return rc == kExitOk && malformed ? kExitDataErr : rc;
 }
 
@@ -183,17 +188,24 @@ int run_diagnosis(OptionParser& opt) {
 
 unsigned default_jobs() { return std::max(1u, std::thread::hardware_concurrency()); }
 
-int run_gap(Args args) {
-  if (!args.empty() && std::string_view(args[0]) == "bench") {
-    OptionParser opt("gap bench", args.subspan(1));
-    return run_gap_bench(opt);
-  }
-  if (!args.empty() && std::string_view(args[0]) == "tables") {
-    OptionParser opt("gap tables", args.subspan(1));
-    return run_gap_tables(opt);
-  }
-  OptionParser opt("gap", args);
-  return run_diagnosis(opt);
+Run add_gap(CLI::App& roadload) {
+  auto o = std::make_shared<DiagnosisOptions>();
+  o->options.jobs = default_jobs();
+  CLI::App& cmd = *roadload.add_subcommand(
+      "gap", "diagnose the sim-to-real gap: where it lies, which unmodelled effect causes it, how far it shrinks");
+  describe(cmd, kHelp);
+  add_runs(cmd, *o);
+  add_outputs(cmd, *o);
+  cmd.require_subcommand(0, 1);
+  const Run bench = add_gap_bench(cmd);
+  const Run tables = add_gap_tables(cmd);
+  const CLI::App* bench_cmd = cmd.get_subcommand("bench");
+  const CLI::App* tables_cmd = cmd.get_subcommand("tables");
+  return [o, bench, tables, bench_cmd, tables_cmd] {
+    if (bench_cmd->parsed()) return bench();
+    if (tables_cmd->parsed()) return tables();
+    return run_diagnosis(*o);
+  };
 }
 
 }  // namespace roadload::cli

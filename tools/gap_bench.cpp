@@ -3,20 +3,25 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "command.hpp"
 #include "gap_commands.hpp"
+#include "roadload/cli/help.hpp"
+#include "roadload/cli/values.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/gap/bench.hpp"
 
 namespace roadload::cli {
 namespace {
 
-constexpr const char* kHelp =
+const HelpText kHelp{
     "usage: roadload gap bench [--cases N] [--seed S] [--effects A,B,...] [--days FILE] [--road NAME]\n"
-    "                          [--model-truck] [--jobs N]\n\n"
+    "                          [--model-truck] [--jobs N]",
     "Simulates test days of a truck (each on one road: two cruise runs and a neutral coast-down, as\n"
     "a test-days file sets them out) with effects the diagnosis is not told: one at a random\n"
     "magnitude within its range, two at once (15 % of cases) or none (20 %). Each day is diagnosed\n"
@@ -24,19 +29,7 @@ constexpr const char* kHelp =
     "Prints every case, the confusion matrix, top-1 accuracy (null runs count as right when nothing\n"
     "is named), the mean held-out shrink over cases whose effect is visible above the noise, and\n"
     "the false-alarm rate on null runs. The last line reads\n"
-    "cases=N top1=F shrink=F false_alarm=F.\n\n"
-    "  --cases N       cases (default 50)\n"
-    "  --seed S        seed of the draw (default 1)\n"
-    "  --effects LIST  effects to draw from, comma-separated, or \"all\" (default: every effect the\n"
-    "                  features can see; the others are listed with why)\n"
-    "  --days FILE     test-days file (default: config/bench/test-days.toml: the MnROAD Mainline,\n"
-    "                  TH 10, TH 66 and a generated hilly road); each case draws one of its days\n"
-    "  --road NAME     only the days on this road (repeatable)\n"
-    "  --model-truck   every case drives the model's own truck (default: each case a truck drawn\n"
-    "                  from the vehicle file's spreads of mass, CdA, engine friction and driveline\n"
-    "                  efficiency, whose recovery is scored)\n"
-    "  --jobs N        simulations at once (default: the number of CPUs)\n"
-    "  -h, --help      this text\n";
+    "cases=N top1=F shrink=F false_alarm=F."};
 
 std::string name_of(sim::Effect e) { return std::string(sim::effect_info(e).name); }
 
@@ -57,37 +50,45 @@ std::optional<std::string> parse_effects(std::string_view list, std::vector<sim:
   return std::nullopt;
 }
 
-// The plan and options, or the exit status when there is nothing to run (help, a bad option).
+// The days the cases are drawn from.
 struct DaysChoice {
   std::string file;
   std::vector<std::string> roads;  // empty: every day
 };
 
-std::optional<int> parse(OptionParser& opt, gap::BenchPlan& plan, gap::GapOptions& options, DaysChoice& days) {
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (auto n = opt.number("--cases", 1, 100000)) {
-      plan.cases = static_cast<std::size_t>(*n);
-    } else if (auto s = opt.number("--seed", 0, INT64_MAX)) {
-      plan.seed = static_cast<std::uint64_t>(*s);
-    } else if (auto j = opt.number("--jobs", 1, 256)) {
-      options.jobs = static_cast<unsigned>(*j);
-    } else if (auto f = opt.value("--days")) {
-      days.file = *f;
-    } else if (auto r = opt.value("--road")) {
-      days.roads.emplace_back(*r);
-    } else if (opt.flag("--model-truck")) {
-      plan.draw_trucks = false;
-    } else if (auto list = opt.value("--effects")) {
-      if (auto bad = parse_effects(*list, plan.effects)) {
-        return opt.fail("--effects: unknown effect '" + *bad + "' (roadload simulate --list-effects)");
-      }
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
-  return std::nullopt;
+struct BenchOptions {
+  gap::BenchPlan plan;
+  gap::GapOptions options;
+  DaysChoice days{gap::default_bench_days(data_dir()), {}};
+  std::string effects_list;
+  bool model_truck = false;
+};
+
+void add_options(CLI::App& cmd, BenchOptions& o) {
+  cmd.add_option("--cases", o.plan.cases, "cases (default 50)")->type_name("N")->transform(whole_in(1, 100000));
+  cmd.add_option("--seed", o.plan.seed, "seed of the draw (default 1)")->type_name("S")->transform(whole_in(0, INT64_MAX));
+  // Each list is read into the plan as it is checked: an unknown name is a usage error.
+  cmd.add_option("--effects", o.effects_list,
+                 "effects to draw from, comma-separated, or \"all\" (default: every\neffect the features can see; the others are "
+                 "listed with why)")
+      ->type_name("LIST")
+      ->each([&o](const std::string& list) {
+        if (auto bad = parse_effects(list, o.plan.effects))
+          throw CLI::ValidationError("unknown effect '" + *bad + "' (roadload simulate --list-effects)");
+      });
+  cmd.add_option("--days", o.days.file,
+                 "test-days file (default: config/bench/test-days.toml: the MnROAD\n"
+                 "Mainline, TH 10, TH 66 and a generated hilly road); each case draws one\n"
+                 "of its days")
+      ->type_name("FILE");
+  cmd.add_option("--road", o.days.roads, "only the days on this road (repeatable)")->type_name("NAME");
+  cmd.add_flag("--model-truck", o.model_truck,
+               "every case drives the model's own truck (default: each case a truck\n"
+               "drawn from the vehicle file's spreads of mass, CdA, engine friction and\n"
+               "driveline efficiency, whose recovery is scored)");
+  cmd.add_option("--jobs", o.options.jobs, "simulations at once (default: the number of CPUs)")
+      ->type_name("N")
+      ->transform(whole_in(1, 256));
 }
 
 void print_case(std::size_t i, const gap::CaseOutcome& o) {
@@ -169,14 +170,11 @@ void print_score(const gap::BenchScore& score, std::size_t libraries) {
   std::printf("cases=%zu top1=%.3f shrink=%.3f false_alarm=%.3f\n", score.cases, score.top1(), score.shrink(), score.false_alarm());
 }
 
-}  // namespace
-
-int run_gap_bench(OptionParser& opt) {
-  gap::BenchPlan plan;
-  gap::GapOptions options;
-  options.jobs = default_jobs();
-  DaysChoice choice{gap::default_bench_days(data_dir()), {}};
-  if (auto rc = parse(opt, plan, options, choice)) return *rc;
+int run_bench(BenchOptions& bench) {
+  gap::BenchPlan& plan = bench.plan;
+  gap::GapOptions& options = bench.options;
+  const DaysChoice& choice = bench.days;
+  if (bench.model_truck) plan.draw_trucks = false;
   j1939::Database db;
   if (auto err = load_dbc_file(db, core_dbc_path())) {
     std::fprintf(stderr, "roadload gap bench: %s\n", err->to_string().c_str());
@@ -219,6 +217,17 @@ int run_gap_bench(OptionParser& opt) {
   }
   print_score(score, libraries.size());
   return kExitOk;
+}
+
+}  // namespace
+
+Run add_gap_bench(CLI::App& gap) {
+  auto o = std::make_shared<BenchOptions>();
+  o->options.jobs = default_jobs();
+  CLI::App& cmd = *gap.add_subcommand("bench", "the diagnosis tried blind on simulated drives with hidden effects");
+  describe(cmd, kHelp);
+  add_options(cmd, *o);
+  return [o] { return run_bench(*o); };
 }
 
 }  // namespace roadload::cli

@@ -1,11 +1,11 @@
 #pragma once
-// The subcommands of `roadload gap` beyond the diagnosis itself.
-#include "options.hpp"
+// The subcommands of `roadload gap` beyond the diagnosis itself, added under it.
+#include "command.hpp"
 
 namespace roadload::cli {
 
-int run_gap_bench(OptionParser& opt);
-int run_gap_tables(OptionParser& opt);
+Run add_gap_bench(CLI::App& gap);
+Run add_gap_tables(CLI::App& gap);
 unsigned default_jobs();
 
 }  // namespace roadload::cli

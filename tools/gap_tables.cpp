@@ -1,10 +1,15 @@
 // roadload gap tables: the seed report's suspension-power tables against the simulator.
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <string>
+
+#include <CLI/CLI.hpp>
 
 #include "command.hpp"
 #include "gap_commands.hpp"
+#include "roadload/cli/help.hpp"
+#include "roadload/cli/values.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/gap/output.hpp"
 #include "roadload/gap/tables.hpp"
@@ -13,20 +18,21 @@
 namespace roadload::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: roadload gap tables [--json FILE] [--jobs N]\n\n"
-    "The seed report's Tables 6.5 and 6.6 (mean suspension power on the Mainline's bituminous and\n"
-    "concrete cells at 30 mph, on TH 66 and TH 10 at 55 mph) against a simulation that knows only\n"
-    "each pavement's IRI. Each candidate effect that acts on the vertical dynamics (joint-faulting,\n"
-    "slab-curl, suspension-friction, tire-pressure) is fitted to the Mainline's concrete-to-bituminous\n"
-    "ratio and judged on the highways' ratio, which it never saw; the best is added and the table\n"
-    "printed before and after. The simulated figure is the simulator's own damper dissipation.\n"
-    "Then each nominal parameter of the truck (mass, CdA, engine friction, driveline efficiency) is\n"
-    "moved one sigma of its vehicle file's spread; for those that move the suspension power, the\n"
-    "choice is made again at both ends of their 90 % interval.\n\n"
-    "  --json FILE   write the comparison as JSON\n"
-    "  --jobs N      simulations at once (default: the number of CPUs)\n"
-    "  -h, --help    this text\n";
+const HelpText kHelp{"usage: roadload gap tables [--json FILE] [--jobs N]",
+                     "The seed report's Tables 6.5 and 6.6 (mean suspension power on the Mainline's bituminous and\n"
+                     "concrete cells at 30 mph, on TH 66 and TH 10 at 55 mph) against a simulation that knows only\n"
+                     "each pavement's IRI. Each candidate effect that acts on the vertical dynamics (joint-faulting,\n"
+                     "slab-curl, suspension-friction, tire-pressure) is fitted to the Mainline's concrete-to-bituminous\n"
+                     "ratio and judged on the highways' ratio, which it never saw; the best is added and the table\n"
+                     "printed before and after. The simulated figure is the simulator's own damper dissipation.\n"
+                     "Then each nominal parameter of the truck (mass, CdA, engine friction, driveline efficiency) is\n"
+                     "moved one sigma of its vehicle file's spread; for those that move the suspension power, the\n"
+                     "choice is made again at both ends of their 90 % interval."};
+
+struct TablesOptions {
+  std::string json;
+  unsigned jobs = default_jobs();
+};
 
 std::string tables_json(const gap::TablesResult& t) {
   std::string j = "{\n  \"rows\": [";
@@ -137,22 +143,9 @@ void print_tables(const gap::TablesResult& t) {
   print_nominal(t);
 }
 
-}  // namespace
-
-int run_gap_tables(OptionParser& opt) {
-  std::string json;
-  unsigned jobs = default_jobs();
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (auto j = opt.value("--json")) {
-      json = *j;
-    } else if (auto n = opt.number("--jobs", 1, 256)) {
-      jobs = static_cast<unsigned>(*n);
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
+int run_tables(const TablesOptions& o) {
+  const std::string& json = o.json;
+  const unsigned jobs = o.jobs;
   j1939::Database db;
   if (auto err = load_dbc_file(db, core_dbc_path())) {
     std::fprintf(stderr, "roadload gap tables: %s\n", err->to_string().c_str());
@@ -171,6 +164,17 @@ int run_gap_tables(OptionParser& opt) {
     }
   }
   return kExitOk;
+}
+
+}  // namespace
+
+Run add_gap_tables(CLI::App& gap) {
+  auto o = std::make_shared<TablesOptions>();
+  CLI::App& cmd = *gap.add_subcommand("tables", "the seed report's suspension-power tables against the simulator");
+  describe(cmd, kHelp);
+  cmd.add_option("--json", o->json, "write the comparison as JSON")->type_name("FILE");
+  cmd.add_option("--jobs", o->jobs, "simulations at once (default: the number of CPUs)")->type_name("N")->transform(whole_in(1, 256));
+  return [o] { return run_tables(*o); };
 }
 
 }  // namespace roadload::cli

@@ -3,7 +3,7 @@
 #include <cinttypes>
 #include <cstdio>
 
-#include "options.hpp"
+#include "files.hpp"
 #include "roadload/bus_position.hpp"
 #include "roadload/j1939/assembler.hpp"
 #include "roadload/recording/reader.hpp"
@@ -45,11 +45,12 @@ std::optional<int> antenna_height(std::string_view command, const std::string& p
 
 }  // namespace
 
-std::optional<int> read_recorded_track(std::string_view command, const std::string& path, const TrackOptions& o,
+std::optional<int> read_recorded_track(std::string_view command, const std::vector<std::string>& segments, const TrackOptions& o,
                                        const j1939::Database& db, RecordedTrack& t, std::uint64_t& malformed) {
   // One read of both: the logger's own receiver where it has one, else the truck's, as its bus
   // broadcasts it.
-  auto reader = recording::RecordingReader::open(path, recording::kGnssStream | recording::kCanStream);
+  const std::string& path = segments.front();
+  auto reader = recording::RecordingReader::open_drive(segments, recording::kGnssStream | recording::kCanStream);
   if (!reader) {
     std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), reader.error().to_string().c_str());
     return exit_for(reader.error());

@@ -26,9 +26,10 @@ struct TrackOptions {
   bool print_errors = true;                // false where the command reads the recording again anyway
 };
 
-// Reads one recording; malformed lines are printed and counted in `malformed`. On an error that
-// stops the command it is printed and the exit code returned.
-std::optional<int> read_recorded_track(std::string_view command, const std::string& path, const TrackOptions& o,
+// Reads one recording (`segments`: one path, or one drive's segments in order); malformed lines
+// are printed and counted in `malformed`. On an error that stops the command it is printed and the
+// exit code returned.
+std::optional<int> read_recorded_track(std::string_view command, const std::vector<std::string>& segments, const TrackOptions& o,
                                        const j1939::Database& db, RecordedTrack& t, std::uint64_t& malformed);
 
 }  // namespace roadload::cli

@@ -5,12 +5,17 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "command.hpp"
+#include "files.hpp"
 #include "gnss_tracks.hpp"
-#include "options.hpp"
+#include "roadload/cli/help.hpp"
+#include "roadload/cli/values.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/grade_file.hpp"
 #include "roadload/grade_profile.hpp"
@@ -22,33 +27,19 @@ namespace {
 
 constexpr double kDefaultSurveySigma_m = 0.02;  // a levelled or RTK survey: about 2 cm in height
 
-constexpr const char* kHelp =
-    "usage: roadload grade --route ROUTE [RECORDING...] --out FILE [options]\n\n"
-    "Builds the route's grade profile per distance bin, with its standard error. Grade is the force\n"
-    "balance's largest error: 0.1 % of grade is 356 N on the 36 t truck, 0.001 in CRR.\n\n"
-    "Without recordings: from the route's survey elevations, a central difference over +-BASE, with\n"
-    "the survey's height error (--survey-sigma) at both ends.\n"
-    "With recordings: from their GNSS heights (seed report, Chapter 5). Each fix is placed on the\n"
-    "route; fixes off it, beyond its ends or without a 3-D fix are counted and dropped. A recording\n"
-    "is cut into passes where the travel along the route reverses. Each pass is averaged per bin,\n"
-    "then the passes; grade is the least-squares slope over +-BASE and its standard error the\n"
-    "scatter of the passes' slopes over sqrt(passes). A bin with fewer than --min-passes passes has\n"
-    "no grade (an empty field), never a guess. At 30 mph a code-DGPS pass gives about 0.25 % per bin:\n"
-    "six to ten passes, in both directions, reach 0.1 %. Each bin is compared with the survey on\n"
-    "standard output, and summarised on standard error.\n\n"
-    "  --route R            route file or built-in route name (config/routes): polyline and survey\n"
-    "  --out FILE           write FILE: s_m,elevation_m,elevation_sigma_m,grade_pct,grade_sigma_pct,passes\n"
-    "                       one line per bin; passes is 0 for the survey\n"
-    "  --bin M              bin length along the route (default 10)\n"
-    "  --base M             slope over +-M, at least one bin (default 30, as analyze's survey grade)\n"
-    "  --min-passes N       passes a bin needs for a grade (default 2: one pass has no scatter)\n"
-    "  --survey-sigma M     the survey's height standard error (default 0.02)\n"
-    "  --max-offset M       fixes farther than M from the route are on another road (default 15)\n"
-    "  --antenna-height M   GNSS antenna above the road (default: the vehicle's, as --vehicle or each\n"
-    "                       recording's meta.toml gives it, else 0: heights are then the antenna's)\n"
-    "  --vehicle V          vehicle file or built-in name whose antenna height the recordings share\n"
-    "  -q, --quiet          no per-bin comparison on standard output\n"
-    "  -h, --help           this text\n";
+const HelpText kHelp{"usage: roadload grade --route ROUTE [RECORDING...] --out FILE [options]",
+                     "Builds the route's grade profile per distance bin, with its standard error. Grade is the force\n"
+                     "balance's largest error: 0.1 % of grade is 356 N on the 36 t truck, 0.001 in CRR.\n\n"
+                     "Without recordings: from the route's survey elevations, a central difference over +-BASE, with\n"
+                     "the survey's height error (--survey-sigma) at both ends.\n"
+                     "With recordings: from their GNSS heights (seed report, Chapter 5). Each fix is placed on the\n"
+                     "route; fixes off it, beyond its ends or without a 3-D fix are counted and dropped. A recording\n"
+                     "is cut into passes where the travel along the route reverses. Each pass is averaged per bin,\n"
+                     "then the passes; grade is the least-squares slope over +-BASE and its standard error the\n"
+                     "scatter of the passes' slopes over sqrt(passes). A bin with fewer than --min-passes passes has\n"
+                     "no grade (an empty field), never a guess. At 30 mph a code-DGPS pass gives about 0.25 % per bin:\n"
+                     "six to ten passes, in both directions, reach 0.1 %. Each bin is compared with the survey on\n"
+                     "standard output, and summarised on standard error."};
 
 struct Options {
   std::string route_name, out;
@@ -59,41 +50,38 @@ struct Options {
   bool quiet = false;
 };
 
-// Returns an exit code when the options are unusable, else nullopt.
-std::optional<int> parse(OptionParser& opt, Options& o) {
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (opt.flag("-q", "--quiet")) {
-      o.quiet = true;
-    } else if (auto r = opt.value("--route")) {
-      o.route_name = *r;
-    } else if (auto f = opt.value("--out")) {
-      o.out = *f;
-    } else if (auto b = opt.real("--bin", 0.5, 1000)) {
-      o.cfg.bin_m = *b;
-    } else if (auto base = opt.real("--base", 0.5, 5000)) {
-      o.cfg.base_m = *base;
-    } else if (auto n = opt.number("--min-passes", 1, 1000)) {
-      o.cfg.min_passes = static_cast<std::size_t>(*n);
-    } else if (auto s = opt.real("--survey-sigma", 0, 10)) {
-      o.survey_sigma_m = *s;
-    } else if (auto m = opt.real("--max-offset", 0.1, 1000)) {
-      o.cfg.max_offset_m = *m;
-    } else if (auto a = opt.real("--antenna-height", -10, 20)) {
-      o.track.antenna_height_m = *a;
-    } else if (auto v = opt.value("--vehicle")) {
-      o.track.vehicle = *v;
-    } else if (auto p = opt.positional()) {
-      o.recordings.emplace_back(*p);
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
-  if (o.route_name.empty()) return opt.fail("--route is required");
-  if (o.out.empty()) return opt.fail("--out is required");
-  if (o.cfg.base_m < o.cfg.bin_m) return opt.fail("--base must be at least --bin: a slope needs three bins");
-  return std::nullopt;
+void add_options(CLI::App& cmd, Options& o) {
+  cmd.add_option("RECORDING", o.recordings, "recording folders whose GNSS heights give the grade (none: the survey)");
+  cmd.add_option("--route", o.route_name, "route file or built-in route name (config/routes): polyline and\nsurvey")
+      ->type_name("R")
+      ->required();
+  cmd.add_option("-o,--out", o.out,
+                 "write FILE: s_m,elevation_m,elevation_sigma_m,grade_pct,\n"
+                 "grade_sigma_pct,passes, one line per bin; passes is 0 for the survey")
+      ->type_name("FILE")
+      ->required();
+  cmd.add_option("--bin", o.cfg.bin_m, "bin length along the route (default 10)")->type_name("M")->check(real_in(0.5, 1000));
+  cmd.add_option("--base", o.cfg.base_m, "slope over +-M, at least one bin (default 30, as analyze's survey\ngrade)")
+      ->type_name("M")
+      ->check(real_in(0.5, 5000));
+  cmd.add_option("--min-passes", o.cfg.min_passes, "passes a bin needs for a grade (default 2: one pass has no scatter)")
+      ->type_name("N")
+      ->transform(whole_in(1, 1000));
+  cmd.add_option("--survey-sigma", o.survey_sigma_m, "the survey's height standard error (default 0.02)")
+      ->type_name("M")
+      ->check(real_in(0, 10));
+  cmd.add_option("--max-offset", o.cfg.max_offset_m, "fixes farther than M from the route are on another road (default 15)")
+      ->type_name("M")
+      ->check(real_in(0.1, 1000));
+  cmd.add_option("--antenna-height", o.track.antenna_height_m,
+                 "GNSS antenna above the road (default: the vehicle's, as --vehicle or\n"
+                 "each recording's meta.toml gives it, else 0: heights are then the\n"
+                 "antenna's)")
+      ->type_name("M")
+      ->check(real_in(-10, 20));
+  cmd.add_option("--vehicle", o.track.vehicle, "vehicle file or built-in name whose antenna height the recordings\nshare")
+      ->type_name("V");
+  cmd.add_flag("-q,--quiet", o.quiet, "no per-bin comparison on standard output");
 }
 
 std::optional<int> write_csv(const std::string& path, const GradeProfile& g) {
@@ -145,13 +133,8 @@ void compare(const GradeProfile& gnss, const GradeProfile& survey, bool quiet) {
   }
 }
 
-}  // namespace
-
-int run_grade(Args args) {
-  OptionParser opt("grade", args);
-  Options o;
-  if (auto code = parse(opt, o)) return *code;
-
+int grade(const Options& o) {
+  if (o.cfg.base_m < o.cfg.bin_m) return usage_error("grade", "--base must be at least --bin: a slope needs three bins");
   const auto loaded = load_route("grade", o.route_name);
   if (const int* rc = std::get_if<int>(&loaded)) return *rc;
   const LoadedRoute& route = std::get<LoadedRoute>(loaded);
@@ -169,7 +152,7 @@ int run_grade(Args args) {
   std::vector<RecordedTrack> tracks(o.recordings.size());
   std::uint64_t malformed = 0;
   for (std::size_t i = 0; i < tracks.size(); ++i) {
-    if (auto code = read_recorded_track("grade", o.recordings[i], o.track, db, tracks[i], malformed)) return *code;
+    if (auto code = read_recorded_track("grade", {o.recordings[i]}, o.track, db, tracks[i], malformed)) return *code;
     if (tracks[i].fixes.empty())
       std::fprintf(stderr, "roadload grade: %s: no GNSS fixes (gnss.csv, J1939 VP1)\n", tracks[i].path.c_str());
   }
@@ -186,6 +169,17 @@ int run_grade(Args args) {
     return kExitDataErr;
   }
   return malformed > 0 ? kExitDataErr : kExitOk;
+}
+
+}  // namespace
+
+Run add_grade(CLI::App& roadload) {
+  auto o = std::make_shared<Options>();
+  CLI::App& cmd = *roadload.add_subcommand("grade",
+                                           "build a route's grade profile with its uncertainty from its survey or GNSS passes");
+  describe(cmd, kHelp);
+  add_options(cmd, *o);
+  return [o] { return grade(*o); };
 }
 
 }  // namespace roadload::cli

@@ -6,8 +6,12 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "command.hpp"
-#include "options.hpp"
+#include "files.hpp"
+#include "roadload/cli/help.hpp"
+#include "roadload/cli/values.hpp"
 #include "roadload/recording/csv.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/spectra/welch.hpp"
@@ -15,21 +19,12 @@
 namespace roadload::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: roadload psd <recording | file.csv> [options]\n\n"
-    "Welch power spectral density, one-sided, per Hz: Hann window (periodic), segments of N samples\n"
-    "every N - M samples, each segment's mean removed, averaged. The numbers are those of\n"
-    "scipy.signal.welch(x, fs, window='hann', nperseg=N, noverlap=M) (equal to 1e-9, tested).\n"
-    "A recording gives one column per accelerometer and axis, in (m/s^2)^2/Hz, each at the sensor's\n"
-    "rate from meta.toml; a CSV file gives the PSD of one column.\n\n"
-    "  --nperseg N     segment length, even (default 4096)\n"
-    "  --noverlap M    overlap in samples (default N/2)\n"
-    "  --fs HZ         sampling rate (required for a CSV file; overrides meta.toml for a recording)\n"
-    "  --sensor NAME   only this accelerometer (name or id); repeatable (default: all)\n"
-    "  --axis A        x, y, z or all (default z)\n"
-    "  --column NAME   the CSV file's column\n"
-    "  -o FILE         write FILE instead of standard output: freq_hz,<sensor>_<axis>,...\n"
-    "  -h, --help      this text\n";
+const HelpText kHelp{"usage: roadload psd <recording | file.csv> [options]",
+                     "Welch power spectral density, one-sided, per Hz: Hann window (periodic), segments of N samples\n"
+                     "every N - M samples, each segment's mean removed, averaged. The numbers are those of\n"
+                     "scipy.signal.welch(x, fs, window='hann', nperseg=N, noverlap=M) (equal to 1e-9, tested).\n"
+                     "A recording gives one column per accelerometer and axis, in (m/s^2)^2/Hz, each at the sensor's\n"
+                     "rate from meta.toml; a CSV file gives the PSD of one column."};
 
 struct Channel {
   std::string name;
@@ -41,7 +36,8 @@ struct Channel {
 };
 
 struct Options {
-  std::string input, out, column, axis = "z";
+  std::vector<std::string> inputs;  // a CSV file, a recording, or one drive's segments
+  std::string out, column, axis = "z";
   std::vector<std::string> sensors;
   std::size_t nperseg = 4096;
   std::optional<std::size_t> noverlap;
@@ -120,63 +116,53 @@ int write(const Options& o, const std::vector<Channel>& channels, const spectra:
   return kExitOk;
 }
 
-}  // namespace
+void add_options(CLI::App& cmd, Options& o) {
+  cmd.add_option("RECORDING", o.inputs,
+                 "a recording folder or a CSV file; several: the segments of one\nroadloadd run, read as one drive")
+      ->required();
+  cmd.add_option("--nperseg", o.nperseg, "segment length, even (default 4096)")->type_name("N")->transform(whole_in(2, 1 << 22));
+  cmd.add_option("--noverlap", o.noverlap, "overlap in samples (default N/2)")->type_name("M")->transform(whole_in(0, 1 << 22));
+  cmd.add_option("--fs", o.fs_hz, "sampling rate (required for a CSV file; overrides meta.toml for a\nrecording)")
+      ->type_name("HZ")
+      ->check(real_in(1e-6, 1e9));
+  cmd.add_option("--sensor", o.sensors, "only this accelerometer (name or id); repeatable (default: all)")->type_name("NAME");
+  cmd.add_option("--axis", o.axis, "x, y, z or all (default z)")->type_name("A")->check(one_of({"x", "y", "z", "all"}));
+  cmd.add_option("--column", o.column, "the CSV file's column")->type_name("NAME");
+  cmd.add_option("-o,--out", o.out, "write FILE instead of standard output: freq_hz,<sensor>_<axis>,...")->type_name("FILE");
+}
 
-int run_psd(Args args) {
-  OptionParser opt("psd", args);
-  Options o;
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (auto n = opt.number("--nperseg", 2, 1 << 22)) {
-      o.nperseg = static_cast<std::size_t>(*n);
-    } else if (auto m = opt.number("--noverlap", 0, 1 << 22)) {
-      o.noverlap = static_cast<std::size_t>(*m);
-    } else if (auto fs = opt.real("--fs", 1e-6, 1e9)) {
-      o.fs_hz = *fs;
-    } else if (auto s = opt.value("--sensor")) {
-      o.sensors.emplace_back(*s);
-    } else if (auto a = opt.value("--axis")) {
-      o.axis = *a;
-    } else if (auto c = opt.value("--column")) {
-      o.column = *c;
-    } else if (auto out = opt.value("-o")) {
-      o.out = *out;
-    } else if (opt.single_positional(o.input, "RECORDING")) {
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
-  if (o.input.empty()) return opt.fail("a recording or CSV file is required");
-  if (o.axis != "x" && o.axis != "y" && o.axis != "z" && o.axis != "all") return opt.fail("--axis: expected x, y, z or all");
+int psd(const Options& o) {
   const auto config = [&](double fs) { return spectra::WelchConfig{fs, o.nperseg, o.noverlap.value_or(o.nperseg / 2)}; };
-  if (auto why = spectra::check(config(o.fs_hz.value_or(1.0)))) return opt.fail(*why);
+  if (auto why = spectra::check(config(o.fs_hz.value_or(1.0)))) return usage_error("psd", *why);
 
   std::vector<Channel> channels;
   int rc = kExitOk;
-  if (!std::filesystem::is_directory(o.input)) {
-    if (o.column.empty()) return opt.fail("--column is required for a CSV file");
-    if (!o.fs_hz) return opt.fail("--fs is required for a CSV file");
+  const std::string& input = o.inputs.front();
+  if (!std::filesystem::is_directory(input)) {
+    if (o.column.empty()) return usage_error("psd", "--column is required for a CSV file");
+    if (!o.fs_hz) return usage_error("psd", "--fs is required for a CSV file");
     channels.push_back({o.column, -1, 0, *o.fs_hz, std::make_unique<spectra::WelchPsd>(config(*o.fs_hz)), 0});
     const std::string_view cols[] = {o.column};
-    rc = feed(o.input, cols, channels);
+    rc = feed(input, cols, channels);
   } else {
-    auto reader = recording::RecordingReader::open(o.input);
+    auto reader = recording::RecordingReader::open(input);
     if (!reader) return fail_data(reader.error());
     for (const auto& s : reader.value().metadata().sensors) {
       if (!wanted(o, s)) continue;
       const double fs = o.fs_hz.value_or(s.rate_hz);
-      if (!(fs > 0)) return opt.fail("sensor " + s.name + " has no rate_hz in meta.toml: give --fs");
+      if (!(fs > 0)) return usage_error("psd", "sensor " + s.name + " has no rate_hz in meta.toml: give --fs");
       for (std::size_t axis = 0; axis < 3; ++axis) {
         if (o.axis != "all" && o.axis[0] != "xyz"[axis]) continue;
         channels.push_back({s.name + "_" + "xyz"[axis], s.id, axis, fs, std::make_unique<spectra::WelchPsd>(config(fs)), 0});
       }
     }
-    if (channels.empty()) return opt.fail("no accelerometer in " + o.input + "/meta.toml matches");
+    if (channels.empty()) return usage_error("psd", "no accelerometer in " + input + "/meta.toml matches");
     for (const Channel& c : channels)
-      if (c.fs_hz != channels[0].fs_hz) return opt.fail("sensors at different rates: give --fs or one --sensor");
+      if (c.fs_hz != channels[0].fs_hz) return usage_error("psd", "sensors at different rates: give --fs or one --sensor");
     const std::string_view cols[] = {"t_ns", "sensor", "x_mps2", "y_mps2", "z_mps2"};
-    rc = feed(o.input + "/" + recording::kAccelFile, cols, channels);
+    // A drive's segments continue one another: each one's samples go on where the last left off.
+    for (std::size_t i = 0; i < o.inputs.size() && rc == kExitOk; ++i)
+      rc = feed(o.inputs[i] + "/" + recording::kAccelFile, cols, channels);
   }
   if (rc != kExitOk) return rc;
   for (const Channel& c : channels) {
@@ -187,6 +173,17 @@ int run_psd(Args args) {
     }
   }
   return write(o, channels, config(channels[0].fs_hz));
+}
+
+}  // namespace
+
+Run add_psd(CLI::App& roadload) {
+  auto o = std::make_shared<Options>();
+  CLI::App& cmd = *roadload.add_subcommand(
+      "psd", "Welch power spectral density of accelerometer channels, as scipy.signal.welch computes it");
+  describe(cmd, kHelp);
+  add_options(cmd, *o);
+  return [o] { return on_one_drive("psd", o->inputs, [&] { return psd(*o); }); };
 }
 
 }  // namespace roadload::cli

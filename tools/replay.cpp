@@ -6,14 +6,18 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "command.hpp"
-#include "options.hpp"
+#include "files.hpp"
 #include "replay_injector.hpp"
 #include "roadload/can/socketcan_sender.hpp"
+#include "roadload/cli/help.hpp"
 #include "roadload/io/posix_time.hpp"
 #include "roadload/io/replay_origin.hpp"
 #include "roadload/recording/candump.hpp"
@@ -30,26 +34,18 @@ namespace {
 // spacing at any rate (J1939's fastest periods are 10 ms).
 constexpr std::int64_t kBatchWindow_ns = 1'000'000;
 
-constexpr const char* kHelp =
-    "usage: roadload replay <recording | can.log> [options]\n\n"
-    "Sends the recording's CAN frames onto a CAN interface, in order, with their recorded spacing\n"
-    "divided by the rate; frames recorded within 1 ms of each other go out together, in one system call.\n"
-    "Meant for vcan on a bench: it transmits, which a logger on a truck never does.\n\n"
-    "  --iface IFACE   interface to send on (default vcan0)\n"
-    "  --rate R        1 real time (default), N times faster, or max (as fast as the interface takes)\n"
-    "  --origin FILE   write FILE as the first frame goes out (its recorded and capture time, the rate):\n"
-    "                  roadloadd --replay REC --replay-origin FILE plays the sensor streams in step\n"
-    "  --faults SPEC   inject faults on the way, comma-separated; T and D in seconds since the first frame:\n"
-    "                  drop=P dup=P seed=N  lose or repeat each frame with probability P\n"
-    "                  error@T              a CAN error frame\n"
-    "                  busoff@T+D           bus-off: error frame, D s of silence, restarted frame\n"
-    "                  tp-truncate@T        the next transport session loses its last packet\n"
-    "                  gnss-outage@T+D      no GNSS fix for D s        (in roadloadd, through --origin)\n"
-    "                  accel-overflow@T     an accelerometer FIFO overflow (in roadloadd, through --origin)\n"
-    "                  clock-step@T=S       step the wall clock by S s (needs CAP_SYS_TIME)\n"
-    "  --sent FILE     write what went onto the bus, faults included, as a candump -L log\n"
-    "  -q, --quiet     no progress on standard error\n"
-    "  -h, --help      this text\n";
+const HelpText kHelp{"usage: roadload replay <recording | can.log> [options]",
+                     "Sends the recording's CAN frames onto a CAN interface, in order, with their recorded spacing\n"
+                     "divided by the rate; frames recorded within 1 ms of each other go out together, in one system call.\n"
+                     "Meant for vcan on a bench: it transmits, which a logger on a truck never does.",
+                     "--faults SPEC, comma-separated; T and D in seconds since the first frame:\n"
+                     "  drop=P dup=P seed=N  lose or repeat each frame with probability P\n"
+                     "  error@T              a CAN error frame\n"
+                     "  busoff@T+D           bus-off: error frame, D s of silence, restarted frame\n"
+                     "  tp-truncate@T        the next transport session loses its last packet\n"
+                     "  gnss-outage@T+D      no GNSS fix for D s        (in roadloadd, through --origin)\n"
+                     "  accel-overflow@T     an accelerometer FIFO overflow (in roadloadd, through --origin)\n"
+                     "  clock-step@T=S       step the wall clock by S s (needs CAP_SYS_TIME)"};
 
 // Steps CLOCK_REALTIME as an NTP daemon stepping a gateway's clock would.
 bool step_wall_clock(Nanoseconds by) {
@@ -65,7 +61,8 @@ void sleep_until_ns(std::int64_t t) {
 }
 
 struct ReplayOptions {
-  std::string input, iface = "vcan0", origin, sent_log;
+  std::vector<std::string> inputs;  // one recording or log, or one drive's segments
+  std::string iface = "vcan0", origin, sent_log;
   io::ReplayFaults faults;
   double rate = 1.0;  // 0: as fast as the interface takes them
   bool quiet = false;
@@ -81,36 +78,35 @@ std::optional<double> parse_rate(std::string_view text) {
   return rate;
 }
 
-// The options, or the exit status when there is nothing to replay (help, a bad option).
-std::variant<ReplayOptions, int> parse(Args args) {
-  OptionParser p("replay", args);
-  ReplayOptions o;
-  while (p.more()) {
-    if (p.help(kHelp)) return kExitOk;
-    if (p.flag("-q", "--quiet")) {
-      o.quiet = true;
-    } else if (auto v = p.value("--iface")) {
-      o.iface = *v;
-    } else if (auto origin = p.value("--origin")) {
-      o.origin = *origin;
-    } else if (auto f = p.value("--faults")) {
-      auto parsed = io::parse_replay_faults(*f);
-      if (!parsed) return p.fail(parsed.error().to_string());
-      o.faults = std::move(parsed.value());
-    } else if (auto sl = p.value("--sent")) {
-      o.sent_log = *sl;
-    } else if (auto r = p.value("--rate")) {
-      const auto rate = parse_rate(*r);
-      if (!rate) return p.fail("--rate: '" + std::string(*r) + "' is not 1, a positive factor or max");
-      o.rate = *rate;
-    } else if (p.single_positional(o.input, "recording")) {
-    } else {
-      return p.fail_unknown();
+// --faults and --rate are read into `o` as they are checked: a spec that does not read is a usage
+// error naming the option.
+void add_options(CLI::App& cmd, ReplayOptions& o) {
+  cmd.add_option("RECORDING", o.inputs,
+                 "a recording folder or a candump -L log; several: the segments of\none roadloadd run, played as one drive")
+      ->required();
+  cmd.add_option("--iface", o.iface, "interface to send on (default vcan0)")->type_name("IFACE");
+  cmd.add_option("--rate", "1 real time (default), N times faster, or max (as fast as the\ninterface takes)")
+      ->type_name("R")
+      ->each([&o](const std::string& text) {
+        const auto rate = parse_rate(text);
+        if (!rate) throw CLI::ValidationError("'" + text + "' is not 1, a positive factor or max");
+        o.rate = *rate;
+      });
+  cmd.add_option("--origin", o.origin,
+                 "write FILE as the first frame goes out (its recorded and capture time,\n"
+                 "the rate): roadloadd --replay REC --replay-origin FILE plays the sensor\n"
+                 "streams in step")
+      ->type_name("FILE");
+  cmd.add_option("--faults", "inject faults on the way (below)")->type_name("SPEC")->each([&o](const std::string& spec) {
+    auto parsed = io::parse_replay_faults(spec);
+    if (!parsed) {
+      const ParseError& e = parsed.error();  // its file is "--faults", which CLI11 puts first
+      throw CLI::ValidationError(e.field.empty() ? e.message : e.field + ": " + e.message);
     }
-  }
-  if (p.failed()) return kExitUsage;
-  if (o.input.empty()) return p.fail("a recording is required (see --help)");
-  return o;
+    o.faults = std::move(parsed.value());
+  });
+  cmd.add_option("--sent", o.sent_log, "write what went onto the bus, faults included, as a candump -L log")->type_name("FILE");
+  cmd.add_flag("-q,--quiet", o.quiet, "no progress on standard error");
 }
 
 int fail(const ParseError& e, int status) {
@@ -219,7 +215,7 @@ class Replay {
 };
 
 int replay(const ReplayOptions& o) {
-  auto reader = recording::RecordingReader::open(o.input, recording::kCanStream);
+  auto reader = recording::RecordingReader::open_drive(o.inputs, recording::kCanStream);
   if (!reader) return fail(reader.error(), kExitNoInput);
   auto sender = can::SocketCanSender::open(o.iface);
   if (!sender) return fail(sender.error(), kExitCantCreate);
@@ -255,10 +251,13 @@ int replay(const ReplayOptions& o) {
 
 }  // namespace
 
-int run_replay(Args args) {
-  auto o = parse(args);
-  if (const int* rc = std::get_if<int>(&o)) return *rc;
-  return replay(std::get<ReplayOptions>(o));
+Run add_replay(CLI::App& roadload) {
+  auto o = std::make_shared<ReplayOptions>();
+  CLI::App& cmd = *roadload.add_subcommand("replay",
+                                           "play a recording's CAN frames onto a (virtual) CAN interface, in real time or faster");
+  describe(cmd, kHelp);
+  add_options(cmd, *o);
+  return [o] { return on_one_drive("replay", o->inputs, [&] { return replay(*o); }); };
 }
 
 }  // namespace roadload::cli

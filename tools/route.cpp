@@ -6,12 +6,17 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "command.hpp"
+#include "files.hpp"
 #include "gnss_tracks.hpp"
-#include "options.hpp"
+#include "roadload/cli/help.hpp"
+#include "roadload/cli/values.hpp"
 #include "roadload/geo_files.hpp"
 #include "roadload/grade_file.hpp"
 #include "roadload/grade_profile.hpp"
@@ -21,36 +26,21 @@
 namespace roadload::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: roadload route build RECORDING... --out FILE [--cell-length M | --sections FILE] [options]\n\n"
-    "Makes a route file from the recordings' own GNSS (gnss.csv, else the truck's J1939 VP1 with VDS's\n"
-    "altitude). The longest pass traces the road; each recording is cut into passes where it turns\n"
-    "back on itself. The route runs the way the first recording's first pass drives: analyze follows\n"
-    "a drive along its route, so a road driven both ways gets two routes from the same recordings,\n"
-    "each with a recording of its direction first. Every pass's heights, less the antenna's height, give the\n"
-    "grade per bin with its standard error, written beside FILE as FILE's stem + .grade.csv and named\n"
-    "by the route file: from several passes the scatter of their slopes, from one pass a GNSS height's\n"
-    "error over the slope's base (0.5 % of grade), so the intervals from a lone pass are wide.\n"
-    "Cells carry no CRR: that is what analyze measures. Drive the road both ways, several times.\n\n"
-    "  --out FILE          the route file to write (TOML, docs/simulator.md \"Route files\")\n"
-    "  --cell-length M     cells of M metres from the route's start (default 250)\n"
-    "  --sections FILE     cells from the pavement sections of a GeoJSON or GPX file instead: each\n"
-    "                      section's ends placed on the route; name, surface, panel_length_m and\n"
-    "                      iri_m_per_km kept when the file gives them\n"
-    "  --name TEXT         the route's name (default: FILE's stem)\n"
-    "  --vehicle V         vehicle file or built-in name whose antenna height the recordings share\n"
-    "  --antenna-height M  GNSS antenna above the road, over any vehicle's\n"
-    "  --bin M             grade bin length (default 10)\n"
-    "  --base M            slope over +-M (default 60); the grade's errors correlate over 2 M\n"
-    "  --max-offset M      fixes or section ends farther than M from the traced road are elsewhere (default 15)\n"
-    "  -q, --quiet         no summary on standard error\n"
-    "  -h, --help          this text\n";
+const HelpText kHelp{"usage: roadload route build RECORDING... --out FILE [--cell-length M | --sections FILE] [options]",
+                     "Makes a route file from the recordings' own GNSS (gnss.csv, else the truck's J1939 VP1 with VDS's\n"
+                     "altitude). The longest pass traces the road; each recording is cut into passes where it turns\n"
+                     "back on itself. The route runs the way the first recording's first pass drives: analyze follows\n"
+                     "a drive along its route, so a road driven both ways gets two routes from the same recordings,\n"
+                     "each with a recording of its direction first. Every pass's heights, less the antenna's height, give the\n"
+                     "grade per bin with its standard error, written beside FILE as FILE's stem + .grade.csv and named\n"
+                     "by the route file: from several passes the scatter of their slopes, from one pass a GNSS height's\n"
+                     "error over the slope's base (0.5 % of grade), so the intervals from a lone pass are wide.\n"
+                     "Cells carry no CRR: that is what analyze measures. Drive the road both ways, several times."};
 
 struct Options {
   std::vector<std::string> recordings;
   std::string out, sections, name;
   double cell_length_m = TrackRouteConfig{}.cell_length_m;
-  bool cell_length_given = false;
   TrackOptions track;
   GradeConfig grade;
   bool quiet = false;
@@ -62,46 +52,38 @@ struct Options {
 // filter carries the errors as correlated over the window (120 m).
 constexpr double kTracedSlopeBase_m = 60.0;
 
-std::optional<int> parse(OptionParser& opt, Options& o) {
+void add_options(CLI::App& cmd, Options& o) {
   o.grade.min_passes = 1;
   o.grade.base_m = kTracedSlopeBase_m;
   o.grade.pass_slope_sigma = kGnssPassSlopeSigma;
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (opt.flag("-q", "--quiet")) {
-      o.quiet = true;
-    } else if (auto f = opt.value("--out")) {
-      o.out = *f;
-    } else if (auto c = opt.real("--cell-length", 10, 100000)) {
-      o.cell_length_m = *c;
-      o.cell_length_given = true;
-    } else if (auto s = opt.value("--sections")) {
-      o.sections = *s;
-    } else if (auto n = opt.value("--name")) {
-      o.name = *n;
-    } else if (auto v = opt.value("--vehicle")) {
-      o.track.vehicle = *v;
-    } else if (auto a = opt.real("--antenna-height", -10, 20)) {
-      o.track.antenna_height_m = *a;
-    } else if (auto b = opt.real("--bin", 0.5, 1000)) {
-      o.grade.bin_m = *b;
-    } else if (auto base = opt.real("--base", 0.5, 5000)) {
-      o.grade.base_m = *base;
-    } else if (auto m = opt.real("--max-offset", 0.1, 1000)) {
-      o.grade.max_offset_m = *m;
-    } else if (auto p = opt.positional()) {
-      o.recordings.emplace_back(*p);
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
-  if (o.recordings.empty()) return opt.fail("at least one recording is required");
-  if (o.out.empty()) return opt.fail("--out is required");
-  if (o.cell_length_given && !o.sections.empty()) return opt.fail("--cell-length and --sections exclude each other");
-  if (o.grade.base_m < o.grade.bin_m) return opt.fail("--base must be at least --bin: a slope needs three bins");
-  if (o.name.empty()) o.name = std::filesystem::path(o.out).stem().string();
-  return std::nullopt;
+  cmd.add_option("RECORDING", o.recordings, "recording folders whose GNSS traces the road")->required();
+  cmd.add_option("-o,--out", o.out, "the route file to write (TOML, docs/simulator.md \"Route files\")")
+      ->type_name("FILE")
+      ->required();
+  CLI::Option* cells = cmd.add_option("--cell-length", o.cell_length_m, "cells of M metres from the route's start (default 250)")
+                           ->type_name("M")
+                           ->check(real_in(10, 100000));
+  cmd.add_option("--sections", o.sections,
+                 "cells from the pavement sections of a GeoJSON or GPX file instead:\n"
+                 "each section's ends placed on the route; name, surface, panel_length_m\n"
+                 "and iri_m_per_km kept when the file gives them")
+      ->type_name("FILE")
+      ->excludes(cells);
+  cmd.add_option("--name", o.name, "the route's name (default: FILE's stem)")->type_name("TEXT");
+  cmd.add_option("--vehicle", o.track.vehicle, "vehicle file or built-in name whose antenna height the recordings\nshare")
+      ->type_name("V");
+  cmd.add_option("--antenna-height", o.track.antenna_height_m, "GNSS antenna above the road, over any vehicle's")
+      ->type_name("M")
+      ->check(real_in(-10, 20));
+  cmd.add_option("--bin", o.grade.bin_m, "grade bin length (default 10)")->type_name("M")->check(real_in(0.5, 1000));
+  cmd.add_option("--base", o.grade.base_m, "slope over +-M (default 60); the grade's errors correlate over 2 M")
+      ->type_name("M")
+      ->check(real_in(0.5, 5000));
+  cmd.add_option("--max-offset", o.grade.max_offset_m,
+                 "fixes or section ends farther than M from the traced road are\nelsewhere (default 15)")
+      ->type_name("M")
+      ->check(real_in(0.1, 1000));
+  cmd.add_flag("-q,--quiet", o.quiet, "no summary on standard error");
 }
 
 // Each point's height: the passes' mean road height in its bin (NaN where no pass had a 3-D fix).
@@ -162,14 +144,16 @@ double mean_cell_length_m(const std::vector<CellDef>& cells, double fallback_m) 
   return cells.empty() || !(sum_m > 0) ? fallback_m : sum_m / static_cast<double>(cells.size());
 }
 
-int build(const Options& o) {
+int build(Options& o) {
+  if (o.grade.base_m < o.grade.bin_m) return usage_error("route build", "--base must be at least --bin: a slope needs three bins");
+  if (o.name.empty()) o.name = std::filesystem::path(o.out).stem().string();
   j1939::Database db;
   if (auto rc = load_definitions("route", {}, db)) return *rc;
   std::vector<RecordedTrack> tracks(o.recordings.size());
   std::uint64_t malformed = 0;
   std::vector<GnssTrack> gnss;
   for (std::size_t i = 0; i < tracks.size(); ++i) {
-    if (auto rc = read_recorded_track("route", o.recordings[i], o.track, db, tracks[i], malformed)) return *rc;
+    if (auto rc = read_recorded_track("route", {o.recordings[i]}, o.track, db, tracks[i], malformed)) return *rc;
     if (!o.quiet) {
       std::fprintf(stderr, "route: %s: %zu fixes from %s\n", tracks[i].path.c_str(), tracks[i].fixes.size(),
                    tracks[i].fixes.empty() ? "nowhere (no gnss.csv, no VP1)" : tracks[i].source.c_str());
@@ -239,12 +223,16 @@ int build(const Options& o) {
 
 }  // namespace
 
-int run_route(Args args) {
-  if (auto rc = expect_action("route", args, "build", kHelp)) return *rc;
-  OptionParser opt("route build", args.subspan(1));
-  Options o;
-  if (auto rc = parse(opt, o)) return *rc;
-  return build(o);
+Run add_route(CLI::App& roadload) {
+  auto o = std::make_shared<Options>();
+  CLI::App& cmd = *roadload.add_subcommand(
+      "route", "build a route file from the recordings' own GNSS passes, with cells or a GIS file's sections");
+  CLI::App& build_cmd = *cmd.add_subcommand("build", "make a route file from the recordings' GNSS passes");
+  cmd.require_subcommand(1);
+  describe_as(cmd, build_cmd);
+  describe(build_cmd, kHelp);
+  add_options(build_cmd, *o);
+  return [o] { return build(*o); };
 }
 
 }  // namespace roadload::cli

@@ -4,12 +4,17 @@
 #include <cinttypes>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "command.hpp"
-#include "options.hpp"
+#include "files.hpp"
 #include "progress.hpp"
+#include "roadload/cli/help.hpp"
+#include "roadload/cli/values.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/recording/writer.hpp"
 #include "roadload/sim/effects.hpp"
@@ -20,23 +25,11 @@
 namespace roadload::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: roadload simulate --scenario NAME|FILE --out RECORDING [options]\n\n"
-    "Simulates the scenario's truck (a vehicle file, config/vehicles) on a road and writes a recording\n"
-    "(docs/recording-format.md)\n"
-    "and, with --truth, the ground truth (true forces, CRR, dissipated powers, per-cell table).\n\n"
-    "  --scenario S        built-in scenario name or a scenario TOML file\n"
-    "  --vehicle V         vehicle file or built-in name (config/vehicles) instead of the scenario's truck\n"
-    "  --seed N            seed of every random process except the road (default 1)\n"
-    "  --out DIR           recording folder to write\n"
-    "  --truth DIR         ground-truth folder to write (series.csv, axles.csv, cells.csv, truth.toml)\n"
-    "  --effect NAME[=M]   switch an effect on with magnitude M (its typical value if omitted); repeatable\n"
-    "  --duration S        stop after S simulated seconds\n"
-    "  --list-effects      list the effects with unit, typical value and range, then exit\n"
-    "  --list-scenarios    list the built-in scenarios, then exit\n"
-    "  -q, --quiet         no progress on standard error\n"
-    "  -h, --help          this text\n\n"
-    "The same scenario and seed give byte-identical output.\n";
+const HelpText kHelp{"usage: roadload simulate --scenario NAME|FILE --out RECORDING [options]",
+                     "Simulates the scenario's truck (a vehicle file, config/vehicles) on a road and writes a recording\n"
+                     "(docs/recording-format.md)\n"
+                     "and, with --truth, the ground truth (true forces, CRR, dissipated powers, per-cell table).",
+                     "The same scenario and seed give byte-identical output."};
 
 int list_effects() {
   std::printf("%-22s %-9s %9s %9s %9s  %s\n", "effect", "unit", "typical", "min", "max", "model");
@@ -60,41 +53,25 @@ struct SimulateOptions {
   std::uint64_t seed = 1;
   std::vector<std::string> effects;
   std::optional<double> duration_s;
-  bool quiet = false;
+  bool quiet = false, list_effects = false, list_scenarios = false;
 };
 
-// The options, or the exit status when there is nothing to simulate (help, a list, a bad option).
-std::variant<SimulateOptions, int> parse(Args args) {
-  OptionParser opt("simulate", args);
-  SimulateOptions o;
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (opt.flag("--list-effects")) return list_effects();
-    if (opt.flag("--list-scenarios")) return list_scenarios();
-    if (opt.flag("-q", "--quiet")) {
-      o.quiet = true;
-    } else if (auto v = opt.value("--scenario")) {
-      o.scenario = *v;
-    } else if (auto veh = opt.value("--vehicle")) {
-      o.vehicle = *veh;
-    } else if (auto n = opt.number("--seed", 0, INT64_MAX)) {
-      o.seed = static_cast<std::uint64_t>(*n);
-    } else if (auto out = opt.value("--out")) {
-      o.out = *out;
-    } else if (auto t = opt.value("--truth")) {
-      o.truth_dir = *t;
-    } else if (auto e = opt.value("--effect")) {
-      o.effects.emplace_back(*e);
-    } else if (auto d = opt.real("--duration", 0.1, 1e6)) {
-      o.duration_s = *d;
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
-  if (o.scenario.empty()) return opt.fail("--scenario is required");
-  if (o.out.empty()) return opt.fail("--out is required");
-  return o;
+void add_options(CLI::App& cmd, SimulateOptions& o) {
+  cmd.add_option("--scenario", o.scenario, "built-in scenario name or a scenario TOML file")->type_name("S");
+  cmd.add_option("--vehicle", o.vehicle, "vehicle file or built-in name (config/vehicles) instead of the\nscenario's truck")
+      ->type_name("V");
+  cmd.add_option("--seed", o.seed, "seed of every random process except the road (default 1)")
+      ->type_name("N")
+      ->transform(whole_in(0, INT64_MAX));
+  cmd.add_option("-o,--out", o.out, "recording folder to write")->type_name("DIR");
+  cmd.add_option("--truth", o.truth_dir, "ground-truth folder to write (series.csv, axles.csv, cells.csv,\ntruth.toml)")
+      ->type_name("DIR");
+  cmd.add_option("--effect", o.effects, "switch an effect on with magnitude M (its typical value if omitted);\nrepeatable")
+      ->type_name("NAME[=M]");
+  cmd.add_option("--duration", o.duration_s, "stop after S simulated seconds")->type_name("S")->check(real_in(0.1, 1e6));
+  cmd.add_flag("--list-effects", o.list_effects, "list the effects with unit, typical value and range, then exit");
+  cmd.add_flag("--list-scenarios", o.list_scenarios, "list the built-in scenarios, then exit");
+  cmd.add_flag("-q,--quiet", o.quiet, "no progress on standard error");
 }
 
 int fail(const ParseError& e, int status) {
@@ -113,8 +90,7 @@ std::variant<sim::Scenario, int> scenario_of(const SimulateOptions& o) {
   }
   for (const auto& e : o.effects) {
     if (auto err = scenario.value().effects.parse_and_set(e)) {
-      std::fprintf(stderr, "roadload simulate: --effect %s (see --help)\n", err->c_str());
-      return kExitUsage;
+      return usage_error("simulate", "--effect " + *err);
     }
   }
   if (o.duration_s) scenario.value().duration = Seconds{*o.duration_s};
@@ -141,6 +117,10 @@ void print_summary(const sim::Simulation& simulation, const std::string& name, s
 }
 
 int simulate(const SimulateOptions& o) {
+  if (o.list_effects) return list_effects();
+  if (o.list_scenarios) return list_scenarios();
+  if (o.scenario.empty()) return usage_error("simulate", "--scenario is required");
+  if (o.out.empty()) return usage_error("simulate", "--out is required");
   auto scenario = scenario_of(o);
   if (const int* rc = std::get_if<int>(&scenario)) return *rc;
   const sim::Scenario& sc = std::get<sim::Scenario>(scenario);
@@ -167,10 +147,13 @@ int simulate(const SimulateOptions& o) {
 
 }  // namespace
 
-int run_simulate(Args args) {
-  auto o = parse(args);
-  if (const int* rc = std::get_if<int>(&o)) return *rc;
-  return simulate(std::get<SimulateOptions>(o));
+Run add_simulate(CLI::App& roadload) {
+  auto o = std::make_shared<SimulateOptions>();
+  CLI::App& cmd = *roadload.add_subcommand("simulate",
+                                           "drive the simulated truck over a simulated road; write a recording and its ground truth");
+  describe(cmd, kHelp);
+  add_options(cmd, *o);
+  return [o] { return simulate(*o); };
 }
 
 }  // namespace roadload::cli

@@ -4,11 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "command.hpp"
-#include "options.hpp"
+#include "files.hpp"
+#include "roadload/cli/help.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/vehicle_file.hpp"
 #include "roadload/vehicle_identification.hpp"
@@ -16,51 +20,29 @@
 namespace roadload::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: roadload vehicle identify RECORDING... --out FILE [--vehicle PRIOR] [options]\n\n"
-    "Writes a vehicle file for the truck the recordings were made with. It starts from a prior (the\n"
-    "nearest vehicle file: --vehicle, else the one the first recording's meta.toml carries) and\n"
-    "replaces what the drives tell, each value with its standard error and its source as a comment:\n"
-    "  vin                  VI (PGN 65260)\n"
-    "  reference torque     EC1 SPN 544\n"
-    "  gear ratios          ETC2's actual ratio per current gear, else engine over wheel speed\n"
-    "  drive tires' radius  GNSS speed against the wheels' turning rate in steady driving\n"
-    "  mass                 CVW's gross combination weight (PGN 65136), where the truck sends it\n"
-    "What the drives cannot tell (CdA, efficiency, a mass the bus does not send) keeps the prior's\n"
-    "value and sigma; standard error lists each with the reason.\n\n"
-    "  --out FILE      the vehicle file to write (TOML, docs/vehicle-file.md)\n"
-    "  --vehicle V     the prior: a vehicle file or a built-in name (config/vehicles)\n"
-    "  --name TEXT     the written vehicle's name (default: FILE's stem)\n"
-    "  --dbc FILE      load FILE after the built-in definitions; repeatable\n"
-    "  -h, --help      this text\n";
+const HelpText kHelp{"usage: roadload vehicle identify RECORDING... --out FILE [--vehicle PRIOR] [options]",
+                     "Writes a vehicle file for the truck the recordings were made with. It starts from a prior (the\n"
+                     "nearest vehicle file: --vehicle, else the one the first recording's meta.toml carries) and\n"
+                     "replaces what the drives tell, each value with its standard error and its source as a comment:\n"
+                     "  vin                  VI (PGN 65260)\n"
+                     "  reference torque     EC1 SPN 544\n"
+                     "  gear ratios          ETC2's actual ratio per current gear, else engine over wheel speed\n"
+                     "  drive tires' radius  GNSS speed against the wheels' turning rate in steady driving\n"
+                     "  mass                 CVW's gross combination weight (PGN 65136), where the truck sends it\n"
+                     "What the drives cannot tell (CdA, efficiency, a mass the bus does not send) keeps the prior's\n"
+                     "value and sigma; standard error lists each with the reason."};
 
 struct Options {
   std::vector<std::string> recordings, dbcs;
   std::string out, vehicle, name;
 };
 
-std::optional<int> parse(OptionParser& opt, Options& o) {
-  while (opt.more()) {
-    if (opt.help(kHelp)) return kExitOk;
-    if (auto f = opt.value("--out")) {
-      o.out = *f;
-    } else if (auto v = opt.value("--vehicle")) {
-      o.vehicle = *v;
-    } else if (auto n = opt.value("--name")) {
-      o.name = *n;
-    } else if (auto d = opt.value("--dbc")) {
-      o.dbcs.emplace_back(*d);
-    } else if (auto p = opt.positional()) {
-      o.recordings.emplace_back(*p);
-    } else if (!opt.failed()) {
-      return opt.fail_unknown();
-    }
-  }
-  if (opt.failed()) return kExitUsage;
-  if (o.recordings.empty()) return opt.fail("at least one recording is required");
-  if (o.out.empty()) return opt.fail("--out is required");
-  if (o.name.empty()) o.name = std::filesystem::path(o.out).stem().string();
-  return std::nullopt;
+void add_options(CLI::App& cmd, Options& o) {
+  cmd.add_option("RECORDING", o.recordings, "recording folders of the truck")->required();
+  cmd.add_option("-o,--out", o.out, "the vehicle file to write (TOML, docs/vehicle-file.md)")->type_name("FILE")->required();
+  cmd.add_option("--vehicle", o.vehicle, "the prior: a vehicle file or a built-in name (config/vehicles)")->type_name("V");
+  cmd.add_option("--name", o.name, "the written vehicle's name (default: FILE's stem)")->type_name("TEXT");
+  cmd.add_option("--dbc", o.dbcs, "load FILE after the built-in definitions; repeatable")->type_name("FILE");
 }
 
 std::string figure(double v, double sigma) {
@@ -141,7 +123,8 @@ void print(const Vehicle& prior, const VehicleIdentification& id) {
   for (const std::string& why : id.not_identified) std::fprintf(stderr, "vehicle: not identified: %s\n", why.c_str());
 }
 
-int identify(const Options& o) {
+int identify(Options& o) {
+  if (o.name.empty()) o.name = std::filesystem::path(o.out).stem().string();
   j1939::Database db;
   if (auto rc = load_definitions("vehicle", o.dbcs, db)) return *rc;
   std::optional<Vehicle> prior;
@@ -186,12 +169,16 @@ int identify(const Options& o) {
 
 }  // namespace
 
-int run_vehicle(Args args) {
-  if (auto rc = expect_action("vehicle", args, "identify", kHelp)) return *rc;
-  OptionParser opt("vehicle identify", args.subspan(1));
-  Options o;
-  if (auto rc = parse(opt, o)) return *rc;
-  return identify(o);
+Run add_vehicle(CLI::App& roadload) {
+  auto o = std::make_shared<Options>();
+  CLI::App& cmd = *roadload.add_subcommand(
+      "vehicle", "identify a truck's vehicle file from its recordings: VIN, torque, gear ratios, tire radius, mass");
+  CLI::App& identify_cmd = *cmd.add_subcommand("identify", "write a vehicle file for the truck the recordings were made with");
+  cmd.require_subcommand(1);
+  describe_as(cmd, identify_cmd);
+  describe(identify_cmd, kHelp);
+  add_options(identify_cmd, *o);
+  return [o] { return identify(*o); };
 }
 
 }  // namespace roadload::cli

@@ -2,7 +2,7 @@
 """Bad input as a careless or hostile user gives it, case by case: each case damages a copy of a
 short simulated drive (or gives a bad option or file) and expects the command's exit status and a
 message naming the file, line and field. Exit codes are sysexits for roadload (64 usage, 65 data,
-66 missing input) and 2 for roadloadd's refused settings; 0 where the format allows what is given.
+66 missing input; roadloadd: 64 for its command line, 78 for refused settings); 0 where the format allows what is given.
 usage: bad-input.py ROADLOAD ROADLOADD CONFIG_DIR"""
 import pathlib
 import re
@@ -164,12 +164,19 @@ CASES = [
     ("no such recording", None, ["analyze", "{work}/absent/recording", "--out", "{work}/out"], 66, r"absent/recording"),
     ("a text file as the recording", write_file("notes.txt", "remember the milk\n"), ["analyze", "{work}/notes.txt", "--out", "{work}/out"],
      65, r"notes\.txt:1: timestamp"),
-    ("two recordings", None, ["analyze", "{rec}", "{rec}", "--out", "{work}/out"], 64, r"one RECORDING at a time"),
+    ("two recordings, not one run's segments", None, ["analyze", "{rec}", "{rec}", "--out", "{work}/out"], 64,
+     r"meta\.toml: recording_id: not a segment of a logger's drive"),
+    ("one segment given twice", meta("version = 1\n", "version = 1\nrecording_id = \"ab12\"\nsegment = 1\n"),
+     ["analyze", "{rec}", "{rec}", "--out", "{work}/out"], 64, r"segment: segment 1 given twice"),
+    ("a segment and a log joined", meta("version = 1\n", "version = 1\nrecording_id = \"ab12\"\nsegment = 1\n"),
+     ["decode", "{rec}", "{rec}/can.log"], 64, r"can\.log: not a recording folder"),
+    ("segment number 0", meta("version = 1\n", "version = 1\nrecording_id = \"ab12\"\nsegment = 0\n"), ANALYZE, 65,
+     r"meta\.toml:\d+: segment: expected a segment number from 1"),
     ("analyze without --out", None, ["analyze", "{rec}"], 64, r"--out is required"),
     ("analyze --mass not a number", None, ANALYZE + ["--mass", "heavy"], 64, r"--mass: 'heavy' is not a finite number"),
     ("analyze --mass 1e9 kg", None, ANALYZE + ["--mass", "1e9"], 64, r"--mass: '1e9' is not a finite number in"),
-    ("analyze unknown option", None, ANALYZE + ["--fast"], 64, r"unknown option '--fast'"),
-    ("psd two recordings", None, ["psd", "{rec}", "{rec}"], 64, r"one RECORDING at a time"),
+    ("analyze unknown option", None, ANALYZE + ["--fast"], 64, r"--fast: unknown option"),
+    ("psd two recordings", None, ["psd", "{rec}", "{rec}"], 64, r"not a segment of a logger's drive"),
     ("decode garbage", write_file("garbage.log", "garbage\n"), ["decode", "{work}/garbage.log"], 65, r"garbage\.log:1: timestamp"),
     ("decode missing file", None, ["decode", "{work}/missing.log"], 66, r"missing\.log"),
     ("simulate unknown scenario", None, ["simulate", "--scenario", "no-such", "--out", "{work}/s"], 66, r"no-such"),
@@ -185,16 +192,16 @@ CASES = [
      ANALYZE + ["--route", "{work}/bad-route.toml"], 65, r"bad-route\.toml:\d+: default_crr"),
     ("route missing", None, ANALYZE + ["--route", "{work}/no-route.toml"], 66, r"no-route\.toml"),
     # roadloadd's settings
-    ("roadloadd option taken as a value", None, ["@roadloadd", "--can", "--no-gnss"], 2, r"--can: needs an interface name"),
+    ("roadloadd option taken as a value", None, ["@roadloadd", "--can", "--no-gnss"], 64, r"--can: needs IFACE, not the option '--no-gnss'"),
     ("roadloadd infinite segments", write_file("inf.toml", "[recording]\nsegment_max_mib = inf\nquota_mib = inf\n"),
-     ["@roadloadd", "--config", "{work}/inf.toml"], 2, r"inf\.toml:2: recording\.segment_max_mib: expected a finite number"),
+     ["@roadloadd", "--config", "{work}/inf.toml"], 78, r"inf\.toml:2: recording\.segment_max_mib: expected a finite number"),
     ("roadloadd 2 EiB segments", write_file("huge.toml", "[recording]\nsegment_max_mib = 2e12\nquota_mib = 4e12\n"),
-     ["@roadloadd", "--config", "{work}/huge.toml"], 2, r"recording\.segment_max_mib: expected 1 to 1048576"),
-    ("roadloadd replay of nothing", None, ["@roadloadd", "--replay", "{work}/nothing"], 2, r"replay\.recording: .* does not exist"),
-    ("roadloadd replay of a can.log alone", None, ["@roadloadd", "--replay", "{rec}/can.log"], 2, r"not a recording folder"),
-    ("roadloadd replay rate text", None, ["@roadloadd", "--replay-rate", "fast"], 2, r"--replay-rate: 'fast' is not a number"),
+     ["@roadloadd", "--config", "{work}/huge.toml"], 78, r"recording\.segment_max_mib: expected 1 to 1048576"),
+    ("roadloadd replay of nothing", None, ["@roadloadd", "--replay", "{work}/nothing"], 78, r"replay\.recording: .* does not exist"),
+    ("roadloadd replay of a can.log alone", None, ["@roadloadd", "--replay", "{rec}/can.log"], 78, r"not a recording folder"),
+    ("roadloadd replay rate text", None, ["@roadloadd", "--replay-rate", "fast"], 64, r"--replay-rate: 'fast' is not a finite number"),
     ("roadloadd unknown key", write_file("typo.toml", "[recording]\nfsync_intervall_s = 3\n"), ["@roadloadd", "--config", "{work}/typo.toml"],
-     2, r"fsync_intervall_s"),
+     78, r"fsync_intervall_s"),
 ]
 
 

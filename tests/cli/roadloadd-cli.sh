@@ -23,13 +23,13 @@ grep -q -- '--faults: meteor@5: unknown fault' "$work/err" || fail "bad --faults
 expect_status 64 "$roadload" replay "$work/none" --faults 'busoff@20'
 grep -q -- '--faults: busoff@20: expected a time and a positive duration' "$work/err" || fail "bad --faults: $(cat "$work/err")"
 
-expect_status 2 "$roadloadd" --can
-grep -q 'command line: --can: needs an interface name' "$work/err" || fail "bad --can: $(cat "$work/err")"
+expect_status 64 "$roadloadd" --can
+grep -q 'command line: --can: 1 required IFACE missing' "$work/err" || fail "bad --can: $(cat "$work/err")"
 printf '[status]\ninterval_s = 0\n' >"$work/bad.toml"
-expect_status 2 "$roadloadd" --config "$work/bad.toml"
+expect_status 78 "$roadloadd" --config "$work/bad.toml"
 grep -q "$work/bad.toml: status.interval_s: expected 0.1 to 60" "$work/err" || fail "bad config: $(cat "$work/err")"
 printf '[status]\ninterval_s = "1"\n' >"$work/bad2.toml"
-expect_status 2 "$roadloadd" --config "$work/bad2.toml"
+expect_status 78 "$roadloadd" --config "$work/bad2.toml"
 grep -q "$work/bad2.toml:2: status.interval_s: expected a number" "$work/err" || fail "bad config: $(cat "$work/err")"
 # The truck's calibration is read at start: a missing table stops the daemon, naming it.
 printf '[estimator]\nroute = "mnroad-mainline-westbound"\nengine_losses = "%s/no-losses.csv"\n' "$work" >"$work/cal.toml"
@@ -84,6 +84,18 @@ frames=$(cat "$work"/rec2/*/can.log | wc -l)
 ((frames > 0)) || fail "nothing recorded across the signals"
 cmp -s <(cat "$work"/rec2/*/can.log | cut -d' ' -f3) <(head -n "$frames" "$work/sim/can.log" | cut -d' ' -f3) ||
   fail "the two segments together are not the drive's first $frames frames"
+# Given both segments, in either order, the commands read them as one drive: decode prints every
+# frame once, in order; a recording of another run, or one segment twice, is refused (64).
+expect_status 0 "$roadload" decode --pgn-stats "${segs[1]}" "${segs[0]}"
+joined=$(awk -F, 'NR > 1 { n += $3 } END { print n }' "$work/out")
+separate=$(for s in "${segs[@]}"; do "$roadload" decode --pgn-stats "$s" 2>/dev/null | awk -F, 'NR > 1 { n += $3 } END { print n }'; done |
+  awk '{ n += $1 } END { print n }')
+((joined == separate && joined > 0)) || fail "decode of both segments counted $joined frames, the segments $separate"
+grep -Eq "^recording_id = ['\"][0-9a-f]{16}['\"]$" "${segs[0]}meta.toml" || fail "a segment's meta.toml has no recording_id"
+expect_status 64 "$roadload" decode "${segs[0]}" "$work/sim"
+grep -q "recording_id" "$work/err" || fail "joining another recording is not refused by its recording_id: $(cat "$work/err")"
+expect_status 64 "$roadload" analyze "${segs[0]}" "${segs[0]}" --out "$work/twice"
+grep -q "given twice" "$work/err" || fail "a segment given twice is not refused: $(cat "$work/err")"
 
 # The unit file, with ExecStart pointing at this build, passes systemd's own checks.
 if command -v systemd-analyze >/dev/null; then

@@ -49,7 +49,14 @@ in_root getent passwd roadload >/dev/null || fail "no user roadload after instal
 grep -qx /etc/roadload/roadloadd.toml "$root/var/lib/dpkg/info/roadload.conffiles" || fail "roadloadd.toml is no conffile"
 in_root logrotate --debug /etc/logrotate.d/roadload >"$work/logrotate" 2>&1 ||
   { cat "$work/logrotate" >&2; fail "logrotate rejects /etc/logrotate.d/roadload"; }
-in_root man -w roadloadd >/dev/null 2>&1 || fail "man roadloadd finds no page"
+for page in roadloadd roadload roadload-analyze roadload-gap; do
+  in_root man -w "$page" >/dev/null 2>&1 || fail "man $page finds no page"
+done
+# Bash completion where bash-completion looks, and it completes from the installed program.
+[[ -f $root/usr/share/bash-completion/completions/roadload ]] || fail "no bash completion for roadload"
+words=$(in_root bash -c '. /usr/share/bash-completion/bash_completion; . /usr/share/bash-completion/completions/roadload
+  COMP_WORDS=(roadload ana); COMP_CWORD=1; COMP_LINE="roadload ana"; COMP_POINT=${#COMP_LINE}; _roadload; printf "%s\n" "${COMPREPLY[@]}"')
+[[ $words == *analyze* ]] || fail "bash completion of 'roadload ana' gave '$words'"
 
 dpkg --root="$root" --purge roadload >>"$work/dpkg.log" 2>&1 || { cat "$work/dpkg.log" >&2; fail "dpkg --purge"; }
 for f in /usr/bin/roadload /usr/sbin/roadloadd /usr/share/roadload /etc/roadload "$unit"; do

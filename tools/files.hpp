@@ -1,7 +1,6 @@
 #pragma once
-// A small option parser: each call looks at the current argument and consumes it on a match, so a
-// command's loop reads like its --help. Accepts "--name value" and "--name=value".
-#include <cstdint>
+// The files every command reads, or writes whole, the same way: each failure printed as
+// "roadload COMMAND: file:line: field: message" and given as the exit status.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,40 +17,18 @@
 
 namespace roadload::cli {
 
-class OptionParser {
- public:
-  OptionParser(std::string_view command, Args args) : command_(command), args_(args) {}
-
-  bool more() const { return !failed_ && pos_ < args_.size(); }
-  bool failed() const { return failed_; }
-
-  bool flag(std::string_view a, std::string_view b = {});
-  // -h or --help: prints `text` to standard output.
-  bool help(const char* text);
-  std::optional<std::string_view> value(std::string_view name);
-  std::optional<std::int64_t> number(std::string_view name, std::int64_t min, std::int64_t max);
-  std::optional<double> real(std::string_view name, double min, double max);
-  std::optional<std::string_view> positional();
-  // A command's one positional argument (`what`, as its usage names it) into `into`: true when an
-  // argument was taken, a second one failing with both named (64) rather than replacing the first.
-  bool single_positional(std::string& into, std::string_view what);
-
-  int fail(const std::string& message);
-  int fail_unknown();
-
- private:
-  std::string_view current() const { return args_[pos_]; }
-
-  std::string_view command_;
-  Args args_;
-  std::size_t pos_ = 0;
-  bool failed_ = false;
-};
-
-// A command whose first argument names its action (`roadload route build`): with no argument it
-// prints `help` on standard error (64), with -h or --help on standard output (0), and refuses any
-// action but `action` (64). nullopt: the action is the one expected; its options follow it.
-std::optional<int> expect_action(std::string_view command, Args args, std::string_view action, const char* help);
+// The recordings a command was given, as one drive: one as it is; several joined in order when
+// they are the segments of one logger run (recording::join_segments). Anything else prints why
+// and returns the usage status (64), rather than reading only some of them.
+std::variant<std::vector<std::string>, int> one_drive(std::string_view command, const std::vector<std::string>& given);
+// `given` replaced by its drive's segments in order, then `run()`; or the usage status.
+template <typename Run>
+int on_one_drive(std::string_view command, std::vector<std::string>& given, Run&& run) {
+  auto drive = one_drive(command, given);
+  if (const int* rc = std::get_if<int>(&drive)) return *rc;
+  given = std::get<std::vector<std::string>>(std::move(drive));
+  return run();
+}
 
 // Writes `text` to `path` whole; on failure prints "roadload COMMAND: path: cannot write" and
 // returns the exit code (73).
