@@ -5,16 +5,9 @@
 #include <ctime>
 
 #include "roadload/results/json.hpp"
+#include "roadload/utc_text.hpp"
 
 namespace roadload::cli {
-
-std::string iso_utc(std::int64_t utc_ns) {
-  const std::time_t s = static_cast<std::time_t>(utc_ns / 1'000'000'000);
-  std::tm utc{};
-  char text[32] = "";
-  if (gmtime_r(&s, &utc) != nullptr) std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
 
 Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, const Vehicle& vehicle, const std::string& assumed,
                       const RecordedTrack& track, const AnalyzerConfig& cfg) {
@@ -30,7 +23,7 @@ Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, 
   for (const GnssFix& f : track.fixes) {
     const std::int64_t utc = f.utc_ns > 0 ? f.utc_ns : meta.utc_offset_ns ? to_ns(f.t) + *meta.utc_offset_ns : 0;
     if (utc <= 0) continue;
-    p.drive_start_utc = iso_utc(utc);
+    p.drive_start_utc = utc_text(utc);
     break;
   }
   p.engine_losses = o.losses_file.empty() ? "EEC3's nominal friction percent" : o.losses_file;

@@ -32,7 +32,5 @@ Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, 
 
 // trip.json's "provenance" member (`"provenance": {...}`).
 std::string provenance_json(const Provenance& p);
-// "2026-11-22T05:40:12Z" from ns since 1970 UTC.
-std::string iso_utc(std::int64_t utc_ns);
 
 }  // namespace roadload::cli

@@ -225,12 +225,9 @@ int build(Options& o) {
 
 Run add_route(CLI::App& roadload) {
   auto o = std::make_shared<Options>();
-  CLI::App& cmd = *roadload.add_subcommand(
-      "route", "build a route file from the recordings' own GNSS passes, with cells or a GIS file's sections");
-  CLI::App& build_cmd = *cmd.add_subcommand("build", "make a route file from the recordings' GNSS passes");
-  cmd.require_subcommand(1);
-  describe_as(cmd, build_cmd);
-  describe(build_cmd, kHelp);
+  CLI::App& build_cmd = add_action_command(
+      roadload, "route", "build a route file from the recordings' own GNSS passes, with cells or a GIS file's sections", "build",
+      "make a route file from the recordings' GNSS passes", kHelp);
   add_options(build_cmd, *o);
   return [o] { return build(*o); };
 }

@@ -171,12 +171,9 @@ int identify(Options& o) {
 
 Run add_vehicle(CLI::App& roadload) {
   auto o = std::make_shared<Options>();
-  CLI::App& cmd = *roadload.add_subcommand(
-      "vehicle", "identify a truck's vehicle file from its recordings: VIN, torque, gear ratios, tire radius, mass");
-  CLI::App& identify_cmd = *cmd.add_subcommand("identify", "write a vehicle file for the truck the recordings were made with");
-  cmd.require_subcommand(1);
-  describe_as(cmd, identify_cmd);
-  describe(identify_cmd, kHelp);
+  CLI::App& identify_cmd = add_action_command(
+      roadload, "vehicle", "identify a truck's vehicle file from its recordings: VIN, torque, gear ratios, tire radius, mass",
+      "identify", "write a vehicle file for the truck the recordings were made with", kHelp);
   add_options(identify_cmd, *o);
   return [o] { return identify(*o); };
 }

@@ -63,4 +63,14 @@ void describe_as(CLI::App& app, const CLI::App& action) {
   app.group("commands");
 }
 
+CLI::App& add_action_command(CLI::App& parent, const std::string& name, const std::string& summary, const std::string& action,
+                             const std::string& action_summary, HelpText text) {
+  CLI::App& cmd = *parent.add_subcommand(name, summary);
+  CLI::App& act = *cmd.add_subcommand(action, action_summary);
+  cmd.require_subcommand(1);
+  describe_as(cmd, act);
+  describe(act, std::move(text));
+  return act;
+}
+
 }  // namespace roadload::cli

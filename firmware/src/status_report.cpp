@@ -2,23 +2,15 @@
 
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 
 #include "roadload/results/json.hpp"
+#include "roadload/utc_text.hpp"
 
 namespace roadload::firmware {
 
 using results::json_number;
 
 namespace {
-
-std::string utc_text(std::int64_t utc_ns) {
-  const std::time_t s = static_cast<std::time_t>(utc_ns / 1'000'000'000);
-  std::tm tm{};
-  char buf[32] = "1970-01-01T00:00:00Z";
-  if (gmtime_r(&s, &tm) != nullptr) std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
 
 std::string fmt(const char* f, double v) {
   char buf[48];

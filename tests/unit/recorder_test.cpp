@@ -45,17 +45,22 @@ std::size_t frames_in(const fs::path& segment) {
   return n;
 }
 
-TEST(Recorder, SegmentsRotateBySizeAndReadBackWhole) {
-  RecorderConfig c;
-  c.data_dir = fresh_dir("recorder-rotate");
-  c.segment_max_bytes = 200'000;
-  Recorder rec(c, recording::Metadata{}, {"can0"});
+// 20,000 frames 0.25 ms apart, the recorder's clock ticked 25 ms every 100 of them.
+void record_drive(Recorder& rec) {
   CaptureTime now = capture_time_from_ns(0);
   rec.tick(now);
   for (std::int64_t i = 0; i < 20'000; ++i) {
     rec.write(frame(i));
     if (i % 100 == 0) rec.tick(now += Nanoseconds{25'000'000});
   }
+}
+
+TEST(Recorder, SegmentsRotateBySizeAndReadBackWhole) {
+  RecorderConfig c;
+  c.data_dir = fresh_dir("recorder-rotate");
+  c.segment_max_bytes = 200'000;
+  Recorder rec(c, recording::Metadata{}, {"can0"});
+  record_drive(rec);
   rec.end_segment();
   const auto segs = segments(c.data_dir);
   ASSERT_GE(segs.size(), 4u);
@@ -77,12 +82,7 @@ TEST(Recorder, SegmentsOfOneRunJoinIntoTheWholeDrive) {
   c.segment_max_bytes = 200'000;
   {
     Recorder rec(c, recording::Metadata{}, {"can0"});
-    CaptureTime now = capture_time_from_ns(0);
-    rec.tick(now);
-    for (std::int64_t i = 0; i < 20'000; ++i) {
-      rec.write(frame(i));
-      if (i % 100 == 0) rec.tick(now += Nanoseconds{25'000'000});
-    }
+    record_drive(rec);
   }
   std::vector<std::string> given;
   for (const auto& s : segments(c.data_dir)) given.insert(given.begin(), s.string());

@@ -20,4 +20,10 @@ void describe(CLI::App& app, HelpText text);
 // (`roadload route build`) is described where a user first asks.
 void describe_as(CLI::App& app, const CLI::App& action);
 
+// A command of `parent` whose one action is a subcommand (`roadload route build`): both added,
+// the action required and described by `text`, the command's --help the action's. Returns the
+// action, for its options.
+CLI::App& add_action_command(CLI::App& parent, const std::string& name, const std::string& summary, const std::string& action,
+                             const std::string& action_summary, HelpText text);
+
 }  // namespace roadload::cli
