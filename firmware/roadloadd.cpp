@@ -36,6 +36,7 @@ struct Estimation {
   j1939::Database db;
   RouteGeometry route;
   std::vector<CellSpan> cells;
+  std::vector<std::string> surfaces;
   double iri_m_per_km = AnalyzerConfig{}.roughness_iri_m_per_km;  // the route's, where a cell states none
   PavementGroups groups;
   model::EngineLossMap engine_losses;
@@ -55,6 +56,7 @@ std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) 
   if (!geometry) return ParseError{route.value().source_file, 0, "point", "the route's points do not make a route"};
   e.route = std::move(*geometry);
   e.cells = cell_spans(route.value().cells);
+  for (const CellDef& cell : route.value().cells) e.surfaces.push_back(cell.surface);
   e.iri_m_per_km = route.value().default_iri_m_per_km;
   e.groups = pavement_groups(route.value().cells);
   if (!c.estimator.engine_losses.empty()) {
@@ -95,6 +97,7 @@ void configure_estimator(const DaemonConfig& c, const Estimation& est, DaemonSet
   setup.db = &est.db;
   setup.route = est.route;
   setup.cells = est.cells;
+  setup.surfaces = est.surfaces;
   const Vehicle vehicle = recording::vehicle_from_metadata(*described, setup.metadata);
   setup.analyzer = recording::analyzer_config_for(vehicle, setup.metadata, std::nullopt);
   setup.analyzer.roughness_iri_m_per_km = est.iri_m_per_km;

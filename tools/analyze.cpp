@@ -1,5 +1,6 @@
 // roadload analyze: CRR per pavement cell from a recording (the force balance in an EKF, then a
-// fixed-interval smoother), written as RESULTS/cells.csv and RESULTS/trip.json.
+// fixed-interval smoother), written as RESULTS/cells.csv, pavements.csv and trip.json.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -18,6 +19,7 @@
 #include "command.hpp"
 #include "files.hpp"
 #include "gnss_tracks.hpp"
+#include "progress.hpp"
 #include "roadload/contact_forces.hpp"
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/engine_loss_file.hpp"
@@ -94,7 +96,7 @@ void attach(Accelerometers& acc, DriveAnalyzer& analyzer, const AnalyzeOptions& 
 // `sensor_warnings` go into trip.json beside the numbers they put in doubt.
 int write_results(const AnalyzeOptions& o, const DriveAnalysis& a, const Accelerometers& acc, const PavementGroups& groups,
                   const std::optional<VibrationSummary>& spectra, const std::vector<std::string>& sensor_warnings,
-                  const Provenance& provenance) {
+                  const Provenance& provenance, const std::vector<results::CellPlace>& places) {
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   const VibrationAnalysis* va = acc.vibration ? &*acc.vibration : nullptr;
@@ -106,7 +108,7 @@ int write_results(const AnalyzeOptions& o, const DriveAnalysis& a, const Acceler
     extra += "]";
   }
   for (auto err :
-       {results::write_cells_csv(o.out + "/cells.csv", a.cells, acc.axle_names, va),
+       {results::write_cells_csv(o.out + "/cells.csv", a.cells, acc.axle_names, va, places),
         results::write_pavements_csv(o.out + "/pavements.csv", a.pavements),
         results::write_trip_json(o.out + "/trip.json", a.trip, extra), va ? write_psd_files(o.out, *va, groups) : std::nullopt}) {
     if (err) {
@@ -177,17 +179,32 @@ std::optional<std::variant<Road, int>> given_road(const AnalyzeOptions& o) {
   return road;
 }
 
+// Each cell's surface and ends on the map, for cells.csv.
+std::vector<results::CellPlace> places_of(const Road& road) {
+  std::vector<std::string> surfaces;
+  for (const CellDef& c : road.cells) surfaces.push_back(c.surface);
+  return results::cell_places(road.geometry, road.spans, surfaces);
+}
+
 // The recording through the analyzer in capture-time order. A logger without a receiver of its
-// own: the truck's VP1 places the drive, merged in time order.
-void drive(DriveAnalyzer& analyzer, recording::RecordingReader& reader, const RecordedTrack& track, GravityCheck* gravity = nullptr) {
+// own: the truck's VP1 places the drive, merged in time order. A run past a few seconds tells how
+// far along the drive's fixes it is.
+void drive(DriveAnalyzer& analyzer, recording::RecordingReader& reader, const RecordedTrack& track, const char* what,
+           GravityCheck* gravity = nullptr) {
+  constexpr std::uint64_t kEvery = 1 << 16;  // records between looks at the clock
   const bool from_bus = track.source.rfind("J1939", 0) == 0;
+  const double span_s = track.fixes.empty() ? 0.0 : to_seconds(track.fixes.back().t - track.fixes.front().t);
+  Progress progress(what, span_s <= 0, 5.0);
   std::size_t bus_fix = 0;
+  std::uint64_t n = 0;
   while (const recording::Record* r = reader.next()) {
     const CaptureTime t = std::visit([](const auto& s) { return s.t; }, *r);
+    if (++n % kEvery == 0 && span_s > 0) progress.update(std::clamp(to_seconds(t - track.fixes.front().t) / span_s, 0.0, 1.0));
     while (from_bus && bus_fix < track.fixes.size() && track.fixes[bus_fix].t <= t) analyzer.push(track.fixes[bus_fix++]);
     if (const auto* a = std::get_if<AccelSample>(r); a != nullptr && gravity != nullptr) gravity->push(*a);
     std::visit([&](const auto& s) { analyzer.push(s); }, *r);
   }
+  progress.finish();
 }
 
 // A sensor whose z lacks gravity is named with what that means, on standard error and in trip.json;
@@ -249,10 +266,10 @@ int analyze(const AnalyzeOptions& o) {
     if (grade) analyzer.set_grade(*grade);
     if (which == TorqueScaleRun::held) {
       attach(acc, analyzer, o, vehicle, meta, groups);
-      drive(analyzer, reader.value(), track, &gravity);
+      drive(analyzer, reader.value(), track, "analyze", &gravity);
     } else if (auto again = recording::RecordingReader::open_drive(
                    o.recordings, recording::kCanStream | recording::kGnssStream | recording::kWeatherStream)) {
-      drive(analyzer, again.value(), track);
+      drive(analyzer, again.value(), track, "analyze (the torque scale's second run)");
     } else {
       std::fprintf(stderr, "roadload analyze: reading it again: %s\n", again.error().to_string().c_str());
       reread = false;
@@ -274,7 +291,8 @@ int analyze(const AnalyzeOptions& o) {
   std::optional<VibrationSummary> spectra;
   if (acc.vibration) spectra = summarize(*acc.vibration, groups, trip.fuel.time_s, trip.fuel.distance_m);
   const Provenance origin = provenance(o, meta, vehicle, assumed, track, std::get<AnalyzerConfig>(cfg));
-  if (const int rc = write_results(o, analysis, acc, groups, spectra, sensor_warnings, origin); rc != kExitOk) return rc;
+  if (const int rc = write_results(o, analysis, acc, groups, spectra, sensor_warnings, origin, places_of(road)); rc != kExitOk)
+    return rc;
   std::optional<Truth> truth;
   if (!o.truth_dir.empty()) {
     auto t = read_truth(o.truth_dir);

@@ -6,8 +6,22 @@
 
 #include "roadload/results/json.hpp"
 #include "roadload/utc_text.hpp"
+#include "roadload/vehicle_file.hpp"
 
 namespace roadload::cli {
+namespace {
+
+// FNV-1a over the text, 64 bits: an identity for "the same description", not a defence against
+// anyone forging one.
+std::string content_hash(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  char out[32];
+  std::snprintf(out, sizeof out, "fnv1a64:%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
+
+}  // namespace
 
 Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, const Vehicle& vehicle, const std::string& assumed,
                       const RecordedTrack& track, const AnalyzerConfig& cfg) {
@@ -20,12 +34,20 @@ Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, 
                      : !o.vehicle.empty() ? "--vehicle " + o.vehicle
                                           : std::string("the recording's meta.toml");
   p.route = o.route.empty() ? "traced from the recording's GNSS (" + track.source + ")" : o.route;
+  const auto utc_of = [&](const GnssFix& f) -> std::int64_t {
+    return f.utc_ns > 0 ? f.utc_ns : meta.utc_offset_ns ? to_ns(f.t) + *meta.utc_offset_ns : 0;
+  };
   for (const GnssFix& f : track.fixes) {
-    const std::int64_t utc = f.utc_ns > 0 ? f.utc_ns : meta.utc_offset_ns ? to_ns(f.t) + *meta.utc_offset_ns : 0;
-    if (utc <= 0) continue;
-    p.drive_start_utc = utc_text(utc);
+    if (utc_of(f) <= 0) continue;
+    p.drive_start_utc = utc_text(utc_of(f));
     break;
   }
+  for (auto f = track.fixes.rbegin(); f != track.fixes.rend(); ++f) {
+    if (utc_of(*f) <= 0) continue;
+    p.drive_end_utc = utc_text(utc_of(*f));
+    break;
+  }
+  p.vehicle_hash = content_hash(format_vehicle(vehicle));
   p.engine_losses = o.losses_file.empty() ? "EEC3's nominal friction percent" : o.losses_file;
   char cda[96];
   std::snprintf(cda, sizeof cda, "%.3f m2 +- %.3f (%s)", cfg.filter.truck.cda_prior_m2, cfg.filter.truck.cda_sigma_m2,
@@ -47,7 +69,8 @@ std::string provenance_json(const Provenance& p) {
   for (std::size_t i = 0; i < p.recordings.size(); ++i) j += (i ? ", " : "") + json_quote(p.recordings[i]);
   j += "],\n    \"recording_id\": " + text(p.recording_id) + ",\n    \"vehicle\": " + text(p.vehicle) +
        ",\n    \"vin\": " + text(p.vin) + ",\n    \"vehicle_source\": " + text(p.vehicle_source) +
-       ",\n    \"route\": " + text(p.route) + ",\n    \"drive_start_utc\": " + text(p.drive_start_utc) +
+       ",\n    \"vehicle_hash\": " + text(p.vehicle_hash) + ",\n    \"route\": " + text(p.route) +
+       ",\n    \"drive_start_utc\": " + text(p.drive_start_utc) + ",\n    \"drive_end_utc\": " + text(p.drive_end_utc) +
        ",\n    \"engine_losses\": " + text(p.engine_losses) + ",\n    \"cda\": " + text(p.cda) +
        ",\n    \"torque_scale\": " + text(p.torque_scale) + "\n  }";
   return j;

@@ -18,8 +18,10 @@ struct Provenance {
   std::string recording_id;             // a logger run's, when its meta.toml gives one
   std::string vehicle, vin;             // the truck's name and VIN as described
   std::string vehicle_source;           // "--vehicle FILE", "the recording's meta.toml", or why it is assumed
+  std::string vehicle_hash;             // of the vehicle description as analysed: equal hashes, the same truck model
   std::string route;                    // a route file or name, or how the road was traced
   std::string drive_start_utc;          // ISO 8601 of the first fix that tells UTC; empty when none did
+  std::string drive_end_utc;            // of the last
   std::string engine_losses;            // the engine-loss table, or EEC3's nominal friction
   std::string cda;                      // the drag area prior's source
   std::string torque_scale;             // the engine torque's scale and its sigma, when given

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "calibrate_aero.hpp"
+
 #include "files.hpp"
+#include "progress.hpp"
 #include "roadload/aero_calibration.hpp"
 #include "roadload/engine_loss_file.hpp"
 #include "roadload/pavement_groups.hpp"
@@ -112,12 +114,16 @@ std::variant<int, CalibrationDrives> calibration_drives(const AeroOptions& o, co
     routes.push_back(std::move(std::get<LoadedRoute>(loaded)));
   }
   CalibrationDrives out;
+  // Each drive is analysed three ways: a dozen drives take a while, and the user sees how long.
+  Progress progress("calibrate --aero: drives analysed", false, 5.0);
   for (std::size_t k = 0; k < o.recordings.size(); ++k) {
     const LoadedRoute& route = routes[routes.size() == 1 ? 0 : k / 2];
     auto d = aero_drive(o.recordings[k], o, db, route, losses.value(), out);
     if (const int* rc = std::get_if<int>(&d)) return *rc;
     out.drives.push_back(std::move(std::get<AeroDrive>(d)));
+    progress.update(static_cast<double>(k + 1) / static_cast<double>(o.recordings.size()));
   }
+  progress.finish();
   return out;
 }
 

@@ -8,7 +8,9 @@ namespace roadload::cli {
 
 class Progress {
  public:
-  Progress(std::string what, bool quiet);
+  // `silent_s`: nothing is printed before this much wall time, so a short run stays quiet and
+  // only a long one (a gateway's hour of driving) tells how far it is.
+  Progress(std::string what, bool quiet, double silent_s = 0);
   // `fraction` of the run done, 0..1.
   void update(double fraction);
   // Ends a terminal's line.
@@ -18,6 +20,8 @@ class Progress {
  private:
   std::string what_;
   bool quiet_, tty_;
+  double silent_s_;
+  bool spoke_ = false;
   int last_tenth_ = 0;
   std::chrono::steady_clock::time_point start_;
 };

@@ -60,6 +60,18 @@ double RouteGeometry::elevation_m(double s_m) const {
   return points_[i].elev_m + w * (points_[i + 1].elev_m - points_[i].elev_m);
 }
 
+GeoPoint RouteGeometry::at(double s_m) const {
+  const std::size_t i = segment(s_m);
+  const double len = cumulative_m_[i + 1] - cumulative_m_[i];
+  const double w = std::clamp((s_m - cumulative_m_[i]) / len, 0.0, 1.0);
+  const Plane& pl = planes_[i];
+  GeoPoint p;
+  double h = 0;
+  GeographicLib::LocalCartesian(pl.lat0_deg, pl.lon0_deg, 0.0).Reverse(w * pl.end_x_m, w * pl.end_y_m, 0.0, p.lat_deg, p.lon_deg, h);
+  p.elev_m = elevation_m(s_m);
+  return p;
+}
+
 double RouteGeometry::heading_deg(double s_m) const { return azimuth_deg_[segment(s_m)]; }
 
 }  // namespace roadload

@@ -317,7 +317,8 @@ std::optional<ParseError> Daemon::write_results(const std::string& dir) const {
     for (const AxleContact& a : setup_.layout->axles) axles.push_back(a.name);
   }
   const VibrationAnalysis* va = vibration_ ? &*vibration_ : nullptr;
-  if (auto e = results::write_cells_csv(dir + "/cells.csv", analyzer_->cells(), va ? axles : std::vector<std::string>{}, va))
+  if (auto e = results::write_cells_csv(dir + "/cells.csv", analyzer_->cells(), va ? axles : std::vector<std::string>{}, va,
+                                        results::cell_places(setup_.route, setup_.cells, setup_.surfaces)))
     return e;
   return results::write_trip_json(dir + "/trip.json", analyzer_->trip(), "  \"estimate\": \"live filter\"");
 }

@@ -97,7 +97,7 @@ std::vector<double> NumberTable::values(std::string_view name) const {
 }
 
 Parsed<ResultsDir> read_results_dir(const std::string& dir) {
-  constexpr std::string_view kText[] = {"cell", "reason"};
+  constexpr std::string_view kText[] = {"cell", "surface", "reason"};
   auto cells = NumberTable::read(dir + "/cells.csv", kText);
   if (!cells) return cells.error();
   if (!cells.value().column("cell") || !cells.value().column("crr")) {

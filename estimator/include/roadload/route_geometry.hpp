@@ -23,6 +23,8 @@ class RouteGeometry {
 
   double length_m() const { return cumulative_m_.back(); }
   double elevation_m(double s_m) const;
+  // The point `s_m` along the route (clamped to its ends): where a cell starts or ends on a map.
+  GeoPoint at(double s_m) const;
   double heading_deg(double s_m) const;
 
  private:

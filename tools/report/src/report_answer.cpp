@@ -18,10 +18,13 @@ std::string text_of(const JsonValue* v) { return v != nullptr && !v->string().em
 std::string provenance_paragraph(const JsonValue& p) {
   const auto field = [&](const char* key) { return text_of(p.find(key)); };
   const std::string date = field("drive_start_utc");
+  const std::string end = field("drive_end_utc");
   std::string s = "Truck <b>" + escape_html(field("vehicle").empty() ? "not named" : field("vehicle")) + "</b>";
   if (!field("vin").empty()) s += " (VIN " + escape_html(field("vin")) + ")";
   s += ", described by " + escape_html(field("vehicle_source")) + "; route <b>" + escape_html(field("route")) + "</b>; driven " +
-       (date.empty() ? std::string("at a time no GNSS fix told") : "<b>" + escape_html(date) + "</b>") + ".";
+       (date.empty() ? std::string("at a time no GNSS fix told")
+                     : "<b>" + escape_html(date) + "</b>" + (end.empty() ? "" : " to " + escape_html(end))) +
+       ".";
   s += " Calibration: engine losses from " + escape_html(field("engine_losses")) + ", drag area " + escape_html(field("cda"));
   if (!field("torque_scale").empty()) s += ", engine torque scale " + escape_html(field("torque_scale"));
   s += ". Recording";

@@ -17,8 +17,18 @@ FuelUse use(std::size_t i) { return static_cast<FuelUse>(i); }
 
 }  // namespace
 
+std::vector<CellPlace> cell_places(const RouteGeometry& route, const std::vector<CellSpan>& spans,
+                                   const std::vector<std::string>& surfaces) {
+  std::vector<CellPlace> out;
+  for (std::size_t i = 0; i < spans.size(); ++i) {
+    out.push_back({i < surfaces.size() ? surfaces[i] : std::string(), route.at(spans[i].start_m), route.at(spans[i].end_m)});
+  }
+  return out;
+}
+
 std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells,
-                                          const std::vector<std::string>& axle_names, const VibrationAnalysis* vibration) {
+                                          const std::vector<std::string>& axle_names, const VibrationAnalysis* vibration,
+                                          const std::vector<CellPlace>& places) {
   auto csv = recording::OutputFile::create(path);
   if (!csv) return csv.error();
   std::string header = "cell,start_m,end_m,samples,crr,crr_lo,crr_hi,crr_sigma,identified,speed_mps,roll_force_n,fuel_l";
@@ -28,7 +38,7 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
     header += ",damper_power_w,tire_power_w,tire_eq27_power_w,dynamic_energy_j,dynamic_l,dynamic_l_per_100km";
     header += ",crr_tire,crr_tire_lo,crr_tire_hi";
   }
-  csv.value().write(header + ",reason\n");
+  csv.value().write(header + ",surface,start_lat_deg,start_lon_deg,end_lat_deg,end_lon_deg,reason\n");
   recording::LineBuilder line;
   const double nan = std::nan("");
   for (std::size_t row = 0; row < cells.size(); ++row) {
@@ -63,6 +73,10 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
       const std::optional<TireCrr> tire = measured ? tire_crr(c, p.total_w()) : std::nullopt;
       line.num(tire ? tire->crr : nan, 6).sep().num(tire ? tire->lo : nan, 6).sep().num(tire ? tire->hi : nan, 6).sep();
     }
+    const CellPlace* place = row < places.size() ? &places[row] : nullptr;
+    line.field(place ? place->surface : std::string()).sep();
+    line.num(place ? place->start.lat_deg : nan, 7).sep().num(place ? place->start.lon_deg : nan, 7).sep();
+    line.num(place ? place->end.lat_deg : nan, 7).sep().num(place ? place->end.lon_deg : nan, 7).sep();
     line.field(c.reason);
     csv.value().write(line.finish());
   }

@@ -64,6 +64,7 @@ struct DaemonSetup {
   const j1939::Database* db = nullptr;  // none: no estimator
   RouteGeometry route;
   std::vector<CellSpan> cells;
+  std::vector<std::string> surfaces;  // per cell, as the route file states them (results' cells.csv)
   AnalyzerConfig analyzer;
   // Axles with accelerometers: streaming spectra and the dynamic rolling-resistance power.
   std::optional<AxleLayout> layout;
