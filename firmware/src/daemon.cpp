@@ -77,8 +77,12 @@ void Daemon::start() {
   running_ = true;
   // The first segment exists before the first item arrives.
   if (recorder_) recorder_->tick(started_);
+  // The CAN buses always feed the estimator thread (the bus watch); the sensors only the analyzer.
   const bool feed = analyzer_.has_value();
-  sources_.for_each([&](auto& c) { c.start(stop_sources_, feed, clock_); });
+  for (auto& c : sources_.can) c->start(stop_sources_, true, clock_);
+  for (auto& c : sources_.accel) c->start(stop_sources_, feed, clock_);
+  if (sources_.gnss) sources_.gnss->start(stop_sources_, feed, clock_);
+  if (sources_.weather) sources_.weather->start(stop_sources_, feed, clock_);
   writer_ = std::thread([this] { write_loop(); });
   estimator_ = std::thread([this] { estimate_loop(); });
 }
@@ -210,14 +214,16 @@ bool Daemon::estimate_next(CaptureTime horizon, CaptureTime place_horizon) {
     typename std::remove_reference_t<decltype(ring)>::value_type item;
     if (!ring.try_pop(item)) return;
     if (setup_.timeline) item.t = setup_.timeline->recorded(item.t);
-    if constexpr (std::is_same_v<decltype(item), CanFrame>) cadence_.push(item);
-    analyzer_->push(item);
+    if constexpr (std::is_same_v<decltype(item), CanFrame>) {
+      cadence_.push(item);
+      if (!analyzer_) bus_watch_.push(item);
+    }
+    if (analyzer_) analyzer_->push(item);
   });
   return true;
 }
 
 void Daemon::estimate_loop() {
-  if (!analyzer_) return;
   CaptureTime window_start = clock_.now();
   for (;;) {
     const bool stopping = stop_workers_.load();
@@ -238,9 +244,9 @@ void Daemon::estimate_loop() {
     }
     {
       std::lock_guard lock(mutex_);
-      estimate_ = analyzer_->live();
+      if (analyzer_) estimate_ = analyzer_->live();
       if (window_w > -2) dynamic_power_w_ = window_w;
-      const j1939::TpCounters& tp = analyzer_->transport();
+      const j1939::TpCounters& tp = analyzer_ ? analyzer_->transport() : bus_watch_.transport().counters();
       j1939_.cadence = cadence_.counters();
       j1939_.tp_completed = tp.completed;
       j1939_.tp_incomplete = tp.timed_out + tp.superseded + tp.aborted;

@@ -34,7 +34,8 @@ open(sys.argv[2], "w").writelines(line for _, line in frames)
 PY
 peak_kib() { /usr/bin/time -f %M -o "$work/rss" "$@" >/dev/null 2>"$work/err" || fail "'$*' failed: $(cat "$work/err")"; cat "$work/rss"; }
 printf '[status]\ninterval_s = 0.2\n' >"$work/status.toml"
-# The J1939 checks run on the estimator thread, which runs with a route.
+# With a route the live filter runs beside the J1939 checks; without one (below) the daemon only
+# records, and watches the bus all the same.
 route=mnroad-mainline-westbound
 base=$(peak_kib "$roadloadd" --config "$work/status.toml" --replay "$work/drive" --replay-can --replay-rate 10 --exit-when-done --route "$route" \
   --data-dir "$work/rec-drive" --status "$work/drive.log" --status-json '')
@@ -47,5 +48,10 @@ grep -q "WARN SECURITY j1939: transport-protocol flood, [0-9]* orphan or unfinis
 grep -q "SECURITY" "$work/drive.log" && fail "the drive alone was called a flood: $(grep -m1 SECURITY "$work/drive.log")"
 seg=("$work"/rec-flood/*/)
 cmp -s <(cut -d' ' -f3 "$work/flood/can.log") <(cut -d' ' -f3 "${seg[0]}can.log") || fail "the flood's frames were not all recorded"
+"$roadloadd" --config "$work/status.toml" --replay "$work/flood" --replay-can --replay-rate 10 --exit-when-done \
+  --data-dir "$work/rec-only" --status "$work/only.log" --status-json '' >/dev/null 2>"$work/err" ||
+  fail "the record-only daemon failed: $(cat "$work/err")"
+grep -q "WARN SECURITY j1939: transport-protocol flood" "$work/only.log" ||
+  fail "a daemon that only records did not see the flood: $(grep -m3 WARN "$work/only.log")"
 rate=$(python3 -c 'import json,sys; print(max(json.loads(l)["j1939"]["tp_anomaly_rate"] for l in open(sys.argv[1])))' "$work/flood.jsonl")
 echo "roadloadd-tp-flood: PASS: highest anomaly rate $rate/s in the status"

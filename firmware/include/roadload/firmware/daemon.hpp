@@ -129,8 +129,11 @@ class Daemon {
   RecorderStatus recorder_status_;
   LiveEstimate estimate_;
   J1939Report j1939_;
-  // Estimator thread's own.
+  // Estimator thread's own. A daemon that only records (no route or no truck: no analyzer) still
+  // watches the bus: its frames go through the cadence monitor and this assembler's transport
+  // reassembly, so gaps, incomplete sessions and floods are told all the same.
   j1939::CadenceMonitor cadence_;
+  j1939::MessageAssembler bus_watch_;
   // Status thread's own memory of the previous report, for rates.
   CaptureTime last_report_{};
   std::vector<std::uint64_t> last_items_, last_bits_, last_dropped_, last_errors_, last_restarts_;
