@@ -15,10 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-CaptureTime stamp_of(const Record& r) {
-  return std::visit([](const auto& s) { return s.t; }, r);
-}
-
 // Reads a CSV stream whose rows map to one sample type. `Row` converts fields into the sample
 // and names the first bad field.
 template <typename Sample, typename Convert>
@@ -260,6 +256,21 @@ bool CandumpStream::next(Record& out, ErrorLog& errors) {
   return true;
 }
 
+CaptureTime stamp_of(const Record& r) {
+  return std::visit([](const auto& s) { return s.t; }, r);
+}
+
+Parsed<Metadata> read_metadata(const std::filesystem::path& dir) {
+  const fs::path path = dir / kMetaFile;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return ParseError{path.string(), 0, "", "Is a directory"};
+  std::ifstream in(path);
+  if (!in) return ParseError{path.string(), 0, "", "cannot be read"};
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_metadata(text.str(), path.string());
+}
+
 Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned streams) {
   RecordingReader r;
   std::error_code ec;
@@ -271,12 +282,7 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned 
   }
   const fs::path dir(path);
   if (fs::exists(dir / kMetaFile)) {
-    if (fs::is_directory(dir / kMetaFile, ec)) return ParseError{(dir / kMetaFile).string(), 0, "", "Is a directory"};
-    std::ifstream in(dir / kMetaFile);
-    if (!in) return ParseError{(dir / kMetaFile).string(), 0, "", "cannot be read"};
-    std::stringstream text;
-    text << in.rdbuf();
-    auto meta = parse_metadata(text.str(), (dir / kMetaFile).string());
+    auto meta = read_metadata(dir);
     if (!meta) return meta.error();
     r.meta_ = std::move(meta.value());
     r.has_meta_ = true;

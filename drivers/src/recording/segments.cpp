@@ -1,8 +1,6 @@
 // A drive cut into segments by roadloadd (size, time, SIGUSR1), read back as one recording.
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "roadload/recording/reader.hpp"
 
@@ -10,10 +8,6 @@ namespace roadload::recording {
 namespace {
 
 namespace fs = std::filesystem;
-
-CaptureTime stamp_of(const Record& r) {
-  return std::visit([](const auto& s) { return s.t; }, r);
-}
 
 // One stream through its file in each segment in turn. Counts are the segments' together; a
 // segment that starts before the previous one ended is not the same drive's continuation, and
@@ -94,10 +88,7 @@ Parsed<Segment> read_segment(const std::string& path) {
   if (!fs::is_directory(path, ec) || !fs::is_regular_file(meta_path, ec)) {
     return ParseError{path, 0, "", "not a recording folder with a meta.toml: only segments of one drive can be joined"};
   }
-  std::ifstream in(meta_path);
-  std::stringstream text;
-  text << in.rdbuf();
-  auto meta = parse_metadata(text.str(), meta_path.string());
+  auto meta = read_metadata(path);
   if (!meta) return meta.error();
   if (meta.value().recording_id.empty() || meta.value().segment < 1) {
     return ParseError{meta_path.string(), 0, "recording_id",
@@ -142,17 +133,18 @@ Parsed<std::vector<std::string>> join_segments(std::span<const std::string> path
 Parsed<RecordingReader> RecordingReader::open_drive(std::span<const std::string> segments, unsigned streams) {
   if (segments.size() == 1) return open(segments[0], streams);
   if (segments.empty()) return ParseError{"", 0, "", "no recording given"};
-  auto first = open(segments[0], streams);
-  if (!first) return first.error();
+  auto meta = read_metadata(segments[0]);  // join_segments read it already: a segment has one
+  if (!meta) return meta.error();
   RecordingReader r;
-  r.meta_ = first.value().meta_;
-  r.has_meta_ = first.value().has_meta_;
+  r.meta_ = std::move(meta.value());
+  r.has_meta_ = true;
   const std::vector<fs::path> folders(segments.begin(), segments.end());
   for (unsigned bit : kStreamBits) {
     if ((streams & bit) == 0) continue;
     const bool any = std::any_of(folders.begin(), folders.end(), [&](const fs::path& d) { return fs::exists(d / stream_file(bit)); });
     if (any) r.streams_.push_back(std::make_unique<ChainStream>(bit, folders));
   }
+  if (r.streams_.empty()) return ParseError{segments[0], 0, "", "not a recording: no can.log or sensor CSV in any segment"};
   return r;
 }
 

@@ -85,6 +85,11 @@ enum StreamMask : unsigned {
   kWeatherStream = 8,
   kAllStreams = 15,
 };
+// A record's capture stamp, whatever its stream.
+CaptureTime stamp_of(const Record& r);
+// DIR/meta.toml, read and parsed.
+Parsed<Metadata> read_metadata(const std::filesystem::path& dir);
+
 inline constexpr unsigned kStreamBits[] = {kCanStream, kAccelStream, kGnssStream, kWeatherStream};
 // A stream's file in a recording folder, and the stream read from it.
 const char* stream_file(unsigned bit);
