@@ -7,11 +7,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "analyze_results.hpp"
 #include "command.hpp"
 #include "files.hpp"
 #include "roadload/cli/help.hpp"
 #include "roadload/report/report_page.hpp"
+#include "roadload/results/truth_files.hpp"
 
 namespace roadload::cli {
 namespace {
@@ -32,9 +32,9 @@ int write_report(const ReportOptions& o) {
     std::fprintf(stderr, "roadload report: %s\n", results.error().to_string().c_str());
     return exit_for(results.error());
   }
-  std::optional<Truth> truth;
+  std::optional<results::Truth> truth;
   if (!o.truth_dir.empty()) {
-    auto t = read_truth(o.truth_dir);
+    auto t = results::read_truth(o.truth_dir);
     if (!t) {
       std::fprintf(stderr, "roadload report: %s\n", t.error().to_string().c_str());
       return exit_for(t.error());

@@ -7,13 +7,13 @@
 #include <variant>
 #include <vector>
 
-#include "command.hpp"
 #include "roadload/grade_profile.hpp"
 #include "roadload/j1939/database.hpp"
 #include "roadload/recording/metadata.hpp"
 #include "roadload/route_file.hpp"
 #include "roadload/route_geometry.hpp"
 #include "roadload/vehicle.hpp"
+#include "status.hpp"
 
 namespace roadload::cli {
 

@@ -1,8 +1,5 @@
 #include "gnss_tracks.hpp"
 
-#include <cinttypes>
-#include <cstdio>
-
 #include "files.hpp"
 #include "roadload/bus_position.hpp"
 #include "roadload/j1939/assembler.hpp"
@@ -15,12 +12,9 @@ void report_errors(std::string_view command, const std::string& path, const reco
                    std::uint64_t& malformed) {
   malformed += errors.count();
   if (!print) return;
-  for (const ParseError& e : errors.kept())
-    std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), e.to_string().c_str());
-  if (errors.count() > errors.kept().size()) {
-    std::fprintf(stderr, "roadload %.*s: %s: ... and %" PRIu64 " more malformed lines\n", static_cast<int>(command.size()),
-                 command.data(), path.c_str(), errors.count() - errors.kept().size());
-  }
+  for (const ParseError& e : errors.kept()) say(command, e.to_string());
+  if (errors.count() > errors.kept().size())
+    say(command, path + ": ... and " + std::to_string(errors.count() - errors.kept().size()) + " more malformed lines");
 }
 
 // The antenna height: --antenna-height, else the vehicle's (--vehicle or the recording's file),
@@ -37,8 +31,7 @@ std::optional<int> antenna_height(std::string_view command, const std::string& p
   } else if (it != meta.vehicle.end()) {
     t.antenna_height_m = it->second;
   } else {
-    std::fprintf(stderr, "roadload %.*s: %s: meta.toml: vehicle.gnss_antenna_height_m: not given; heights are the antenna's\n",
-                 static_cast<int>(command.size()), command.data(), path.c_str());
+    say(command, path + ": meta.toml: vehicle.gnss_antenna_height_m: not given; heights are the antenna's");
   }
   return std::nullopt;
 }
@@ -52,7 +45,7 @@ std::optional<int> read_recorded_track(std::string_view command, const std::vect
   const std::string& path = segments.front();
   auto reader = recording::RecordingReader::open_drive(segments, recording::kGnssStream | recording::kCanStream);
   if (!reader) {
-    std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), reader.error().to_string().c_str());
+    say(command, reader.error().to_string());
     return exit_for(reader.error());
   }
   t.path = path;

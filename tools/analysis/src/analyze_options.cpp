@@ -1,10 +1,15 @@
-#include "analyze_options.hpp"
+#include <CLI/CLI.hpp>
 
+#include "roadload/analysis/analyze.hpp"
 #include "roadload/cli/help.hpp"
 #include "roadload/cli/values.hpp"
 
-namespace roadload::cli {
+namespace roadload::analysis {
 namespace {
+
+using cli::describe;
+using cli::HelpText;
+using cli::real_in;
 
 const HelpText kHelp{"usage: roadload analyze <recording>... --out RESULTS [--route ROUTE] [options]",
                      "Estimates the coefficient of rolling resistance (CRR) along the drive and per pavement cell:\n"
@@ -103,10 +108,10 @@ void add_truck(CLI::App& cmd, AnalyzeOptions& o) {
 
 }  // namespace
 
-void add_analyze_options(CLI::App& cmd, AnalyzeOptions& o) {
+void add_options(CLI::App& cmd, AnalyzeOptions& o) {
   describe(cmd, kHelp);
   add_inputs(cmd, o);
   add_truck(cmd, o);
 }
 
-}  // namespace roadload::cli
+}  // namespace roadload::analysis

@@ -1,6 +1,5 @@
 #include "files.hpp"
 
-#include <cstdio>
 #include <fstream>
 
 #include "roadload/definitions.hpp"
@@ -16,7 +15,7 @@ std::optional<int> load_definitions(std::string_view command, const std::vector<
   paths.insert(paths.end(), extra.begin(), extra.end());
   for (const std::string& path : paths) {
     if (auto err = load_dbc_file(db, path)) {
-      std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), err->to_string().c_str());
+      say(command, err->to_string());
       return exit_for(*err);
     }
   }
@@ -24,23 +23,21 @@ std::optional<int> load_definitions(std::string_view command, const std::vector<
 }
 
 std::variant<LoadedRoute, int> load_route(std::string_view command, const std::string& name) {
-  const int n = static_cast<int>(command.size());
   auto route = load_route_file(resolve_route(name));
   if (!route) {
-    std::fprintf(stderr, "roadload %.*s: %s\n", n, command.data(), route.error().to_string().c_str());
+    say(command, route.error().to_string());
     return exit_for(route.error());
   }
   auto geometry = RouteGeometry::build(route.value().points);
   if (!geometry) {
-    std::fprintf(stderr, "roadload %.*s: %s: point: fewer than two distinct points\n", n, command.data(),
-                 route.value().source_file.c_str());
+    say(command, route.value().source_file + ": point: fewer than two distinct points");
     return kExitDataErr;
   }
   LoadedRoute loaded{std::move(route.value()), std::move(*geometry), std::nullopt};
   if (!loaded.file.grade_file.empty()) {
     auto grade = load_grade_file(loaded.file.grade_file, loaded.geometry.length_m());
     if (!grade) {
-      std::fprintf(stderr, "roadload %.*s: %s\n", n, command.data(), grade.error().to_string().c_str());
+      say(command, grade.error().to_string());
       return exit_for(grade.error());
     }
     loaded.grade = std::move(grade.value());
@@ -51,7 +48,7 @@ std::variant<LoadedRoute, int> load_route(std::string_view command, const std::s
 std::variant<Vehicle, int> load_vehicle(std::string_view command, const std::string& name_or_path) {
   auto vehicle = load_vehicle_file(resolve_vehicle(name_or_path));
   if (vehicle) return std::move(vehicle.value());
-  std::fprintf(stderr, "roadload %.*s: %s\n", static_cast<int>(command.size()), command.data(), vehicle.error().to_string().c_str());
+  say(command, vehicle.error().to_string());
   return exit_for(vehicle.error());
 }
 
@@ -86,7 +83,7 @@ std::optional<int> write_text_file(std::string_view command, const std::string& 
   out << text;
   out.close();
   if (out) return std::nullopt;
-  std::fprintf(stderr, "roadload %.*s: %s: cannot write\n", static_cast<int>(command.size()), command.data(), path.c_str());
+  say(command, path + ": cannot write");
   return kExitCantCreate;
 }
 
