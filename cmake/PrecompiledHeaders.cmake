@@ -18,6 +18,13 @@ function(roadload_precompiled_headers target)
     list(APPEND headers <gtest/gtest.h>)
     set(kind GTEST)
   endif()
+  # With position-independent code (the Python module, cmake/Python.cmake) the libraries compile
+  # with -fPIC and the programs with -fPIE, and GCC refuses a header made with the other: the
+  # programs get one of their own.
+  get_target_property(type ${target} TYPE)
+  if(CMAKE_POSITION_INDEPENDENT_CODE AND type STREQUAL "EXECUTABLE")
+    set(kind ${kind}_PIE)
+  endif()
   # One header per kind for the whole build, made by its first target and reused by the others:
   # the flags are the same everywhere, and the definitions that differ appear in no header of it.
   # Eigen is in the header even for targets that use none of it (the simulator, the drivers).

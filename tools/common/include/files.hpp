@@ -15,6 +15,10 @@
 #include "roadload/vehicle.hpp"
 #include "status.hpp"
 
+namespace roadload::recording {
+class ErrorLog;
+}
+
 namespace roadload::cli {
 
 // The recordings a command was given, as one drive: one as it is; several joined in order when
@@ -29,6 +33,9 @@ int on_one_drive(std::string_view command, std::vector<std::string>& given, Run&
   given = std::get<std::vector<std::string>>(std::move(drive));
   return run();
 }
+
+// Each malformed line a read kept, then how many more there were, said as the command's.
+void tell_errors(std::string_view command, const std::string& path, const recording::ErrorLog& errors);
 
 // Writes `text` to `path` whole; on failure prints "roadload COMMAND: path: cannot write" and
 // returns the exit code (73).

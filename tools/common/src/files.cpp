@@ -78,6 +78,12 @@ std::variant<std::vector<std::string>, int> one_drive(std::string_view command, 
   return std::move(joined.value());
 }
 
+void tell_errors(std::string_view command, const std::string& path, const recording::ErrorLog& errors) {
+  for (const ParseError& e : errors.kept()) say(command, e.to_string());
+  if (errors.count() > errors.kept().size())
+    say(command, path + ": ... and " + std::to_string(errors.count() - errors.kept().size()) + " more malformed lines");
+}
+
 std::optional<int> write_text_file(std::string_view command, const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << text;

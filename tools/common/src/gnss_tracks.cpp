@@ -8,15 +8,6 @@
 namespace roadload::cli {
 namespace {
 
-void report_errors(std::string_view command, const std::string& path, const recording::ErrorLog& errors, bool print,
-                   std::uint64_t& malformed) {
-  malformed += errors.count();
-  if (!print) return;
-  for (const ParseError& e : errors.kept()) say(command, e.to_string());
-  if (errors.count() > errors.kept().size())
-    say(command, path + ": ... and " + std::to_string(errors.count() - errors.kept().size()) + " more malformed lines");
-}
-
 // The antenna height: --antenna-height, else the vehicle's (--vehicle or the recording's file),
 // else meta.toml's bare value; without any, heights stay the antenna's and the user is told.
 std::optional<int> antenna_height(std::string_view command, const std::string& path, const TrackOptions& o,
@@ -66,7 +57,8 @@ std::optional<int> read_recorded_track(std::string_view command, const std::vect
       }
     }
   }
-  report_errors(command, path, reader.value().errors(), o.print_errors, malformed);
+  malformed += reader.value().errors().count();
+  if (o.print_errors) tell_errors(command, path, reader.value().errors());
   if (!t.fixes.empty()) {
     t.source = "gnss.csv";
   } else if (!bus.empty()) {

@@ -1,0 +1,90 @@
+"""A batch's manifest: a CSV with the header recording,vehicle,route (docs/python.md). Each row
+is one drive: its segments joined by "+", an empty vehicle or route for the recording's
+meta.toml or the road its own GNSS traces. An optional column `name` names the drive's results
+folder (default: the first segment's folder name); any further column is an option of
+`roadload analyze` (mass, cda, engine_losses, ...) for that drive, empty where not given."""
+
+import csv
+import dataclasses
+import os
+
+from . import _errors, _paths
+
+REQUIRED = ("recording", "vehicle", "route")
+
+
+@dataclasses.dataclass
+class Drive:
+    name: str
+    recordings: list
+    vehicle: str = None
+    route: str = None
+    options: dict = dataclasses.field(default_factory=dict)
+    line: int = 0
+
+
+def _error(path, line, field, text):
+    where = "%s:%d: %s" % (path, line, field) if field else "%s:%d" % (path, line)
+    message = "%s: %s" % (where, text)
+    return _errors.InputError(message, 65, [message])
+
+
+def _path(base, value):
+    """A file beside the manifest: relative paths are the manifest folder's. A built-in route or
+    vehicle name (no "/" and no .toml) is left as the name."""
+    if os.path.isabs(value) or ("/" not in value and not value.endswith(".toml")):
+        return value
+    return os.path.normpath(os.path.join(base, value))
+
+
+def _option(path, line, key, text, flags):
+    if key in flags:
+        if text.lower() not in ("1", "true", "yes", "0", "false", "no"):
+            raise _error(path, line, key, "%r is not a flag's value (1 or 0)" % text)
+        return text.lower() in ("1", "true", "yes")
+    return _path(os.path.dirname(path), text) if key in ("engine_losses", "grade", "truth", "dbc") else text
+
+
+def read(path):
+    """The drives of the manifest at `path`; a malformed one raises InputError naming its line
+    and field, before any drive is analysed."""
+    base = os.path.dirname(os.path.abspath(path))
+    known = {n.replace("-", "_"): flag for n, flag in _paths.core().analyze_options() if n not in ("out", "help", "version")}
+    flags = {k for k, flag in known.items() if flag}
+    drives, seen = [], {}
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = csv.DictReader(f)
+        header = rows.fieldnames or []
+        for column in REQUIRED:
+            if column not in header:
+                raise _error(path, 1, column, "missing: the header is recording,vehicle,route[,name][,option...]")
+        for column in header:
+            if column not in REQUIRED + ("name",) and column not in known:
+                raise _error(path, 1, column, "neither recording, vehicle, route, name nor an option of roadload analyze")
+        for row in rows:
+            line = rows.line_num
+            segments = [s.strip() for s in (row["recording"] or "").split("+") if s.strip()]
+            if not segments:
+                raise _error(path, line, "recording", "empty")
+            name = (row.get("name") or "").strip() or os.path.basename(os.path.normpath(segments[0]))
+            if name in seen:
+                raise _error(path, line, "name", "%r is line %d's drive too: give each a name column" % (name, seen[name]))
+            seen[name] = line
+            options = {
+                k: _option(path, line, k, v.strip(), flags)
+                for k, v in row.items()
+                if k not in REQUIRED + ("name",) and v is not None and v.strip()
+            }
+            drives.append(
+                Drive(
+                    name,
+                    [os.path.normpath(os.path.join(base, s)) for s in segments],
+                    _path(base, row["vehicle"].strip()) if (row["vehicle"] or "").strip() else None,
+                    _path(base, row["route"].strip()) if (row["route"] or "").strip() else None,
+                    options,
+                    line,
+                )
+            )
+    if not drives:
+        raise _error(path, 1, "", "no drive in the manifest")
+    return drives

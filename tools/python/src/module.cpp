@@ -1,0 +1,113 @@
+// roadload._core: the C++ analysis and decoder for the Python package (tools/python/roadload),
+// which turns what they return into pandas frames and exceptions. Each call releases Python's
+// lock while the C++ runs, so threads (a Dask worker's, a notebook's) analyse drives at once.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "decode_columns.hpp"
+#include "roadload/analysis/analyze.hpp"
+#include "roadload/cli/parse.hpp"
+#include "status.hpp"
+
+namespace py = pybind11;
+
+namespace roadload::python {
+namespace {
+
+const std::string kVersion = "roadload " ROADLOAD_VERSION;
+
+// `roadload analyze ARGS...`'s command line, read as the command reads it: the Python keywords are
+// its options, so their names, ranges and messages cannot drift from the command's.
+int run_analyze(const std::vector<std::string>& args, bool progress) {
+  CLI::App app("", "roadload");
+  analysis::AnalyzeOptions o;
+  analysis::add_options(*app.add_subcommand("analyze", ""), o);
+  std::vector<std::string> argv{"analyze"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const cli::Outcome read = cli::parse(app, argv, kVersion);
+  if (read.kind == cli::Outcome::Kind::usage_error) return cli::usage_error(read.command, read.message());
+  if (read.kind == cli::Outcome::Kind::print) return cli::usage_error("analyze", "--help and --version are the command's");
+  o.report = false;
+  o.progress = progress;
+  return analysis::analyze(std::move(o));
+}
+
+py::tuple analyze(const std::vector<std::string>& args, bool progress) {
+  int status = 0;
+  std::vector<std::string> messages;
+  {
+    py::gil_scoped_release unlocked;
+    cli::MessageCapture capture;
+    status = run_analyze(args, progress);
+    messages = capture.lines();
+  }
+  return py::make_tuple(status, messages);
+}
+
+// The long names of `roadload analyze`'s options ("route", "cda-sigma", ...), each with whether it
+// is a flag, for roadload.analyze's keywords.
+std::vector<std::pair<std::string, bool>> analyze_options() {
+  CLI::App app("", "roadload");
+  analysis::AnalyzeOptions o;
+  analysis::add_options(app, o);
+  std::vector<std::pair<std::string, bool>> names;
+  for (const CLI::Option* opt : app.get_options()) {
+    for (const std::string& n : opt->get_lnames()) names.emplace_back(n, opt->get_expected_max() == 0);
+  }
+  return names;
+}
+
+template <typename T>
+py::array_t<T> array(std::vector<T>&& v) {
+  return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+py::tuple decode(const std::vector<std::string>& inputs, const std::vector<std::string>& dbcs,
+                 const std::vector<std::uint32_t>& pgns) {
+  DecodedColumns c;
+  int status = 0;
+  std::vector<std::string> messages;
+  {
+    py::gil_scoped_release unlocked;
+    cli::MessageCapture capture;
+    status = decode_columns(inputs, dbcs, pgns, c);
+    messages = capture.lines();
+  }
+  py::dict columns;
+  columns["t_ns"] = array(std::move(c.t_ns));
+  columns["iface"] = array(std::move(c.iface));
+  columns["sa"] = array(std::move(c.sa));
+  columns["pgn"] = array(std::move(c.pgn));
+  columns["message"] = array(std::move(c.message));
+  columns["signal"] = array(std::move(c.signal));
+  columns["value"] = array(std::move(c.value));
+  columns["state"] = array(std::move(c.state));
+  py::dict names;
+  names["iface"] = c.iface_names;
+  names["message"] = c.message_names;
+  names["signal"] = c.signal_names;
+  names["unit"] = c.signal_units;
+  names["state"] = c.state_names;
+  return py::make_tuple(status, messages, columns, names);
+}
+
+}  // namespace
+}  // namespace roadload::python
+
+PYBIND11_MODULE(_core, m) {
+  using namespace roadload::python;
+  m.doc() = "roadload's C++ analysis and J1939 decoder; use the package roadload, which wraps them in pandas";
+  m.attr("version") = ROADLOAD_VERSION;
+  m.def("analyze", &analyze, py::arg("args"), py::arg("progress") = false,
+        "Runs `roadload analyze ARGS...` in-process without its tables; returns (exit status, messages).");
+  m.def("analyze_options", &analyze_options, "The long option names of `roadload analyze`, each with whether it is a flag.");
+  m.def("decode", &decode, py::arg("inputs"), py::arg("dbcs"), py::arg("pgns"),
+        "Decodes a recording's J1939 signals; returns (exit status, messages, columns, names).");
+}
