@@ -18,6 +18,7 @@ using Run = std::function<int()>;
 Run add_decode(CLI::App& roadload);
 Run add_analyze(CLI::App& roadload);
 Run add_calibrate(CLI::App& roadload);
+Run add_collect(CLI::App& roadload);
 Run add_gap(CLI::App& roadload);
 Run add_grade(CLI::App& roadload);
 Run add_psd(CLI::App& roadload);
