@@ -21,6 +21,7 @@ Run add_calibrate(CLI::App& roadload);
 Run add_collect(CLI::App& roadload);
 Run add_gap(CLI::App& roadload);
 Run add_grade(CLI::App& roadload);
+Run add_network(CLI::App& roadload);
 Run add_psd(CLI::App& roadload);
 Run add_replay(CLI::App& roadload);
 Run add_report(CLI::App& roadload);

@@ -19,11 +19,13 @@ struct Moments {
   double ytwy = 0, log_weights = 0;
   std::size_t n = 0, p = 0;
   std::vector<std::size_t> term_of;  // each random effect's term
+  std::vector<RandomTerm> terms;
 };
 
 Moments moments(const MixedModel& m) {
   Moments s;
   s.p = m.fixed_columns;
+  s.terms = m.terms;
   std::size_t q = 0;
   for (std::size_t t = 0; t < m.terms.size(); ++t) {
     s.term_of.insert(s.term_of.end(), m.terms[t].levels, t);
@@ -62,7 +64,13 @@ double minus2_reml(const Moments& s, const std::vector<double>& phi) {
   double log_g = 0;
   for (std::size_t t : s.term_of) log_g += phi[1 + t];
   const double log_c = 2 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
-  return static_cast<double>(s.n) * phi[0] - s.log_weights + log_g + log_c + ypy;
+  double prior = 0;
+  for (std::size_t t = 0; t < s.terms.size(); ++t) {
+    const RandomTerm& term = s.terms[t];
+    if (term.prior_sd > 0 && term.prior_log_sd > 0)
+      prior += std::pow((phi[1 + t] / 2 - std::log(term.prior_sd)) / term.prior_log_sd, 2);
+  }
+  return static_cast<double>(s.n) * phi[0] - s.log_weights + log_g + log_c + ypy + prior;
 }
 
 // The curvature of -2 log L at its minimum, by central differences in the log-variances.

@@ -18,6 +18,10 @@ using SparseEntries = std::vector<std::pair<std::size_t, double>>;
 struct RandomTerm {
   std::string name;
   std::size_t levels = 0;
+  // A log-normal prior on the term's sd, when the data alone may not tell it: one truck cannot
+  // tell its tires from the road, and the vehicle files say how far trucks' tires spread.
+  double prior_sd = 0;      // its median; 0: no prior
+  double prior_log_sd = 0;  // the sd of log(sd)
 };
 
 struct MixedModel {
