@@ -39,7 +39,7 @@ SectionNetworkFit fit_section_network(const std::vector<SectionObservation>& obs
   SectionNetworkFit out;
   out.sections.assign(sections, {kNaN, kNaN, kNaN, kNaN});
   out.trucks.assign(trucks, {kNaN, kNaN, kNaN});
-  if (obs.size() <= sections + 1) return out;
+  if (obs.empty()) return out;
   out.reference_speed_mps = reference_speed(obs);
   // Only sections driven are columns; a drag slope only where the speeds differ enough to tell
   // one (a fleet at one speed cannot separate drag from tires).
@@ -51,6 +51,7 @@ SectionNetworkFit fit_section_network(const std::vector<SectionObservation>& obs
   double x_spread = 0;
   for (const SectionObservation& o : obs) x_spread += std::pow(std::pow(o.speed_mps / out.reference_speed_mps, 2) - 1, 2);
   const bool drag = std::sqrt(x_spread / static_cast<double>(obs.size())) > kMinSpeedSpread;
+  if (obs.size() <= driven + (drag ? 1 : 0)) return out;
   MixedModel m;
   m.fixed_columns = driven + (drag ? 1 : 0);
   m.terms = {{"truck", trucks, priors.truck_sd, priors.log_sd}};

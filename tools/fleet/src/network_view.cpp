@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 
 #include "roadload/db/database.hpp"
@@ -19,12 +20,20 @@ struct Cell {
   std::string reason;
 };
 
+// A filter whose innovations are smaller than it predicts (mean NIS below 1) is cautious, not
+// wrong: its estimate stands, its sigma is too wide, and the model fits the cells' spread itself.
+bool overdispersed(const std::string& part) {
+  const std::string nis = "the filter is not consistent with this drive: mean NIS ";
+  if (part.rfind(nis, 0) != 0) return false;
+  return std::strtod(part.c_str() + nis.size(), nullptr) < 1.0;
+}
+
 // Why a cell is not evidence of its section's CRR, or empty when it is. A cell withheld only for
 // its width is evidence (the model weighs it); one the model did not fit (the filter's
 // consistency, the force balance, the road's placement, no wind) is not: its number may be wrong,
 // not merely wide.
 std::string exclusion(const Cell& c) {
-  if (!std::isfinite(c.crr) || !(c.crr_sigma > 0) || !std::isfinite(c.speed_mps)) return "no CRR estimate";
+  if (!(c.crr_sigma > 0) || !std::isfinite(c.speed_mps)) return "no CRR estimate";
   std::string reason = c.reason;
   const std::string prefix = "CRR not identified: ";
   if (reason.rfind(prefix, 0) == 0) reason = reason.substr(prefix.size());
@@ -32,7 +41,7 @@ std::string exclusion(const Cell& c) {
   while (at < reason.size()) {
     const std::size_t end = std::min(reason.find("; ", at), reason.size());
     const std::string part = reason.substr(at, end - at);
-    if (part.rfind("its uncertainty", 0) != 0) return part.substr(0, part.find(':'));
+    if (part.rfind("its uncertainty", 0) != 0 && !overdispersed(part)) return part.substr(0, part.find(':'));
     at = end + 2;
   }
   return {};
@@ -102,7 +111,11 @@ void describe(NetworkSection& s, const std::vector<const Cell*>& used, const Net
   }
   const double n = static_cast<double>(used.size());
   s.drives = static_cast<int>(drives.size()), s.trucks = static_cast<int>(trucks.size()), s.cells = static_cast<int>(used.size());
-  if (used.empty()) return;
+  if (used.empty()) {
+    s.speed_mps = s.dynamic_l_per_100km = s.dynamic_l_per_100km_se = NAN;
+    s.rolling_l_per_pass = s.dynamic_l_per_pass = s.rolling_l_per_year = s.dynamic_l_per_year = NAN;
+    return;
+  }
   s.speed_mps = speed / n;
   s.rolling_l_per_pass = rolling / n;
   s.dynamic_l_per_pass = dynamic / n;
@@ -155,6 +168,7 @@ NetworkView network_view(const std::string& db_url, const NetworkOptions& option
   std::vector<const Cell*> used;
   for (const Cell& c : cells) {
     drive_keys.insert(c.drive);
+    if (!std::isfinite(c.crr)) continue;  // a section of the route this drive did not reach
     const std::string why = exclusion(c);
     if (!why.empty()) {
       ++v.excluded[why], ++v.cells_excluded;
