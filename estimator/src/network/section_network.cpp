@@ -65,7 +65,7 @@ SectionNetworkFit fit_section_network(const std::vector<SectionObservation>& obs
     MixedModel::Observation row{o.crr, w[i], {{column[o.section], 1.0}}, {{m.random_index(kTruck, o.truck), 1.0}}};
     if (drag) {
       row.fixed.emplace_back(driven, x);
-      row.random.emplace_back(m.random_index(kTruckDrag, o.truck), x);
+      row.random.emplace_back(m.random_index(kTruckDrag, o.truck), x + 1);
     }
     row.random.emplace_back(m.random_index(drive_term, o.drive), 1.0);
     m.observations.push_back(std::move(row));

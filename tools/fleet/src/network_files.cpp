@@ -50,10 +50,10 @@ std::string bands_csv(const NetworkView& v) {
 }
 
 std::string trucks_csv(const NetworkView& v) {
-  std::string out = "vehicle_key,vin,name,drives,crr_offset,crr_offset_sd,drag_slope\n";
+  std::string out = "vehicle_key,vin,name,drives,tire_offset,tire_offset_sd,drag_at_reference_speed\n";
   for (const NetworkTruck& t : v.trucks) {
     out += field(t.key) + "," + field(t.vin) + "," + field(t.name) + "," + std::to_string(t.drives) + "," +
-           csv_number(t.effect.offset, 7) + "," + csv_number(t.effect.offset_sd, 7) + "," + csv_number(t.effect.drag_slope, 7) + "\n";
+           csv_number(t.effect.offset, 7) + "," + csv_number(t.effect.offset_sd, 7) + "," + csv_number(t.effect.drag, 7) + "\n";
   }
   return out;
 }
