@@ -177,12 +177,12 @@ std::optional<std::variant<Road, int>> given_road(const AnalyzeOptions& o) {
   if (const int* rc = std::get_if<int>(&loaded)) return *rc;
   LoadedRoute& route = std::get<LoadedRoute>(loaded);
   Road road;
+  road.identity = {route.file.name, route_hash(route.file)};  // before its cells move
   road.geometry = std::move(route.geometry);
   road.spans = cell_spans(route.file.cells);
   road.cells = std::move(route.file.cells);
   road.default_iri_m_per_km = route.file.default_iri_m_per_km;
   road.grade = std::move(route.grade);
-  road.identity = {route.file.name, route_hash(route.file)};
   return road;
 }
 

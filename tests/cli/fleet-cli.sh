@@ -4,7 +4,8 @@
 # changes no row; both databases give the same network; the map draws every section in headless
 # Chromium; results without provenance and a bad database are refused with file and field.
 set -euo pipefail
-roadload=${1:?usage: fleet-cli.sh ROADLOAD_BIN}
+roadload=${1:?usage: fleet-cli.sh ROADLOAD_BIN [ROADLOADD_BIN]}
+roadloadd=${2:-$(dirname "$roadload")/../firmware/roadloadd}
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 config=$(cd "$here/../../config" && pwd)
 # shellcheck source=cli-lib.sh source-path=SCRIPTDIR
@@ -62,6 +63,17 @@ echo "fleet-cli: $(cat "$work/out")"
 expect_csv "$work/net-sqlite"
 sections=$(($(wc -l <"$work/net-sqlite/network.csv") - 1))
 ((sections >= 4)) || fail "only $sections sections in network.csv"
+
+# roadloadd's live results name the same truck and road as analyze's, and collect takes them.
+"$roadloadd" --replay "$work/rec1" --replay-can --replay-rate 0 --exit-when-done --no-gnss --route example-county-road-eastbound \
+  --results "$work/live" --data-dir "$work/data" --status "$work/status.log" --status-json '' >/dev/null 2>&1 ||
+  fail "roadloadd's replay failed"
+for key in vehicle_hash route_hash drive_start_utc; do
+  a=$(grep "\"$key\"" "$work/res1/trip.json") b=$(grep "\"$key\"" "$work/live/trip.json")
+  [[ -n $a && $a == "$b" ]] || fail "roadloadd's $key ($b) is not analyze's ($a)"
+done
+grep -q '"program": "roadloadd ' "$work/live/trip.json" || fail "roadloadd's results do not name it"
+expect_status 0 "$roadload" collect "$work/live" --db "$work/live.db" -q
 
 url=$(pg_temp_start "$pg") || fail "no PostgreSQL server could start"
 expect_status 0 "$roadload" collect "$work"/res4 "$work"/res3 "$work"/res2 "$work"/res1 --db "$url" -q
