@@ -99,19 +99,8 @@ expect_status 65 "$roadload" collect "$work/old" --db "$work/fleet.db"
 grep -q "trip.json:.*provenance.route_hash" "$work/err" || fail "missing route hash not named: $(cat "$work/err")"
 expect_status 73 "$roadload" collect "$work/res1" --db "mysql://nowhere/x"
 
-chromium=$(command -v chromium || true)
-if [[ -z $chromium ]]; then
-  [[ ${ROADLOAD_REQUIRE_CHROMIUM:-0} == 1 ]] && fail "chromium is missing (scripts/setup installs it)"
-  echo "fleet-cli: SKIPPED the map's rendering (no chromium)"
-  exit 77
-fi
-check='<pre id="roadload-check"></pre><script>
-const drawn = [...document.querySelectorAll("path.section")].filter(e => { const b = e.getBBox(); return b.width > 0 || b.height > 0; });
-document.getElementById("roadload-check").textContent = String(drawn.length);
-</script>'
-sed "s#</body>#${check//$'\n'/ }</body>#" "$work/net-pg/network.html" >"$work/check.html"
-timeout 120 "$chromium" --headless=new --no-sandbox --disable-gpu --no-first-run --user-data-dir="$work/profile" \
-  --dump-dom "file://$work/check.html" >"$work/dom.html" 2>"$work/chromium.err" || fail "chromium failed: $(tail -5 "$work/chromium.err")"
-drawn=$(sed -n 's#.*<pre id="roadload-check">\([^<]*\)</pre>.*#\1#p' "$work/dom.html")
+check='const drawn = [...document.querySelectorAll("path.section")].filter(e => { const b = e.getBBox(); return b.width > 0 || b.height > 0; });
+document.getElementById("roadload-check").textContent = String(drawn.length);'
+drawn=$(render_check "$work/net-pg/network.html" "$check")
 [[ $drawn == "$sections" ]] || fail "the map draws ${drawn:-no} sections of $sections"
 echo "fleet-cli: the map draws $drawn of $sections sections; PASS"
