@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "roadload/content_hash.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/engine_loss_file.hpp"
 #include "roadload/firmware/command_line.hpp"
@@ -40,6 +41,7 @@ struct Estimation {
   double iri_m_per_km = AnalyzerConfig{}.roughness_iri_m_per_km;  // the route's, where a cell states none
   PavementGroups groups;
   model::EngineLossMap engine_losses;
+  std::string route_name, route_hash;
 };
 
 std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) {
@@ -59,6 +61,8 @@ std::optional<ParseError> load_estimation(const DaemonConfig& c, Estimation& e) 
   for (const CellDef& cell : route.value().cells) e.surfaces.push_back(cell.surface);
   e.iri_m_per_km = route.value().default_iri_m_per_km;
   e.groups = pavement_groups(route.value().cells);
+  e.route_name = route.value().name;
+  e.route_hash = route_hash(route.value());
   if (!c.estimator.engine_losses.empty()) {
     auto losses = load_engine_loss_file(c.estimator.engine_losses);
     if (!losses) return losses.error();
@@ -87,6 +91,25 @@ recording::Metadata metadata(const DaemonConfig& c, const BuiltSources& b, const
   return m;
 }
 
+// What the live results are made of; the daemon adds the run's id and the drive's UTC span.
+results::Provenance provenance(const DaemonConfig& c, const Vehicle& vehicle, const Estimation& est, const model::TruckModel& truck) {
+  results::Provenance p;
+  p.program = std::string("roadloadd ") + ROADLOAD_VERSION;
+  p.vehicle = vehicle.name;
+  p.vin = vehicle.vin;
+  p.vehicle_source = c.vehicle.file.empty() ? "the replayed recording's meta.toml" : "[vehicle] file " + c.vehicle.file;
+  p.vehicle_hash = content_hash(format_vehicle(vehicle));
+  p.route = c.estimator.route;
+  p.route_name = est.route_name;
+  p.route_hash = est.route_hash;
+  p.engine_losses = c.estimator.engine_losses.empty() ? "EEC3's nominal friction percent" : c.estimator.engine_losses;
+  char cda[96];
+  std::snprintf(cda, sizeof cda, "%.3f m2 +- %.3f (%s)", truck.cda_prior_m2, truck.cda_sigma_m2,
+                c.estimator.cda_m2 > 0 ? "[estimator] cda_m2" : "the vehicle file");
+  p.cda = cda;
+  return p;
+}
+
 // The force balance needs the route's grade and the truck: without both the daemon records and
 // reports only. A replay's recording states its drive (cargo, antenna) over the vehicle file.
 void configure_estimator(const DaemonConfig& c, const Estimation& est, DaemonSetup& setup, std::vector<std::string>& notes) {
@@ -112,6 +135,7 @@ void configure_estimator(const DaemonConfig& c, const Estimation& est, DaemonSet
   truck.torque_scale_sigma = 0;
   truck.efficiency_scale_sigma = 0;
   truck.mass_sigma_kg = 0;
+  setup.provenance = provenance(c, vehicle, est, truck);
   recording::LayoutResult layout = recording::axle_layout(setup.metadata, vehicle, "accelerometers");
   if (layout.layout) {
     setup.layout = std::move(layout.layout);

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "roadload/content_hash.hpp"
 #include "roadload/results/json.hpp"
 #include "roadload/route_file.hpp"
 
@@ -41,6 +42,13 @@ std::string format_route_file(const RouteFile& r) {
     if (c.joint_spacing_m > 0) out += "joint_spacing_m = " + fixed(c.joint_spacing_m, 2) + "\n";
   }
   return out;
+}
+
+std::string route_hash(const RouteFile& r) {
+  std::string canonical;
+  for (const RoutePoint& p : r.points) canonical += fixed(p.lat_deg, 8) + "," + fixed(p.lon_deg, 8) + ";";
+  for (const CellDef& c : r.cells) canonical += "\n" + c.id + "," + fixed(c.start_m, 2) + "," + fixed(c.end_m, 2) + "," + c.surface;
+  return content_hash(canonical);
 }
 
 }  // namespace roadload

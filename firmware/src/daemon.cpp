@@ -6,6 +6,7 @@
 #include "roadload/io/posix_time.hpp"
 #include "roadload/merge.hpp"
 #include "roadload/results/results_files.hpp"
+#include "roadload/utc_text.hpp"
 
 namespace roadload::firmware {
 
@@ -218,6 +219,12 @@ bool Daemon::estimate_next(CaptureTime horizon, CaptureTime place_horizon) {
       cadence_.push(item);
       if (!analyzer_) bus_watch_.push(item);
     }
+    if constexpr (std::is_same_v<decltype(item), GnssFix>) {
+      if (item.utc_ns > 0) {
+        if (first_fix_utc_ns_ == 0) first_fix_utc_ns_ = item.utc_ns;
+        last_fix_utc_ns_ = item.utc_ns;
+      }
+    }
     if (analyzer_) analyzer_->push(item);
   });
   return true;
@@ -326,7 +333,12 @@ std::optional<ParseError> Daemon::write_results(const std::string& dir) const {
   if (auto e = results::write_cells_csv(dir + "/cells.csv", analyzer_->cells(), va ? axles : std::vector<std::string>{}, va,
                                         results::cell_places(setup_.route, setup_.cells, setup_.surfaces)))
     return e;
-  return results::write_trip_json(dir + "/trip.json", analyzer_->trip(), "  \"estimate\": \"live filter\"");
+  results::Provenance p = setup_.provenance;
+  p.recording_id = recorder_ ? recorder_->recording_id() : setup_.metadata.recording_id;
+  if (first_fix_utc_ns_ > 0) p.drive_start_utc = utc_text(first_fix_utc_ns_);
+  if (last_fix_utc_ns_ > 0) p.drive_end_utc = utc_text(last_fix_utc_ns_);
+  return results::write_trip_json(dir + "/trip.json", analyzer_->trip(),
+                                  "  \"estimate\": \"live filter\",\n" + results::provenance_json(p));
 }
 
 }  // namespace roadload::firmware

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "roadload/content_hash.hpp"
 #include "roadload/sim/j1939_bus.hpp"
 #include "roadload/sim/powertrain.hpp"
 #include "roadload/sim/road_builder.hpp"
@@ -257,6 +258,18 @@ recording::Metadata Simulation::metadata() const {
   const Scenario& sc = p_->scenario;
   recording::Metadata m;
   m.created_by = "roadload simulate";
+  // A logger draws its run's id at random; a simulated run's is a hash of what makes it this run
+  // (scenario, seed, truck, effects), so the same run simulated again is the same drive.
+  std::string identity = sc.name + "\n" + sc.source + "\n" + std::to_string(p_->seed) + "\n" + std::to_string(sc.start_utc_ns) +
+                         "\n" + sc.vehicle.name + "\n" + p_->truck.vin + "\n" + std::to_string(sc.speed_mps) + "\n" +
+                         std::to_string(sc.duration ? sc.duration->count() : -1.0);
+  for (double v : {sc.load_scale, sc.engine_friction_scale, sc.accessory_scale, sc.cda_scale, sc.tire_radius_scale, sc.start_m,
+                   sc.end_m, sc.weather.air_temp_c})
+    identity += "," + std::to_string(v);
+  for (const auto& e : effect_catalog()) {
+    if (sc.effects.on(e.id)) identity += "\n" + std::string(e.name) + "=" + std::to_string(sc.effects.magnitude(e.id));
+  }
+  m.recording_id = "sim-" + content_hash(identity).substr(8);
   m.clock_source = "simulated";
   m.utc_offset_ns = sc.start_utc_ns;
   m.can_interfaces = {"can0"};

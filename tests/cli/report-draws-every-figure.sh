@@ -88,16 +88,10 @@ sed -i '3s/,0\.0[0-9]*,/,0.0x,/' "$work/bad.csv" && cp "$work/bad.csv" "$work/re
 expect_status 65 "$roadload" report "$work/res" -o "$work/bad.html"
 grep -q "cells.csv:3: " "$work/err" || fail "a bad number is not named by file and line: $(cat "$work/err")"
 
-chromium=$(command -v chromium || true)
-if [[ -z $chromium ]]; then
-  [[ ${ROADLOAD_REQUIRE_CHROMIUM:-0} == 1 ]] && fail "chromium is missing (scripts/setup installs it)"
-  echo "report-cli: SKIPPED the rendering (no chromium)"
-  exit 77
-fi
 # After layout, each figure's drawn marks: those with class "datum" whose box is not empty; and
 # the pairs of marker labels (mode numbers) whose boxes overlap, which must be none. The script
-# goes in on one line through sed's s###: no // comments and no ampersands (sed's match).
-check='<pre id="roadload-check"></pre><script>
+# goes in through render_check (cli-lib.sh).
+check='
 const out = {};
 let overlaps = 0;
 for (const f of document.querySelectorAll("figure")) {
@@ -110,11 +104,8 @@ for (const f of document.querySelectorAll("figure")) {
 }
 out["overlapping-labels"] = overlaps;
 document.getElementById("roadload-check").textContent = JSON.stringify(out);
-</script>'
-sed "s#</body>#${check//$'\n'/ }</body>#" "$page" >"$work/check.html"
-timeout 120 "$chromium" --headless=new --no-sandbox --disable-gpu --no-first-run --user-data-dir="$work/profile" \
-  --dump-dom "file://$work/check.html" >"$work/dom.html" 2>"$work/chromium.err" || fail "chromium failed: $(tail -5 "$work/chromium.err")"
-drawn=$(sed -n 's#.*<pre id="roadload-check">\([^<]*\)</pre>.*#\1#p' "$work/dom.html")
+'
+drawn=$(render_check "$page" "$check")
 [[ -n $drawn ]] || fail "the page did not render (no check output)"
 echo "report-cli: drawn marks per figure: $drawn"
 /usr/bin/python3 - "$drawn" "$cells" <<'PY' || fail "a figure is not drawn with data"

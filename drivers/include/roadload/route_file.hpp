@@ -44,6 +44,9 @@ PavementGroups pavement_groups(const std::vector<CellDef>& cells);
 std::vector<CellSpan> cell_spans(const std::vector<CellDef>& cells);
 // The route as a route file: [[point]] tables (never a geometry file) and `grade` as given.
 std::string format_route_file(const RouteFile& route);
+// What makes two route files the same road cut the same way (the points and each cell's id, ends
+// and surface; not the name, notes or CRR guesses): the key a fleet's results are merged on.
+std::string route_hash(const RouteFile& route);
 // A route argument: a route file, or the name of a built-in route (data_dir()/routes/NAME.toml).
 std::string resolve_route(const std::string& name_or_path);
 

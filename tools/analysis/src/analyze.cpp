@@ -19,6 +19,7 @@
 #include "progress.hpp"
 #include "roadload/analysis/analyze.hpp"
 #include "roadload/contact_forces.hpp"
+#include "roadload/content_hash.hpp"
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/engine_loss_file.hpp"
 #include "roadload/grade_file.hpp"
@@ -27,6 +28,7 @@
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/results/json.hpp"
+#include "roadload/route_file.hpp"
 #include "roadload/torque_scale_consider.hpp"
 #include "roadload/track_route.hpp"
 
@@ -124,6 +126,7 @@ struct Road {
   std::optional<GradeProfile> grade;  // a traced road's, from the same fixes, or the route's own
   double default_iri_m_per_km = AnalyzerConfig{}.roughness_iri_m_per_km;
   std::string unplaced;  // why the drive has no road, when it has none
+  RouteIdentity identity;
 };
 
 // Without a route the drive's own GNSS traces one, its grade from that one pass (so wide, honest
@@ -140,6 +143,9 @@ Road traced_road(const RecordedTrack& recorded, const Vehicle& vehicle) {
     return road;
   }
   road.geometry = *geometry;
+  std::string points;
+  for (const GeoPoint& p : track->points) points += std::to_string(p.lat_deg) + "," + std::to_string(p.lon_deg) + ";";
+  road.identity = {"traced from the drive's GNSS", content_hash(points)};
   road.spans = fixed_length_cells(road.geometry.length_m(), TrackRouteConfig{}.cell_length_m);
   GradeConfig one_pass;
   one_pass.min_passes = 1;
@@ -168,6 +174,7 @@ std::optional<std::variant<Road, int>> given_road(const AnalyzeOptions& o) {
   if (const int* rc = std::get_if<int>(&loaded)) return *rc;
   LoadedRoute& route = std::get<LoadedRoute>(loaded);
   Road road;
+  road.identity = {route.file.name, route_hash(route.file)};  // before its cells move
   road.geometry = std::move(route.geometry);
   road.spans = cell_spans(route.file.cells);
   road.cells = std::move(route.file.cells);
@@ -299,7 +306,7 @@ int analyze(const AnalyzeOptions& o) {
   }
   std::optional<VibrationSummary> spectra;
   if (acc.vibration) spectra = summarize(*acc.vibration, groups, trip.fuel.time_s, trip.fuel.distance_m);
-  const Provenance origin = provenance(o, meta, vehicle, assumed, track, std::get<AnalyzerConfig>(cfg));
+  const Provenance origin = provenance(o, meta, vehicle, assumed, track, std::get<AnalyzerConfig>(cfg), road.identity);
   if (const int rc = write_results(o, analysis, acc, groups, spectra, sensor_warnings, origin, places_of(road)); rc != kExitOk)
     return rc;
   std::optional<Truth> truth;

@@ -2,30 +2,19 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <ctime>
 
+#include "roadload/content_hash.hpp"
 #include "roadload/results/json.hpp"
 #include "roadload/utc_text.hpp"
 #include "roadload/vehicle_file.hpp"
 
 namespace roadload::cli {
-namespace {
-
-// FNV-1a over the text, 64 bits: an identity for "the same description", not a defence against
-// anyone forging one.
-std::string content_hash(const std::string& text) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  char out[32];
-  std::snprintf(out, sizeof out, "fnv1a64:%016llx", static_cast<unsigned long long>(h));
-  return out;
-}
-
-}  // namespace
 
 Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, const Vehicle& vehicle, const std::string& assumed,
-                      const RecordedTrack& track, const AnalyzerConfig& cfg) {
+                      const RecordedTrack& track, const AnalyzerConfig& cfg, const RouteIdentity& road) {
   Provenance p;
+  p.route_name = road.name;
+  p.route_hash = road.hash;
   p.recordings = o.recordings;
   p.recording_id = meta.recording_id;
   p.vehicle = vehicle.name;
@@ -70,6 +59,7 @@ std::string provenance_json(const Provenance& p) {
   j += "],\n    \"recording_id\": " + text(p.recording_id) + ",\n    \"vehicle\": " + text(p.vehicle) +
        ",\n    \"vin\": " + text(p.vin) + ",\n    \"vehicle_source\": " + text(p.vehicle_source) +
        ",\n    \"vehicle_hash\": " + text(p.vehicle_hash) + ",\n    \"route\": " + text(p.route) +
+       ",\n    \"route_name\": " + text(p.route_name) + ",\n    \"route_hash\": " + text(p.route_hash) +
        ",\n    \"drive_start_utc\": " + text(p.drive_start_utc) + ",\n    \"drive_end_utc\": " + text(p.drive_end_utc) +
        ",\n    \"engine_losses\": " + text(p.engine_losses) + ",\n    \"cda\": " + text(p.cda) +
        ",\n    \"torque_scale\": " + text(p.torque_scale) + "\n  }";

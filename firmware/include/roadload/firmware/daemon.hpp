@@ -16,6 +16,7 @@
 #include "roadload/firmware/status_report.hpp"
 #include "roadload/io/replay_clock.hpp"
 #include "roadload/j1939/database.hpp"
+#include "roadload/results/provenance.hpp"
 #include "roadload/vibration.hpp"
 
 namespace roadload::firmware {
@@ -83,6 +84,9 @@ struct DaemonSetup {
   // recording's timeline, so the force balance keeps its real time steps. The recorder keeps the
   // stamps as they came.
   std::optional<io::ReplayTiming> timeline;
+  // What the results were made of (the truck, the route, the calibration); write_results() adds
+  // the run's recording id and the drive's UTC span.
+  results::Provenance provenance;
 };
 
 class Daemon {
@@ -134,6 +138,8 @@ class Daemon {
   // reassembly, so gaps, incomplete sessions and floods are told all the same.
   j1939::CadenceMonitor cadence_;
   j1939::MessageAssembler bus_watch_;
+  // The drive's first and last fix that told UTC, for the results' provenance (read after stop).
+  std::int64_t first_fix_utc_ns_ = 0, last_fix_utc_ns_ = 0;
   // Status thread's own memory of the previous report, for rates.
   CaptureTime last_report_{};
   std::vector<std::uint64_t> last_items_, last_bits_, last_dropped_, last_errors_, last_restarts_;

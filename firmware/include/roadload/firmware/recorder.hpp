@@ -55,6 +55,7 @@ class Recorder {
   // Ends the current segment; the next write or tick starts another (SIGUSR1, shutdown).
   void end_segment();
   const RecorderStatus& status() const { return status_; }
+  const std::string& recording_id() const { return meta_.recording_id; }
 
  private:
   struct Stream {
