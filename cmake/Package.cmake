@@ -21,6 +21,11 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # The maintainer scripts call systemd-sysusers, systemd-tmpfiles and deb-systemd-helper.
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "systemd, init-system-helpers")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "gpsd, can-utils, logrotate")
+# The Python module (docs/python.md) is for Debian's python3 with its pandas, and `roadload batch`
+# runs on its python3-distributed; the programs need none of them, so they are recommended.
+if(ROADLOAD_PYTHON)
+  string(APPEND CPACK_DEBIAN_PACKAGE_RECOMMENDS ", python3 (>= 3.11), python3 (<< 3.12), python3-pandas, python3-distributed")
+endif()
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA
     ${PROJECT_SOURCE_DIR}/cmake/debian/conffiles ${PROJECT_SOURCE_DIR}/cmake/debian/postinst

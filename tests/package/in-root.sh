@@ -33,6 +33,19 @@ lines=$(wc -l <"$work/decoded")
 ((lines > 100)) || fail "decode printed $lines lines"
 echo "package: roadload decode: $lines lines from the shipped trace"
 
+# The Python module imports from the installed package, not a build tree (covered by tmpfs), and
+# decodes the same trace to the same 577 EEC1 messages; root's import leaves byte code behind,
+# which purge must remove too.
+in_root python3 -c 'import os, sys, roadload
+assert roadload.__file__.startswith("/usr/lib/python3/dist-packages/roadload/"), roadload.__file__
+eec1 = roadload.decode(sys.argv[1], pgn=61444)
+messages = len(eec1[["t_ns", "sa"]].drop_duplicates())
+assert messages == 577, messages
+print("package: python3: roadload %s, %d EEC1 messages" % (roadload.__version__, messages))
+import roadload.batch' "$trace" >"$work/python" 2>&1 || { cat "$work/python" >&2; fail "import roadload in python3"; }
+cat "$work/python"
+in_root roadload batch --help >/dev/null || fail "roadload batch --help"
+
 in_root roadloadd --config /etc/roadload/roadloadd.toml --print-config >"$work/config" || fail "roadloadd --print-config"
 grep -q '^data_dir = "/var/lib/roadload"' "$work/config" || fail "print-config: no data_dir /var/lib/roadload"
 
@@ -59,7 +72,7 @@ words=$(in_root bash -c '. /usr/share/bash-completion/bash_completion; . /usr/sh
 [[ $words == *analyze* ]] || fail "bash completion of 'roadload ana' gave '$words'"
 
 dpkg --root="$root" --purge roadload >>"$work/dpkg.log" 2>&1 || { cat "$work/dpkg.log" >&2; fail "dpkg --purge"; }
-for f in /usr/bin/roadload /usr/sbin/roadloadd /usr/share/roadload /etc/roadload "$unit"; do
+for f in /usr/bin/roadload /usr/sbin/roadloadd /usr/share/roadload /etc/roadload "$unit" /usr/lib/python3/dist-packages/roadload; do
   [[ ! -e $root$f ]] || fail "$f is left after purge"
 done
 echo "package: purge leaves no file of the package"

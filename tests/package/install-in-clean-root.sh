@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds the Debian package from this build folder (CPack), installs it with `dpkg --root` into a
 # root where nothing of roadload exists, and runs what a user runs first: `roadload --version`,
-# `roadload decode` on the shipped trace, `roadloadd --print-config` and systemd's check of the
-# installed unit. Then remove and purge leave nothing behind.
+# `roadload decode` on the shipped trace, the Python module's import and decode of the same trace,
+# `roadloadd --print-config` and systemd's check of the installed unit. Then remove and purge leave nothing behind.
 #
 # The root is this machine's own Debian under an overlay (the package's dependencies are real
 # Debian packages there, and dpkg checks Depends against its database) with every place a copy

@@ -1,21 +1,19 @@
-"""roadload.collect: results folders into the fleet database (docs/python.md)."""
+"""roadload.collect: results folders into the fleet database (docs/fleet.md), in-process."""
 
-import subprocess
+import os
 
 from . import _errors, _paths
 
 
 def collect(dirs, db):
-    """Adds the drives of the results folders `dirs` to the database `db` (an SQLite file, or
-    sqlite:///path, or postgresql://...), as `roadload collect DIR... --db URL` does; a drive
-    already there is left unchanged. Raises Error with the command's messages when it fails.
-
-    SWITCH TO THE BINDING: until the C++ fleet library (tools/fleet, roadload::fleet::collect)
-    is on this branch, this runs the command; then it calls _core.collect in-process."""
-    dirs = [dirs] if isinstance(dirs, str) else list(dirs)
-    run = subprocess.run(
-        [_paths.program(), "collect", *dirs, "--db", db], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
-    )
-    messages = [line.split(": ", 1)[1] if line.startswith("roadload collect: ") else line for line in run.stderr.splitlines()]
-    _errors.check("collect", run.returncode, messages)
-    return run.stdout
+    """Adds the drives of the results folders `dirs` (one folder or a list) to the database `db`
+    (an SQLite file, sqlite:///path or postgresql://...), as `roadload collect DIR... --db URL`
+    does, the C++ fleet library running with Python's lock released. Each drive is one
+    transaction; a drive already there is unchanged, one analysed again replaced. Returns the
+    counts: drives_added, drives_unchanged, drives_replaced, sections_added, section_results,
+    schema_from. A folder that cannot be read raises InputError (65), a database that cannot be
+    written OutputError (73), each naming the file or the database's error."""
+    dirs = [dirs] if isinstance(dirs, (str, os.PathLike)) else list(dirs)
+    status, messages, summary = _paths.core().collect([os.fspath(d) for d in dirs], os.fspath(db))
+    _errors.check("collect", status, messages)
+    return summary

@@ -11,7 +11,8 @@ non-zero at the end; the others go on.
 """
 
 import argparse
-import dataclasses
+import collections
+import logging
 import os
 import socket
 import sys
@@ -74,7 +75,7 @@ def run(client, drives, out, db):
 
     futures = {client.submit(analyze_drive, d, out, db, key="roadload-%s-%d" % (d.name, i), pure=False): d for i, d in enumerate(drives)}
     progress = Progress(len(drives))
-    failed, malformed = [], []
+    failed, malformed, workers = [], [], collections.Counter()
     for future in as_completed(futures):
         drive = futures[future]
         if future.status != "finished":
@@ -84,6 +85,7 @@ def run(client, drives, out, db):
             progress.tell(failed=True)
             continue
         done = future.result()
+        workers[done["worker"]] += 1
         for m in done["messages"]:
             print("batch: %s: %s" % (drive.name, m), file=sys.stderr)
         if done["input_errors"]:
@@ -97,6 +99,7 @@ def run(client, drives, out, db):
         % (len(drives), wall, len(drives) / wall, len(failed), ": " + ", ".join(failed) if failed else "", len(malformed)),
         file=sys.stderr,
     )
+    print("batch: drives per worker: %s" % ", ".join("%s %d" % w for w in sorted(workers.items())), file=sys.stderr)
     return EXIT_FAILED if failed else EXIT_DATA if malformed else 0
 
 
@@ -121,8 +124,13 @@ def _connect(a):
 
     if a.scheduler:
         return Client(a.scheduler, timeout="30s"), None
+    # The workers' own warnings of a failed task are the lines run() prints, with the drive named.
     cluster = LocalCluster(
-        n_workers=a.workers or os.cpu_count() or 1, threads_per_worker=1, processes=True, dashboard_address=None
+        n_workers=a.workers or os.cpu_count() or 1,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        silence_logs=logging.ERROR,
     )
     return Client(cluster), cluster
 

@@ -14,6 +14,8 @@
 #include "decode_columns.hpp"
 #include "roadload/analysis/analyze.hpp"
 #include "roadload/cli/parse.hpp"
+#include "roadload/db/database.hpp"
+#include "roadload/fleet/collect.hpp"
 #include "status.hpp"
 
 namespace py = pybind11;
@@ -98,6 +100,34 @@ py::tuple decode(const std::vector<std::string>& inputs, const std::vector<std::
   return py::make_tuple(status, messages, columns, names);
 }
 
+// `roadload collect DIRS... --db URL` in-process: the database's failure is the command's 73, a
+// results folder it cannot read its 65, each with the C++'s message.
+py::tuple collect(const std::vector<std::string>& dirs, const std::string& db_url) {
+  fleet::CollectSummary s;
+  int status = cli::kExitOk;
+  std::vector<std::string> messages;
+  {
+    py::gil_scoped_release unlocked;
+    try {
+      s = fleet::collect(dirs, db_url);
+    } catch (const db::DatabaseError& e) {
+      status = cli::kExitCantCreate;
+      messages.emplace_back(e.what());
+    } catch (const std::runtime_error& e) {
+      status = cli::kExitDataErr;
+      messages.emplace_back(e.what());
+    }
+  }
+  py::dict summary;
+  summary["drives_added"] = s.drives_added;
+  summary["drives_unchanged"] = s.drives_unchanged;
+  summary["drives_replaced"] = s.drives_replaced;
+  summary["sections_added"] = s.sections_added;
+  summary["section_results"] = s.section_results;
+  summary["schema_from"] = s.schema_from;
+  return py::make_tuple(status, messages, summary);
+}
+
 }  // namespace
 }  // namespace roadload::python
 
@@ -108,6 +138,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("analyze", &analyze, py::arg("args"), py::arg("progress") = false,
         "Runs `roadload analyze ARGS...` in-process without its tables; returns (exit status, messages).");
   m.def("analyze_options", &analyze_options, "The long option names of `roadload analyze`, each with whether it is a flag.");
+  m.def("collect", &collect, py::arg("dirs"), py::arg("db"),
+        "Adds results folders to the fleet database; returns (exit status, messages, summary).");
   m.def("decode", &decode, py::arg("inputs"), py::arg("dbcs"), py::arg("pgns"),
         "Decodes a recording's J1939 signals; returns (exit status, messages, columns, names).");
 }
