@@ -24,6 +24,7 @@ inline constexpr NumberField<Vehicle> kBody[] = {
 // them still read.
 inline constexpr NumberField<Vehicle> kBodyOptional[] = {
     {"tire_radius_sigma_m", &Vehicle::tire_radius_sigma_m, 0, 0.05},
+    {"tire_crr_sigma", &Vehicle::tire_crr_sigma, 0, 0.5},
 };
 
 inline constexpr NumberField<EngineDescription> kEngine[] = {

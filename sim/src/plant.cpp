@@ -78,7 +78,7 @@ double TruckPlant::vertical_stored_energy_j() const {
 }
 
 double TruckPlant::crr_of_axle(std::size_t axle, const Environment& env) const {
-  double crr = route_.crr_at(state_.x_m - truck_.axles[axle].position_m);
+  double crr = route_.crr_at(state_.x_m - truck_.axles[axle].position_m) * truck_.tire_crr_scale;
   const auto& fx = effects_;
   if (fx.on(Effect::tire_warmup)) {
     crr *= 1.0 + fx.magnitude(Effect::tire_warmup) * std::exp(-(state_.t_s + options_.warm.count()) / 1200.0);

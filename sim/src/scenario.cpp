@@ -146,13 +146,17 @@ void read_stops(const detail::TomlFields& f, const toml::table& root, Scenario& 
   }
 }
 
-// This truck against its vehicle file: cargo, engine friction, accessories and drag area.
+// This truck against its vehicle file: cargo, engine friction, accessories, drag area and tires.
 void read_truck_scales(const detail::TomlFields& f, const toml::table& root, Scenario& s) {
   for (auto [key, value] : {std::pair{"load_scale", &s.load_scale}, std::pair{"engine_friction_scale", &s.engine_friction_scale},
                             std::pair{"accessory_scale", &s.accessory_scale}, std::pair{"cda_scale", &s.cda_scale}}) {
     *value = f.number(root, key, "", *value);
     if (*value < 0.5 || *value > 1.5) f.fail(root.get(key), key, "outside 0.5-1.5");
   }
+  // Wider than the others: truck tires of one size span the EU label's classes A to E, about 4 to
+  // 8 kg/t, a factor of two.
+  s.tire_crr_scale = f.number(root, "tire_crr_scale", "", s.tire_crr_scale);
+  if (s.tire_crr_scale < 0.5 || s.tire_crr_scale > 2.0) f.fail(root.get("tire_crr_scale"), "tire_crr_scale", "outside 0.5-2.0");
   if (auto u = f.text(root, "unsprung", "")) {
     if (*u != "physical" && *u != "report") f.fail(root.get("unsprung"), "unsprung", "expected \"physical\" or \"report\"");
     s.unsprung = *u == "report" ? UnsprungDefinition::report : UnsprungDefinition::physical;
@@ -190,6 +194,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
           "engine_friction_scale",
           "accessory_scale",
           "cda_scale",
+          "tire_crr_scale",
           "accel_rate_hz",
           "accelerometers",
           "gnss_rate_hz",

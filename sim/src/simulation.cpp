@@ -41,6 +41,7 @@ TruckParams scenario_truck(const Scenario& s) {
     a.load_kg *= s.load_scale;
   }
   t.cda_m2 *= s.cda_scale;
+  t.tire_crr_scale = s.tire_crr_scale;
   t.engine.friction_a_pct *= s.engine_friction_scale;
   t.engine.friction_b_pct *= s.engine_friction_scale;
   t.engine.friction_c_pct *= s.engine_friction_scale;
@@ -317,6 +318,10 @@ std::string Simulation::truth_toml() const {
   o << "speed_mps = " << sc.speed_mps << "\n";
   o << "true_mass_kg = " << p_->truck.total_mass_kg() << "\n";
   o << "cda_m2 = " << p_->truck.cda_m2 << "\n";
+  // Only when set, so the truth of a drive on the route's own tires reads as it always did.
+  if (sc.tire_crr_scale != 1.0) {
+    o << "tire_crr_scale = " << sc.tire_crr_scale << "  # cells.csv's crr: the route cell's (the pavement's own) times this\n";
+  }
   o << "driveline_efficiency = " << p_->truck.driveline.efficiency << "\n";
   o << "effective_mass_at_end_kg = " << p_->plant.effective_mass_kg() << "  # in the gear driven at the end\n";
   // Where the fuel went over the run, in J: the truth of the estimator's fuel breakdown.

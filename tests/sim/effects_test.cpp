@@ -14,6 +14,7 @@ struct Observed {
   std::uint64_t digest = 1469598103934665603ULL;  // FNV-1a over everything the sensors wrote
   std::string meta;
   double crr_mean = 0;                                 // truth
+  double roll_force_n = 0;                             // truth: mean rolling force over the run
   double reported_torque = 0;                          // mean EEC1 actual torque, % (as sent)
   double indicated_torque = 0;                         // truth, % of reference
   double engine_rpm = 0, accessory_nm = 0, ac_nm = 0;  // truth at the end
@@ -65,7 +66,7 @@ class TruthSink final : public SampleSink {
   std::size_t torque_n_ = 0, speed_n_ = 0;
 };
 
-Observed observe(std::optional<Effect> effect, double magnitude, double tire_radius_scale = 1.0) {
+Observed observe(std::optional<Effect> effect, double magnitude, double tire_radius_scale = 1.0, double tire_crr_scale = 1.0) {
   static const j1939::Database db = test::core_database();
   Scenario sc = test::builtin("th10-55mph");  // jointed concrete at 31 C: every effect has something to act on
   sc.effects = EffectSet{};
@@ -73,6 +74,7 @@ Observed observe(std::optional<Effect> effect, double magnitude, double tire_rad
   sc.accelerometers = 2;
   if (effect) sc.effects.set(*effect, magnitude);
   sc.tire_radius_scale = tire_radius_scale;
+  sc.tire_crr_scale = tire_crr_scale;
   Simulation sim(sc, 9, db);
   Observed o;
   TruthSink sink(o);
@@ -80,7 +82,8 @@ Observed observe(std::optional<Effect> effect, double magnitude, double tire_rad
   const RunSummary sum = sim.run(sink, &truth);
   o.meta = recording::format_metadata(sim.metadata());
   o.mix(o.meta.data(), o.meta.size());
-  o.crr_mean = sum.ledger.roll_j / (sum.ledger.distance_m * sim.plant().truck().total_mass_kg() * 9.80665);
+  o.roll_force_n = sum.ledger.roll_j / sum.ledger.distance_m;
+  o.crr_mean = o.roll_force_n / (sim.plant().truck().total_mass_kg() * 9.80665);
   o.reported_torque = sink.torque();
   o.indicated_torque = sim.plant().state().indicated_torque_nm / 2386.0 * 100.0;
   o.engine_rpm = sim.plant().state().engine_rpm;
@@ -161,6 +164,17 @@ TEST(Effects, ATruckOnOtherTiresReadsItsSpeedOffAsWornTiresDo) {
   EXPECT_NEAR(larger.reported_speed_kmh, base.reported_speed_kmh, 0.05);
   EXPECT_NEAR(larger.speed_mps, base.speed_mps * 1.01, 0.05);
   EXPECT_NEAR(larger.crr_mean, base.crr_mean, 1e-4);
+}
+
+// Another truck's tires on the same pavement (a fleet's): the rolling force is the pavement's CRR
+// times the tires' scale, which the cruise control pays for at the same speed.
+TEST(Effects, TiresOfHigherRollingResistanceRaiseTheRollingForceByTheirScale) {
+  const Observed base = observe(std::nullopt, 0);
+  const Observed harder = observe(std::nullopt, 0, 1.0, 1.1);
+  EXPECT_NEAR(harder.roll_force_n / base.roll_force_n, 1.1, 1e-3);
+  EXPECT_GT(harder.indicated_torque, base.indicated_torque);
+  EXPECT_NEAR(harder.reported_speed_kmh, base.reported_speed_kmh, 0.05);
+  EXPECT_EQ(harder.meta, base.meta) << "the recording must not tell the tires' scale";
 }
 
 }  // namespace

@@ -59,6 +59,14 @@ TEST_F(ScenarioFile, BadValuesAreRejected) {
   EXPECT_EQ(load("name = \"s\"\nspeed_mph = 30\n").error().field, "route");
   EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\nstart_m = 900\n").error().field, "end_m");
   EXPECT_EQ(load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30 30\n").error().field, "syntax");
+  const auto tires = load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\ntire_crr_scale = 2.5\n");
+  ASSERT_FALSE(tires.ok());
+  EXPECT_EQ(tires.error().field, "tire_crr_scale");
+  EXPECT_EQ(tires.error().line, 4);
+  EXPECT_NE(tires.error().message.find("0.5-2.0"), std::string::npos) << tires.error().to_string();
+  const auto good = load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\ntire_crr_scale = 1.1\n");
+  ASSERT_TRUE(good.ok()) << good.error().to_string();
+  EXPECT_DOUBLE_EQ(good.value().tire_crr_scale, 1.1);
   const std::string city = "name = \"s\"\nroute = \"r\"\nspeed_mph = 30\n[stop_and_go]\n";
   EXPECT_EQ(load(city + "every_m = 500\ncrawl_mph = 40\ncrawl_m = 60\n").error().field, "stop_and_go.crawl_mph");
   EXPECT_EQ(load(city + "every_m = 50\ncrawl_mph = 3\ncrawl_m = 20\n").error().field, "stop_and_go.every_m");

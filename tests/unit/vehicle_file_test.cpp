@@ -93,6 +93,16 @@ TEST_F(VehicleFileErrors, TheTireRadiusSpreadMayBeLeftOutButNotImpossible) {
   EXPECT_EQ(error_of("tire_radius_sigma_m = 0.004", "tire_radius_sigma_m = 0.5").field, "body.tire_radius_sigma_m");
 }
 
+TEST_F(VehicleFileErrors, TheTiresCrrSpreadMayBeLeftOutButNotImpossible) {
+  auto v = load_vehicle_file(variant("tire_crr_sigma = 0.06", ""));
+  ASSERT_TRUE(v.ok()) << v.error().to_string();
+  EXPECT_EQ(v.value().tire_crr_sigma, 0.0);
+  EXPECT_EQ(format_vehicle(v.value()).find("tire_crr_sigma"), std::string::npos);
+  const ParseError e = error_of("tire_crr_sigma = 0.06", "tire_crr_sigma = 0.6");
+  EXPECT_EQ(e.field, "body.tire_crr_sigma");
+  EXPECT_GT(e.line, 0);
+}
+
 TEST_F(VehicleFileErrors, AxlesGoFrontToRear) {
   EXPECT_EQ(error_of("position_m = 16.45", "position_m = 1.0").field, "axle[3].position_m");
 }

@@ -83,9 +83,10 @@ void read_sections(DriveRecord& d, const results::NumberTable& cells) {
 
 }  // namespace
 
-const char* const kResultColumns[] = {"samples",        "crr",          "crr_lo",    "crr_hi",    "crr_sigma",
-                                      "identified",     "speed_mps",    "rolling_l", "dynamic_l", "dynamic_l_per_100km",
-                                      "damper_power_w", "tire_power_w", "reason"};
+const char* const kResultColumns[] = {"samples",        "crr",          "crr_lo",    "crr_hi",      "crr_sigma",
+                                      "identified",     "speed_mps",    "rolling_l", "dynamic_l",   "dynamic_l_per_100km",
+                                      "damper_power_w", "tire_power_w", "crr_tire",  "crr_tire_lo", "crr_tire_hi",
+                                      "reason"};
 const std::size_t kResultColumnCount = std::size(kResultColumns);
 
 std::string direction_of(double start_lat, double start_lon, double end_lat, double end_lon) {

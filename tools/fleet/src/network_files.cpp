@@ -87,6 +87,7 @@ std::string summary_json(const NetworkView& v) {
   return "{\n  \"drives\": " + std::to_string(v.drives) + ",\n  \"trucks\": " + std::to_string(v.trucks.size()) +
          ",\n  \"sections\": " + std::to_string(v.sections.size()) + ",\n  \"cells_used\": " + std::to_string(v.cells_used) +
          ",\n  \"cells_excluded\": {" + excluded + "},\n  \"fitted\": " + (v.fit.fitted ? "true" : "false") +
+         ",\n  \"crr\": " + (v.static_crr ? "\"crr_tire\"" : "\"crr\"") +
          ",\n  \"reference_speed_mps\": " + json_number(v.fit.reference_speed_mps, 3) +
          ",\n  \"fleet_speed_slope\": " + json_number(v.fit.fleet_speed_slope, 7) + ",\n  \"spread\": {\n" +
          component("cell", v.fit.cell) + ",\n" + component("drive", v.fit.drive) + ",\n" + component("truck", v.fit.truck) + ",\n" +

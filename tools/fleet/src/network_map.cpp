@@ -129,7 +129,10 @@ std::string network_map(const NetworkView& v) {
       "table{border-collapse:collapse;font-size:0.9em}td,th{border-bottom:1px solid #ddd;padding:2px 8px;text-align:right}"
       "td:nth-child(-n+4),th:nth-child(-n+4){text-align:left}</style></head><body>\n<h1>Rolling resistance by section</h1>\n";
   page += "<p>" + std::to_string(v.drives) + " drives of " + std::to_string(v.trucks.size()) + " trucks over " +
-          std::to_string(v.sections.size()) + " sections. CRR at " + csv_number(v.fit.reference_speed_mps * 3.6, 0) +
+          std::to_string(v.sections.size()) + " sections. " +
+          (v.static_crr ? "Static CRR (the tires' on the pavement; the dynamic losses are their own column)"
+                        : "CRR of the force balance, dynamic losses included (not every drive measured them)") +
+          " at " + csv_number(v.fit.reference_speed_mps * 3.6, 0) +
           " km/h for the fleet's mean truck; the trucks' own offsets spread by " + csv_number(v.fit.truck.sd, 5) + " [" +
           csv_number(v.fit.truck.sd_lo, 5) + ", " + csv_number(v.fit.truck.sd_hi, 5) + "] (90 %). Hover over a section for its " +
           "interval. Each direction is drawn on its own side of the road. Fuel per year at " +

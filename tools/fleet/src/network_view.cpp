@@ -11,12 +11,15 @@ namespace roadload::fleet {
 namespace {
 
 constexpr double kDaysPerYear = 365;
+constexpr double kZ90 = 1.6448536269514722;  // the results' intervals are 90 %
 
 // One drive's result on one section, as the database holds it.
 struct Cell {
   std::size_t section = 0;
   std::string drive, truck;
   double crr = NAN, crr_sigma = NAN, speed_mps = NAN, rolling_l = NAN, dynamic_l = NAN, dynamic_l_per_100km = NAN;
+  double crr_tire = NAN, crr_tire_sigma = NAN;  // less the dynamic losses, where accelerometers measured them
+  bool no_static = false;                       // a force-balance CRR whose dynamic losses are unknown
   std::string reason;
 };
 
@@ -33,7 +36,8 @@ bool overdispersed(const std::string& part) {
 // consistency, the force balance, the road's placement, no wind) is not: its number may be wrong,
 // not merely wide.
 std::string exclusion(const Cell& c) {
-  if (!(c.crr_sigma > 0) || !std::isfinite(c.speed_mps)) return "no CRR estimate";
+  if (c.no_static) return "no static CRR: too few samples for the cell's spectra";
+  if (!(c.crr_sigma > 0) || !std::isfinite(c.crr) || !std::isfinite(c.speed_mps)) return "no CRR estimate";
   std::string reason = c.reason;
   const std::string prefix = "CRR not identified: ";
   if (reason.rfind(prefix, 0) == 0) reason = reason.substr(prefix.size());
@@ -72,7 +76,8 @@ std::vector<NetworkSection> read_sections(db::Database& db, std::map<std::string
 std::vector<Cell> read_cells(db::Database& db, const std::map<std::string, std::size_t>& index) {
   std::vector<Cell> out;
   for (const db::Row& r : db.query("SELECT x.section_key, x.drive_key, d.vehicle_key, x.crr, x.crr_sigma, x.speed_mps, x.rolling_l, "
-                                   "x.dynamic_l, x.dynamic_l_per_100km, x.reason FROM section_results x JOIN drives d ON "
+                                   "x.dynamic_l, x.dynamic_l_per_100km, x.reason, x.crr_tire, x.crr_tire_lo, x.crr_tire_hi FROM "
+                                   "section_results x JOIN drives d ON "
                                    "d.drive_key = x.drive_key")) {
     Cell c;
     c.section = index.at(db::text(r[0]));
@@ -81,11 +86,32 @@ std::vector<Cell> read_cells(db::Database& db, const std::map<std::string, std::
     c.speed_mps = db::number(r[5]).value_or(NAN), c.rolling_l = db::number(r[6]).value_or(NAN);
     c.dynamic_l = db::number(r[7]).value_or(NAN), c.dynamic_l_per_100km = db::number(r[8]).value_or(NAN);
     c.reason = db::text(r[9]);
+    c.crr_tire = db::number(r[10]).value_or(NAN);
+    c.crr_tire_sigma = (db::number(r[12]).value_or(NAN) - db::number(r[11]).value_or(NAN)) / (2 * kZ90);
     out.push_back(c);
   }
   std::sort(out.begin(), out.end(),
             [](const Cell& a, const Cell& b) { return std::tie(a.section, a.drive) < std::tie(b.section, b.drive); });
   return out;
+}
+
+// The static CRR (the tires' on the pavement, the dynamic losses apart: the network reports those
+// on their own) where the drives measured their dynamic losses on nearly every cell (a cell the
+// drive only touched may have too few samples for its spectra; it is then left out, counted);
+// else the force balance's CRR for all, rather than two quantities mixed on one section.
+bool static_crr(std::vector<Cell>& cells) {
+  constexpr double kNeeded = 0.9;
+  const auto with = std::count_if(cells.begin(), cells.end(), [](const Cell& c) {
+    return std::isfinite(c.crr) && std::isfinite(c.crr_tire) && c.crr_tire_sigma > 0;
+  });
+  const auto all = std::count_if(cells.begin(), cells.end(), [](const Cell& c) { return std::isfinite(c.crr); });
+  if (all == 0 || static_cast<double>(with) < kNeeded * static_cast<double>(all)) return false;
+  for (Cell& c : cells) {
+    if (!std::isfinite(c.crr)) continue;
+    c.no_static = !(std::isfinite(c.crr_tire) && c.crr_tire_sigma > 0);
+    c.crr = c.crr_tire, c.crr_sigma = c.crr_tire_sigma;
+  }
+  return true;
 }
 
 // Indices of `keys` in sorted order: the same numbering from any database.
@@ -163,12 +189,13 @@ NetworkView network_view(const std::string& db_url, const NetworkOptions& option
   v.options = options;
   std::map<std::string, std::size_t> section_index;
   v.sections = read_sections(*db, section_index);
-  const std::vector<Cell> cells = read_cells(*db, section_index);
+  std::vector<Cell> cells = read_cells(*db, section_index);
+  v.static_crr = static_crr(cells);
   std::set<std::string> drive_keys, truck_keys;
   std::vector<const Cell*> used;
   for (const Cell& c : cells) {
     drive_keys.insert(c.drive);
-    if (!std::isfinite(c.crr)) continue;  // a section of the route this drive did not reach
+    if (!std::isfinite(c.crr) && !c.no_static) continue;  // a section of the route this drive did not reach
     const std::string why = exclusion(c);
     if (!why.empty()) {
       ++v.excluded[why], ++v.cells_excluded;

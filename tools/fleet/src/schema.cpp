@@ -35,7 +35,8 @@ CREATE TABLE section_results (
   samples INTEGER, crr DOUBLE PRECISION, crr_lo DOUBLE PRECISION, crr_hi DOUBLE PRECISION,
   crr_sigma DOUBLE PRECISION, identified INTEGER, speed_mps DOUBLE PRECISION, rolling_l DOUBLE PRECISION,
   dynamic_l DOUBLE PRECISION, dynamic_l_per_100km DOUBLE PRECISION, damper_power_w DOUBLE PRECISION,
-  tire_power_w DOUBLE PRECISION, reason TEXT,
+  tire_power_w DOUBLE PRECISION, crr_tire DOUBLE PRECISION, crr_tire_lo DOUBLE PRECISION,
+  crr_tire_hi DOUBLE PRECISION, reason TEXT,
   PRIMARY KEY (drive_key, section_key));
 CREATE INDEX section_results_by_section ON section_results (section_key);
 CREATE INDEX drives_by_vehicle ON drives (vehicle_key);

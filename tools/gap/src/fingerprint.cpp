@@ -97,10 +97,10 @@ void hash_scenario(Hash& h, const sim::Scenario& s) {
     h.text(e.name);
     h.number(s.effects.on(e.id) ? s.effects.magnitude(e.id) : 0.0);
   }
-  for (const double v :
-       {s.start_m, s.end_m, static_cast<double>(s.road_seed), s.weather.wander_mps, static_cast<double>(s.unsprung), s.accel_rate_hz,
-        static_cast<double>(s.accelerometers), s.gnss_rate_hz, s.physics_rate_hz, s.engine_friction_scale, s.accessory_scale,
-        s.cda_scale, s.tire_radius_scale, s.coast ? 1.0 : 0.0, s.stops.every_m, s.stops.crawl_mps, s.stops.crawl_m, s.hold.count()}) {
+  for (const double v : {s.start_m, s.end_m, static_cast<double>(s.road_seed), s.weather.wander_mps, static_cast<double>(s.unsprung),
+                         s.accel_rate_hz, static_cast<double>(s.accelerometers), s.gnss_rate_hz, s.physics_rate_hz,
+                         s.engine_friction_scale, s.accessory_scale, s.cda_scale, s.tire_radius_scale, s.tire_crr_scale,
+                         s.coast ? 1.0 : 0.0, s.stops.every_m, s.stops.crawl_mps, s.stops.crawl_m, s.hold.count()}) {
     h.number(v);
   }
   for (const double v : s.hold_rpm) h.number(v);

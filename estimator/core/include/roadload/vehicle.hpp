@@ -123,6 +123,9 @@ struct Vehicle {
   // How far the tires' rolling radius may be from the axles' tire_radius_m (brand, wear, the size
   // the ECUs were programmed with): the speedometer's error. 0 when not known.
   double tire_radius_sigma_m = 0;
+  // How far one truck's tires' rolling resistance may be from the type's, as a share of it (brand,
+  // model, wear): what sets one truck of a fleet apart on the same pavement. 0 when not known.
+  double tire_crr_sigma = 0;
 
   double mass_kg() const;            // the axles' static loads
   double cg_behind_front_m() const;  // from the axle loads

@@ -57,6 +57,9 @@ struct Scenario {
   // and its tires' rolling radius against the vehicle file's, which the ECUs turn wheel
   // revolutions into speed and distance with
   double tire_radius_scale = 1.0;
+  // and its tires' rolling resistance against the pavement's own CRR, which the route's cells give
+  // (brand, model, wear: truck tires of one size differ by 5-10 %)
+  double tire_crr_scale = 1.0;
   bool coast = false;  // neutral coast-down instead of cruise
   // City traffic: at a stop line every `every_m` the driver slows to `crawl_mps` for `crawl_m`,
   // braking down to it and accelerating at full load back to the set speed. A crawl, not a stop:

@@ -35,6 +35,9 @@ struct TruckParams {
   DrivelineSpec driveline;
   AccessorySpec accessories;
   double cda_m2 = 0;
+  // This truck's tires against the pavement's own CRR (the route's cells): another brand, model
+  // or wear than the tires a route's CRR was measured with.
+  double tire_crr_scale = 1.0;
   double gnss_antenna_behind_front_m = 0;
   double gnss_antenna_height_m = 0;
   std::vector<AccelerometerMount> accelerometers;

@@ -49,6 +49,9 @@ struct NetworkView {
   std::vector<NetworkBand> bands;
   std::vector<NetworkTruck> trucks;
   network::SectionNetworkFit fit;
+  // CRR is the static one (crr_tire: the tires' on the pavement, the dynamic losses apart) when
+  // every drive measured its dynamic losses; else the force balance's, dynamic losses included.
+  bool static_crr = false;
   int drives = 0, cells_used = 0, cells_excluded = 0;
   std::map<std::string, int> excluded;  // why a drive's cell is not evidence, and how often
 };
