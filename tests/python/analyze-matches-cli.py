@@ -102,6 +102,13 @@ expect(roadload.UsageError, 64, "--mass: '5' is not a finite number", lambda: ro
 expect(roadload.UsageError, 64, "unknown keyword 'colour'", lambda: roadload.analyze(rec, colour="red"))
 expect(roadload.InputError, 66, "nosuch.toml", lambda: roadload.analyze(rec, route="nosuch"))
 expect(roadload.InputError, 66, "trip.json", lambda: roadload.read_results(work))
+# collect in-process: the counts of the fleet library, then its errors as the command's.
+db = os.path.join(work, "fleet.db")
+first, second = roadload.collect([os.path.join(work, "cli")], db), roadload.collect(os.path.join(work, "py"), db)
+if (first["drives_added"], first["sections_added"], second["drives_unchanged"]) != (1, len(res.cells), 1):
+    fail.append("collect: %s, then the same drive again %s" % (first, second))
+expect(roadload.InputError, 65, "cells.csv: cannot be opened", lambda: roadload.collect([work], db))
+expect(roadload.OutputError, 73, "cannot open the SQLite database", lambda: roadload.collect([os.path.join(work, "cli")], os.path.join(work, "none", "x", "fleet.db")))
 with open(os.path.join(rec, "can.log")) as f:
     lines = f.readlines()
 lines[9] = "(12.5) can0 0CF00400#00\n"

@@ -12,7 +12,7 @@ from . import _paths
 from ._analysis import Results, analyze, read_results
 from ._collect import collect
 from ._decode import decode
-from ._errors import Error, InputError, OutputError, UsageError
+from ._errors import Error, InputError, OutputError, UsageError, Warning
 
 __version__ = _paths.core().version
 __all__ = [
@@ -21,6 +21,7 @@ __all__ = [
     "OutputError",
     "Results",
     "UsageError",
+    "Warning",
     "analyze",
     "collect",
     "decode",

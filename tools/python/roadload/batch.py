@@ -19,7 +19,7 @@ import sys
 import time
 import warnings
 
-from . import _errors, _manifest
+from . import _analysis, _collect, _errors, _manifest
 
 EXIT_FAILED, EXIT_DATA, EXIT_UNAVAILABLE = 1, 65, 69
 
@@ -27,8 +27,6 @@ EXIT_FAILED, EXIT_DATA, EXIT_UNAVAILABLE = 1, 65, 69
 def analyze_drive(drive, out, db):
     """One task, on a worker: the drive's analysis into out/<name>/, then its results into the
     database. Returns what the client tells of it; a failure raises, with the C++'s message."""
-    from . import _analysis, _collect
-
     start = time.monotonic()
     folder = os.path.join(out, drive.name)
     input_errors = []

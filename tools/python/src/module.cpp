@@ -19,6 +19,7 @@
 #include "status.hpp"
 
 namespace py = pybind11;
+using namespace pybind11::literals;
 
 namespace roadload::python {
 namespace {
@@ -41,15 +42,18 @@ int run_analyze(const std::vector<std::string>& args, bool progress) {
   return analysis::analyze(std::move(o));
 }
 
+// Runs `work` (which returns an exit status) without Python's lock, its messages captured: the
+// C++ touches no Python object, and other threads run meanwhile.
+template <typename Work>
+std::pair<int, std::vector<std::string>> unlocked(Work&& work) {
+  py::gil_scoped_release released;
+  cli::MessageCapture capture;
+  const int status = work();
+  return {status, capture.lines()};
+}
+
 py::tuple analyze(const std::vector<std::string>& args, bool progress) {
-  int status = 0;
-  std::vector<std::string> messages;
-  {
-    py::gil_scoped_release unlocked;
-    cli::MessageCapture capture;
-    status = run_analyze(args, progress);
-    messages = capture.lines();
-  }
+  auto [status, messages] = unlocked([&] { return run_analyze(args, progress); });
   return py::make_tuple(status, messages);
 }
 
@@ -74,29 +78,13 @@ py::array_t<T> array(std::vector<T>&& v) {
 py::tuple decode(const std::vector<std::string>& inputs, const std::vector<std::string>& dbcs,
                  const std::vector<std::uint32_t>& pgns) {
   DecodedColumns c;
-  int status = 0;
-  std::vector<std::string> messages;
-  {
-    py::gil_scoped_release unlocked;
-    cli::MessageCapture capture;
-    status = decode_columns(inputs, dbcs, pgns, c);
-    messages = capture.lines();
-  }
-  py::dict columns;
-  columns["t_ns"] = array(std::move(c.t_ns));
-  columns["iface"] = array(std::move(c.iface));
-  columns["sa"] = array(std::move(c.sa));
-  columns["pgn"] = array(std::move(c.pgn));
-  columns["message"] = array(std::move(c.message));
-  columns["signal"] = array(std::move(c.signal));
-  columns["value"] = array(std::move(c.value));
-  columns["state"] = array(std::move(c.state));
-  py::dict names;
-  names["iface"] = c.iface_names;
-  names["message"] = c.message_names;
-  names["signal"] = c.signal_names;
-  names["unit"] = c.signal_units;
-  names["state"] = c.state_names;
+  auto [status, messages] = unlocked([&] { return decode_columns(inputs, dbcs, pgns, c); });
+  py::dict columns("t_ns"_a = array(std::move(c.t_ns)), "iface"_a = array(std::move(c.iface)), "sa"_a = array(std::move(c.sa)),
+                   "pgn"_a = array(std::move(c.pgn)), "message"_a = array(std::move(c.message)),
+                   "signal"_a = array(std::move(c.signal)), "value"_a = array(std::move(c.value)),
+                   "state"_a = array(std::move(c.state)));
+  py::dict names("iface"_a = c.iface_names, "message"_a = c.message_names, "signal"_a = c.signal_names, "unit"_a = c.signal_units,
+                 "state"_a = c.state_names);
   return py::make_tuple(status, messages, columns, names);
 }
 
@@ -104,27 +92,21 @@ py::tuple decode(const std::vector<std::string>& inputs, const std::vector<std::
 // results folder it cannot read its 65, each with the C++'s message.
 py::tuple collect(const std::vector<std::string>& dirs, const std::string& db_url) {
   fleet::CollectSummary s;
-  int status = cli::kExitOk;
-  std::vector<std::string> messages;
-  {
-    py::gil_scoped_release unlocked;
+  auto [status, messages] = unlocked([&] {
     try {
       s = fleet::collect(dirs, db_url);
+      return cli::kExitOk;
     } catch (const db::DatabaseError& e) {
-      status = cli::kExitCantCreate;
-      messages.emplace_back(e.what());
+      cli::say("collect", e.what());
+      return cli::kExitCantCreate;
     } catch (const std::runtime_error& e) {
-      status = cli::kExitDataErr;
-      messages.emplace_back(e.what());
+      cli::say("collect", e.what());
+      return cli::kExitDataErr;
     }
-  }
-  py::dict summary;
-  summary["drives_added"] = s.drives_added;
-  summary["drives_unchanged"] = s.drives_unchanged;
-  summary["drives_replaced"] = s.drives_replaced;
-  summary["sections_added"] = s.sections_added;
-  summary["section_results"] = s.section_results;
-  summary["schema_from"] = s.schema_from;
+  });
+  py::dict summary("drives_added"_a = s.drives_added, "drives_unchanged"_a = s.drives_unchanged,
+                   "drives_replaced"_a = s.drives_replaced, "sections_added"_a = s.sections_added,
+                   "section_results"_a = s.section_results, "schema_from"_a = s.schema_from);
   return py::make_tuple(status, messages, summary);
 }
 
