@@ -1,9 +1,11 @@
 """A batch's manifest: a CSV with the header recording,vehicle,route (docs/python.md). Each row
 is one drive: its segments joined by "+", an empty vehicle or route for the recording's
 meta.toml or the road its own GNSS traces. An optional column `name` names the drive's results
-folder (default: the first segment's folder name); any further column is an option of
-`roadload analyze` (mass, cda, engine_losses, ...) for that drive, empty where not given."""
+folder (default: the first segment's folder name, with as many of its parents as it takes to
+tell the drives apart); any further column is an option of `roadload analyze` (mass, cda,
+engine_losses, ...) for that drive, empty where not given."""
 
+import collections
 import csv
 import dataclasses
 import os
@@ -37,6 +39,21 @@ def _path(base, value):
     return os.path.normpath(os.path.join(base, value))
 
 
+def _tails(paths):
+    """Each path's last folder name, joined with as many of its parents ("truck7-day2-rec") as
+    it takes to tell it from the others' (fleets name every run's folder alike)."""
+    parts = [p.strip(os.sep).split(os.sep) for p in paths]
+    depth = [1] * len(parts)
+    while True:
+        names = ["-".join(p[-d:]) for p, d in zip(parts, depth)]
+        count = collections.Counter(names)
+        longer = [i for i, n in enumerate(names) if count[n] > 1 and depth[i] < len(parts[i])]
+        if not longer:
+            return names
+        for i in longer:
+            depth[i] += 1
+
+
 def _option(path, line, key, text, flags):
     if key in flags:
         if text.lower() not in ("1", "true", "yes", "0", "false", "no"):
@@ -66,10 +83,6 @@ def read(path):
             segments = [s.strip() for s in (row["recording"] or "").split("+") if s.strip()]
             if not segments:
                 raise _error(path, line, "recording", "empty")
-            name = (row.get("name") or "").strip() or os.path.basename(os.path.normpath(segments[0]))
-            if name in seen:
-                raise _error(path, line, "name", "%r is line %d's drive too: give each a name column" % (name, seen[name]))
-            seen[name] = line
             options = {
                 k: _option(path, line, k, v.strip(), flags)
                 for k, v in row.items()
@@ -77,7 +90,7 @@ def read(path):
             }
             drives.append(
                 Drive(
-                    name,
+                    (row.get("name") or "").strip(),
                     [os.path.normpath(os.path.join(base, s)) for s in segments],
                     _path(base, row["vehicle"].strip()) if (row["vehicle"] or "").strip() else None,
                     _path(base, row["route"].strip()) if (row["route"] or "").strip() else None,
@@ -87,4 +100,14 @@ def read(path):
             )
     if not drives:
         raise _error(path, 1, "", "no drive in the manifest")
+    first = {}
+    for d in drives:
+        line = first.setdefault(tuple(d.recordings), d.line)
+        if line != d.line:
+            raise _error(path, d.line, "recording", "the same drive as line %d's" % line)
+    for d, tail in zip(drives, _tails([d.recordings[0] for d in drives])):
+        d.name = d.name or tail
+        if d.name in seen:
+            raise _error(path, d.line, "name", "%r is line %d's drive too: give each its own name" % (d.name, seen[d.name]))
+        seen[d.name] = d.line
     return drives
