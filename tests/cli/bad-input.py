@@ -51,6 +51,15 @@ def meta(text_from, text_to):
     return apply
 
 
+def as_segment(n):
+    """meta.toml as a logger's segment n of run "ab12" (a simulated run has an id, no segment)."""
+    def apply(rec):
+        path = rec / "meta.toml"
+        t = re.sub(r"(?m)^recording_id = .*\n", "", path.read_text())
+        path.write_text(t.replace("version = 1\n", f'version = 1\nrecording_id = "ab12"\nsegment = {n}\n', 1))
+    return apply
+
+
 def append_meta(text):
     def apply(rec):
         with open(rec / "meta.toml", "a") as f:
@@ -166,11 +175,11 @@ CASES = [
      65, r"notes\.txt:1: timestamp"),
     ("two recordings, not one run's segments", None, ["analyze", "{rec}", "{rec}", "--out", "{work}/out"], 64,
      r"meta\.toml: recording_id: not a segment of a logger's drive"),
-    ("one segment given twice", meta("version = 1\n", "version = 1\nrecording_id = \"ab12\"\nsegment = 1\n"),
+    ("one segment given twice", as_segment(1),
      ["analyze", "{rec}", "{rec}", "--out", "{work}/out"], 64, r"segment: segment 1 given twice"),
-    ("a segment and a log joined", meta("version = 1\n", "version = 1\nrecording_id = \"ab12\"\nsegment = 1\n"),
+    ("a segment and a log joined", as_segment(1),
      ["decode", "{rec}", "{rec}/can.log"], 64, r"can\.log: not a recording folder"),
-    ("segment number 0", meta("version = 1\n", "version = 1\nrecording_id = \"ab12\"\nsegment = 0\n"), ANALYZE, 65,
+    ("segment number 0", as_segment(0), ANALYZE, 65,
      r"meta\.toml:\d+: segment: expected a segment number from 1"),
     ("analyze without --out", None, ["analyze", "{rec}"], 64, r"--out is required"),
     ("analyze --mass not a number", None, ANALYZE + ["--mass", "heavy"], 64, r"--mass: 'heavy' is not a finite number"),

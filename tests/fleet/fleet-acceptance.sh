@@ -38,10 +38,10 @@ grep -q "$drives drives added" "$work/out" || fail "SQLite collect: $(cat "$work
 # Every table, as text in a fixed order, from each database.
 tables="vehicles routes sections drives section_results schema_version"
 sqlite_dump() {
-  for t in $tables; do sqlite3 -csv "$work/fleet.db" "SELECT * FROM $t ORDER BY 1, 2"; done
+  for t in $tables; do echo "== $t" && sqlite3 -csv "$work/fleet.db" "SELECT * FROM $t" | LC_ALL=C sort; done
 }
 pg_dump() {
-  for t in $tables; do psql -q -A -t "$url" -c "SELECT * FROM $t ORDER BY 1, 2"; done
+  for t in $tables; do echo "== $t" && psql -q -A -t "$url" -c "SELECT * FROM $t" | LC_ALL=C sort; done
 }
 sqlite_dump >"$work/sqlite1.txt"
 pg_dump >"$work/pg1.txt"

@@ -99,7 +99,7 @@ int write_results(const AnalyzeOptions& o, const DriveAnalysis& a, const Acceler
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   const VibrationAnalysis* va = acc.vibration ? &*acc.vibration : nullptr;
-  std::string extra = provenance_json(provenance) + ",\n" + results::pavements_json(a.pavements);
+  std::string extra = results::provenance_json(provenance) + ",\n" + results::pavements_json(a.pavements);
   if (spectra) extra += ",\n" + vibration_json(*spectra);
   if (!sensor_warnings.empty()) {
     extra += ",\n  \"accelerometer_warnings\": [";

@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include "roadload/content_hash.hpp"
-#include "roadload/results/json.hpp"
 #include "roadload/utc_text.hpp"
 #include "roadload/vehicle_file.hpp"
 
@@ -13,6 +12,7 @@ namespace roadload::cli {
 Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, const Vehicle& vehicle, const std::string& assumed,
                       const RecordedTrack& track, const AnalyzerConfig& cfg, const RouteIdentity& road) {
   Provenance p;
+  p.program = std::string("roadload ") + ROADLOAD_VERSION;
   p.route_name = road.name;
   p.route_hash = road.hash;
   p.recordings = o.recordings;
@@ -48,22 +48,6 @@ Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, 
     p.torque_scale = ts;
   }
   return p;
-}
-
-std::string provenance_json(const Provenance& p) {
-  using results::json_quote;
-  const auto text = [](const std::string& v) { return v.empty() ? std::string("null") : json_quote(v); };
-  std::string j = "  \"provenance\": {\n    \"program\": " + json_quote(std::string("roadload ") + ROADLOAD_VERSION) +
-                  ",\n    \"recordings\": [";
-  for (std::size_t i = 0; i < p.recordings.size(); ++i) j += (i ? ", " : "") + json_quote(p.recordings[i]);
-  j += "],\n    \"recording_id\": " + text(p.recording_id) + ",\n    \"vehicle\": " + text(p.vehicle) +
-       ",\n    \"vin\": " + text(p.vin) + ",\n    \"vehicle_source\": " + text(p.vehicle_source) +
-       ",\n    \"vehicle_hash\": " + text(p.vehicle_hash) + ",\n    \"route\": " + text(p.route) +
-       ",\n    \"route_name\": " + text(p.route_name) + ",\n    \"route_hash\": " + text(p.route_hash) +
-       ",\n    \"drive_start_utc\": " + text(p.drive_start_utc) + ",\n    \"drive_end_utc\": " + text(p.drive_end_utc) +
-       ",\n    \"engine_losses\": " + text(p.engine_losses) + ",\n    \"cda\": " + text(p.cda) +
-       ",\n    \"torque_scale\": " + text(p.torque_scale) + "\n  }";
-  return j;
 }
 
 }  // namespace roadload::cli
