@@ -46,9 +46,9 @@ int collect(const Options& o) {
   } catch (const db::DatabaseError& e) {
     std::fprintf(stderr, "roadload collect: %s\n", e.what());
     return kExitCantCreate;
-  } catch (const std::runtime_error& e) {
+  } catch (const fleet::ResultsError& e) {
     std::fprintf(stderr, "roadload collect: %s\n", e.what());
-    return kExitDataErr;
+    return exit_for(e.error);
   }
 }
 

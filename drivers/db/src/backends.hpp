@@ -7,7 +7,7 @@
 
 namespace roadload::db {
 
-std::unique_ptr<Database> open_sqlite(const std::string& path);
+std::unique_ptr<Database> open_sqlite(const std::string& path, Open mode);
 std::unique_ptr<Database> open_postgres(const std::string& url);
 
 }  // namespace roadload::db

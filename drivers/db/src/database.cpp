@@ -6,12 +6,12 @@
 
 namespace roadload::db {
 
-std::unique_ptr<Database> open_database(const std::string& url) {
+std::unique_ptr<Database> open_database(const std::string& url, Open mode) {
   if (url.starts_with("postgresql://") || url.starts_with("postgres://")) return open_postgres(url);
-  if (url.starts_with("sqlite://")) return open_sqlite(url.substr(std::string_view("sqlite://").size()));
+  if (url.starts_with("sqlite://")) return open_sqlite(url.substr(std::string_view("sqlite://").size()), mode);
   if (url.find("://") != std::string::npos)
     throw DatabaseError(url + ": not a database URL (postgresql://..., sqlite:///path or a file path)");
-  return open_sqlite(url);
+  return open_sqlite(url, mode);
 }
 
 std::string redacted(const std::string& url) {

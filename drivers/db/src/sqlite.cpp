@@ -10,9 +10,9 @@ namespace {
 
 class Sqlite final : public Database {
  public:
-  explicit Sqlite(const std::string& path) : name_(path) {
-    if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr) !=
-        SQLITE_OK) {
+  Sqlite(const std::string& path, Open mode) : name_(path) {
+    const int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX | (mode == Open::create ? SQLITE_OPEN_CREATE : 0);
+    if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
       const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
       sqlite3_close(db_);
       throw DatabaseError(path + ": cannot open the SQLite database: " + why);
@@ -102,6 +102,6 @@ class Sqlite final : public Database {
 
 }  // namespace
 
-std::unique_ptr<Database> open_sqlite(const std::string& path) { return std::make_unique<Sqlite>(path); }
+std::unique_ptr<Database> open_sqlite(const std::string& path, Open mode) { return std::make_unique<Sqlite>(path, mode); }
 
 }  // namespace roadload::db

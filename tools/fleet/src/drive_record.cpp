@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "roadload/content_hash.hpp"
+#include "roadload/fleet/collect.hpp"
 #include "roadload/results/results_dir.hpp"
 
 namespace roadload::fleet {
@@ -12,7 +13,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 [[noreturn]] void fail(const std::string& file, long line, const std::string& field, const std::string& why) {
-  throw std::runtime_error(ParseError{file, line, field, why}.to_string());
+  throw ResultsError(ParseError{file, line, field, why});
 }
 
 // Provenance's text fields; `required` ones missing mean results no collect can place.
@@ -98,7 +99,7 @@ std::string direction_of(double start_lat, double start_lon, double end_lat, dou
 
 DriveRecord read_drive(const std::string& dir) {
   auto read = results::read_results_dir(dir);
-  if (!read) throw std::runtime_error(read.error().to_string());
+  if (!read) throw ResultsError(read.error());
   const results::ResultsDir& r = read.value();
   DriveRecord d;
   d.dir = dir;

@@ -31,7 +31,7 @@ struct DriveRecord {
 extern const char* const kResultColumns[];
 extern const std::size_t kResultColumnCount;
 
-// Reads `dir` (cells.csv, trip.json). Throws std::runtime_error naming the file and field.
+// Reads `dir` (cells.csv, trip.json). Throws ResultsError naming the file and field.
 DriveRecord read_drive(const std::string& dir);
 
 // The four-point compass direction of travel from a section's ends: NB, EB, SB or WB.

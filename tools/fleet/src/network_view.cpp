@@ -183,7 +183,7 @@ std::vector<NetworkBand> fit_bands(const std::vector<const Cell*>& used, const s
 
 // Long because it is the view's one pass: read, number, choose the evidence, fit, describe.
 NetworkView network_view(const std::string& db_url, const NetworkOptions& options) {
-  const auto db = db::open_database(db_url);
+  const auto db = db::open_database(db_url, db::Open::existing);
   migrate(*db);
   NetworkView v;
   v.options = options;

@@ -40,9 +40,12 @@ class Database {
   virtual void rollback() = 0;
 };
 
+enum class Open { create, existing };
+
 // `url`: postgresql://... or postgres://... (libpq's connection URI), sqlite:///path or a plain
-// path (SQLite; the file is created). Throws DatabaseError when it cannot connect or open.
-std::unique_ptr<Database> open_database(const std::string& url);
+// path (SQLite: created with Open::create; with Open::existing a missing file is an error, not an
+// empty database). Throws DatabaseError when it cannot connect or open.
+std::unique_ptr<Database> open_database(const std::string& url, Open mode = Open::create);
 
 // The URL as it may be printed: the password replaced by "***".
 std::string redacted(const std::string& url);
