@@ -329,14 +329,14 @@ std::optional<ParseError> Daemon::write_results(const std::string& dir) const {
   if (setup_.layout) {
     for (const AxleContact& a : setup_.layout->axles) axles.push_back(a.name);
   }
-  const VibrationAnalysis* va = vibration_ ? &*vibration_ : nullptr;
-  if (auto e = results::write_cells_csv(dir + "/cells.csv", analyzer_->cells(), va ? axles : std::vector<std::string>{}, va,
-                                        results::cell_places(setup_.route, setup_.cells, setup_.surfaces)))
-    return e;
   results::Provenance p = setup_.provenance;
   p.recording_id = recorder_ ? recorder_->recording_id() : setup_.metadata.recording_id;
   if (first_fix_utc_ns_ > 0) p.drive_start_utc = utc_text(first_fix_utc_ns_);
   if (last_fix_utc_ns_ > 0) p.drive_end_utc = utc_text(last_fix_utc_ns_);
+  const VibrationAnalysis* va = vibration_ ? &*vibration_ : nullptr;
+  if (auto e = results::write_cells_csv(dir + "/cells.csv", analyzer_->cells(), va ? axles : std::vector<std::string>{}, va,
+                                        results::cell_places(setup_.route, setup_.cells, setup_.surfaces), &p))
+    return e;
   return results::write_trip_json(dir + "/trip.json", analyzer_->trip(),
                                   "  \"estimate\": \"live filter\",\n" + results::provenance_json(p));
 }

@@ -97,7 +97,8 @@ std::vector<double> NumberTable::values(std::string_view name) const {
 }
 
 Parsed<ResultsDir> read_results_dir(const std::string& dir) {
-  constexpr std::string_view kText[] = {"cell", "surface", "reason"};
+  constexpr std::string_view kText[] = {"cell",         "surface",    "recording_id",    "vin",
+                                        "vehicle_hash", "route_hash", "drive_start_utc", "reason"};
   auto cells = NumberTable::read(dir + "/cells.csv", kText);
   if (!cells) return cells.error();
   if (!cells.value().column("cell") || !cells.value().column("crr")) {

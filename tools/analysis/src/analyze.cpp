@@ -107,7 +107,7 @@ int write_results(const AnalyzeOptions& o, const DriveAnalysis& a, const Acceler
     extra += "]";
   }
   for (auto err :
-       {results::write_cells_csv(o.out + "/cells.csv", a.cells, acc.axle_names, va, places),
+       {results::write_cells_csv(o.out + "/cells.csv", a.cells, acc.axle_names, va, places, &provenance),
         results::write_pavements_csv(o.out + "/pavements.csv", a.pavements),
         results::write_trip_json(o.out + "/trip.json", a.trip, extra), va ? write_psd_files(o.out, *va, groups) : std::nullopt}) {
     if (err) {

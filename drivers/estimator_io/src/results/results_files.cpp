@@ -28,7 +28,7 @@ std::vector<CellPlace> cell_places(const RouteGeometry& route, const std::vector
 
 std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells,
                                           const std::vector<std::string>& axle_names, const VibrationAnalysis* vibration,
-                                          const std::vector<CellPlace>& places) {
+                                          const std::vector<CellPlace>& places, const Provenance* provenance) {
   auto csv = recording::OutputFile::create(path);
   if (!csv) return csv.error();
   std::string header = "cell,start_m,end_m,samples,crr,crr_lo,crr_hi,crr_sigma,identified,speed_mps,roll_force_n,fuel_l";
@@ -38,7 +38,11 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
     header += ",damper_power_w,tire_power_w,tire_eq27_power_w,dynamic_energy_j,dynamic_l,dynamic_l_per_100km";
     header += ",crr_tire,crr_tire_lo,crr_tire_hi";
   }
-  csv.value().write(header + ",surface,start_lat_deg,start_lon_deg,end_lat_deg,end_lon_deg,reason\n");
+  csv.value().write(header +
+                    ",surface,start_lat_deg,start_lon_deg,end_lat_deg,end_lon_deg,recording_id,vin,vehicle_hash,route_hash,"
+                    "drive_start_utc,reason\n");
+  const Provenance none;
+  const Provenance& from = provenance ? *provenance : none;
   recording::LineBuilder line;
   const double nan = std::nan("");
   for (std::size_t row = 0; row < cells.size(); ++row) {
@@ -77,6 +81,8 @@ std::optional<ParseError> write_cells_csv(const std::string& path, const std::ve
     line.field(place ? place->surface : std::string()).sep();
     line.num(place ? place->start.lat_deg : nan, 7).sep().num(place ? place->start.lon_deg : nan, 7).sep();
     line.num(place ? place->end.lat_deg : nan, 7).sep().num(place ? place->end.lon_deg : nan, 7).sep();
+    for (const std::string* f : {&from.recording_id, &from.vin, &from.vehicle_hash, &from.route_hash, &from.drive_start_utc})
+      line.field(*f).sep();
     line.field(c.reason);
     csv.value().write(line.finish());
   }

@@ -7,6 +7,7 @@
 
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/parse_error.hpp"
+#include "roadload/results/provenance.hpp"
 #include "roadload/route_geometry.hpp"
 #include "roadload/vibration.hpp"
 
@@ -26,9 +27,12 @@ std::vector<CellPlace> cell_places(const RouteGeometry& route, const std::vector
 // names them) the mean and standard deviation of the contact force and the standard deviation of its dynamic part. With `vibration`,
 // each cell also gets its dynamic rolling resistance: damper_power_w and tire_power_w (named as the simulator's truth),
 // tire_eq27_power_w, and dynamic_energy_j, dynamic_l, dynamic_l_per_100km of the dampers and tires together.
+// Each row ends with the drive's run, truck and road (recording_id, vin, vehicle_hash, route_hash,
+// drive_start_utc, from `provenance` when given), so rows of many drives concatenated still say
+// whose they are, then the reason.
 std::optional<ParseError> write_cells_csv(const std::string& path, const std::vector<CellResult>& cells,
                                           const std::vector<std::string>& axle_names, const VibrationAnalysis* vibration,
-                                          const std::vector<CellPlace>& places);
+                                          const std::vector<CellPlace>& places, const Provenance* provenance = nullptr);
 // One row per pavement type: pavement,cells,length_m,samples,crr,crr_lo,crr_hi,crr_sigma,
 // identified,speed_mps,rolling_l,distance_m,rolling_l_per_100km,reason.
 std::optional<ParseError> write_pavements_csv(const std::string& path, const std::vector<PavementResult>& pavements);
