@@ -50,7 +50,7 @@ int network(Options o) {
     std::printf("network: %d drives, %zu trucks, %zu sections; %d cells used, %d excluded; truck spread %.5f [%.5f, %.5f]%s\n",
                 view.drives, view.trucks.size(), view.sections.size(), view.cells_used, view.cells_excluded, view.fit.truck.sd,
                 view.fit.truck.sd_lo, view.fit.truck.sd_hi, view.fit.fitted ? "" : " (the model did not converge)");
-    return view.cells_used > 0 ? kExitOk : kExitDataErr;
+    return view.cells_used > 0 && view.fit.fitted ? kExitOk : kExitDataErr;
   } catch (const db::DatabaseError& e) {
     std::fprintf(stderr, "roadload network: %s\n", e.what());
     return kExitNoInput;

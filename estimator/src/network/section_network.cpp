@@ -72,8 +72,10 @@ SectionNetworkFit fit_section_network(const std::vector<SectionObservation>& obs
   }
   const MixedModelFit fit = fit_reml(m);
   out.evaluations = fit.evaluations;
-  if (!std::isfinite(fit.fixed(0))) return out;
-  out.fitted = fit.converged;
+  // A fit whose simplex did not settle gives no section an estimate: numbers from it would look
+  // like answers. network.json then says "fitted": false.
+  out.fitted = fit.converged && std::isfinite(fit.fixed(0));
+  if (!out.fitted) return out;
   for (std::size_t s = 0; s < sections; ++s) {
     if (column[s] == sections) continue;
     const auto k = static_cast<Eigen::Index>(column[s]);
