@@ -156,6 +156,7 @@ std::optional<RecorderConfig> recorder_config(const RecordingConfig& r) {
   rc.segment_max = std::chrono::round<Nanoseconds>(r.segment_max);
   rc.segment_max_bytes = static_cast<std::uint64_t>(r.segment_max_mib * 1048576.0);
   rc.quota_bytes = static_cast<std::uint64_t>(r.quota_mib * 1048576.0);
+  rc.compression_level = r.compression_level;
   return rc;
 }
 

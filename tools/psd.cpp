@@ -162,7 +162,9 @@ int psd(const Options& o) {
     const std::string_view cols[] = {"t_ns", "sensor", "x_mps2", "y_mps2", "z_mps2"};
     // A drive's segments continue one another: each one's samples go on where the last left off.
     for (std::size_t i = 0; i < o.inputs.size() && rc == kExitOk; ++i)
-      rc = feed(o.inputs[i] + "/" + recording::kAccelFile, cols, channels);
+      rc = feed(
+          recording::find_stream(o.inputs[i], recording::kAccelFile).value_or(o.inputs[i] + "/" + recording::kAccelFile).string(),
+          cols, channels);
   }
   if (rc != kExitOk) return rc;
   for (const Channel& c : channels) {

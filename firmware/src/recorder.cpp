@@ -91,6 +91,8 @@ std::string new_recording_id() {
 
 Recorder::Recorder(RecorderConfig config, recording::Metadata meta, std::vector<std::string> interfaces)
     : config_(std::move(config)), meta_(std::move(meta)), interfaces_(std::move(interfaces)) {
+  if (config_.compression_level > 0)
+    compressor_ = std::make_unique<FrameCompressor>(config_.compression_level, AppendFile::kBufferBytes);
   meta_.recording_id = new_recording_id();
   meta_.segment = 0;
   scan_data_dir();
@@ -154,8 +156,9 @@ void Recorder::append(Stream& s, std::string_view line) {
     return;
   }
   if (!s.file.is_open()) {
-    if (!s.file.open(folder_ + "/" + s.name)) {
-      note_error(folder_ + "/" + s.name, s.file.last_errno());
+    const std::string path = folder_ + "/" + s.name + (compressor_ ? recording::kCompressedSuffix : "");
+    if (!s.file.open(path, compressor_.get())) {
+      note_error(path, s.file.last_errno());
       ++status_.lines_lost;
       return;
     }

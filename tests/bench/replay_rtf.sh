@@ -59,6 +59,7 @@ fi
 read -r start sent done_at <"$work/times"
 frames=$(wc -l <"$work/sim/can.log")
 segs=("$work"/rec/*/)
+"$here/../support/unpack-streams" "${segs[@]}"
 recorded=$(cat "$work"/rec/*/can.log | wc -l)
 lost=$(tail -n 1 "$work/status.jsonl" | grep -o '"kind":"can",[^}]*' | grep -o '"dropped":[0-9]*,"ring_dropped":[0-9]*' || true)
 equal="no ($recorded of $frames recorded; $lost)"

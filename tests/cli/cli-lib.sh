@@ -5,6 +5,8 @@ cli_name=${1:?cli-lib.sh needs a test name}
 work=$(mktemp -d "${TMPDIR:-/tmp}/$cli_name.XXXXXX")
 trap 'rm -rf -- "$work"' EXIT
 fail() { echo "$cli_name: FAIL: $*" >&2; exit 1; }
+# tests/support: helpers the CLI, UML and benchmark scripts share.
+support=$(cd "$(dirname "${BASH_SOURCE[0]}")/../support" && pwd)
 # Each CSV file (or every *.csv of a folder) reads back with Python's csv module and pandas.
 # $work/out and $work/err stay the last command's.
 expect_csv() {

@@ -44,6 +44,7 @@ expect_status 0 "$roadloadd" --config "$work/fast-status.toml" --replay "$work/s
   --route mnroad-mainline-westbound --data-dir "$work/rec" --status "$work/status.log" --status-json "$work/status.jsonl"
 seg=("$work"/rec/*/)
 ((${#seg[@]} == 1)) || fail "expected one segment, got ${#seg[@]}"
+"$support/unpack-streams" "${seg[@]}" || fail "the daemon's streams are not zstd frames zstd reads back"
 cmp -s <(cut -d' ' -f3 "$work/sim/can.log") <(cut -d' ' -f3 "${seg[0]}can.log") || fail "recorded CAN differs from the replayed"
 cmp -s <(cut -d, -f2- "$work/sim/accel.csv") <(cut -d, -f2- "${seg[0]}accel.csv") || fail "recorded accelerometers differ"
 grep -Eq '\| speed 13\.[0-9]+ m/s cell [^ ]+ crr 0\.[0-9]{5} \[0\.[0-9]{5} 0\.[0-9]{5}\]' "$work/status.log" ||
@@ -80,9 +81,10 @@ wait "$pid" || rc=$?
 grep -q '^roadloadd stopped: [0-9]* lines recorded, 0 lost' "$work/s.log" || fail "no clean stop line: $(tail -n 1 "$work/s.log")"
 segs=("$work"/rec2/*/)
 ((${#segs[@]} == 2)) || fail "SIGUSR1 should start a second segment; found ${#segs[@]}"
-frames=$(cat "$work"/rec2/*/can.log | wc -l)
+# Read compressed, as roadloadd wrote them: zstdcat gives the text, the commands read the frames.
+frames=$(zstdcat "$work"/rec2/*/can.log.zst | wc -l)
 ((frames > 0)) || fail "nothing recorded across the signals"
-cmp -s <(cat "$work"/rec2/*/can.log | cut -d' ' -f3) <(head -n "$frames" "$work/sim/can.log" | cut -d' ' -f3) ||
+cmp -s <(zstdcat "$work"/rec2/*/can.log.zst | cut -d' ' -f3) <(head -n "$frames" "$work/sim/can.log" | cut -d' ' -f3) ||
   fail "the two segments together are not the drive's first $frames frames"
 # Given both segments, in either order, the commands read them as one drive: decode prints every
 # frame once, in order; a recording of another run, or one segment twice, is refused (64).

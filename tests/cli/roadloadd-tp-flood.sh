@@ -47,6 +47,7 @@ grep -q "WARN SECURITY j1939: transport-protocol flood, [0-9]* orphan or unfinis
   fail "no flood warning: $(grep -m3 WARN "$work/flood.log")"
 grep -q "SECURITY" "$work/drive.log" && fail "the drive alone was called a flood: $(grep -m1 SECURITY "$work/drive.log")"
 seg=("$work"/rec-flood/*/)
+"$support/unpack-streams" "${seg[@]}" || fail "the flood's recording does not decompress"
 cmp -s <(cut -d' ' -f3 "$work/flood/can.log") <(cut -d' ' -f3 "${seg[0]}can.log") || fail "the flood's frames were not all recorded"
 "$roadloadd" --config "$work/status.toml" --replay "$work/flood" --replay-can --replay-rate 10 --exit-when-done \
   --data-dir "$work/rec-only" --status "$work/only.log" --status-json '' >/dev/null 2>"$work/err" ||

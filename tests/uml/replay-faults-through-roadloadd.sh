@@ -44,6 +44,7 @@ note "replay: $(grep 'faults:' "$work/replay.err")"
 segs=("$work"/rec/*/)
 ((${#segs[@]} == 1)) || die "expected one recording segment, found ${#segs[@]}"
 rec=${segs[0]}
+"$here/../support/unpack-streams" "$rec" || die "the daemon's streams are not zstd frames zstd reads back"
 log=$work/status.log
 warned() { grep -q -- "WARN $1" "$log" || die "$2: the status log never says '$1'"; }
 

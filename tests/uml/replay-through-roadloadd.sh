@@ -46,6 +46,7 @@ rc=0
 # (a) The recording, stream by stream.
 segs=("$work"/rec/*/)
 ((${#segs[@]} == 1)) || die "expected one recording segment, found ${#segs[@]}"
+"$here/../support/unpack-streams" "${segs[@]}" || die "the daemon's streams are not zstd frames zstd reads back"
 sent=$(wc -l <"$work/sim/can.log")
 cmp -s <(cut -d' ' -f3 "$work/sim/can.log") <(cut -d' ' -f3 "${segs[0]}can.log") ||
   die "the daemon's can.log ($(wc -l <"${segs[0]}can.log") frames) differs from the $sent frames replayed"

@@ -74,13 +74,14 @@ gen_frames() {
   }'
 }
 
-# Every frame the daemon recorded so far, across its segments, in order.
+# Every frame the daemon recorded so far, across its segments, in order: its can.log.zst, each
+# frame of which zstd reads back (a frame cut short fails the test), or a plain can.log.
 recorded_frames() {
   local dir=$1
   shopt -s nullglob
-  local logs=("$dir"/rec/*/can.log)
+  local logs=("$dir"/rec/*/can.log*)
   shopt -u nullglob
-  ((${#logs[@]})) && cat "${logs[@]}" | frames_of
+  ((${#logs[@]})) && { zstd -dcqf "${logs[@]}" || die "a recorded can.log does not decompress: ${logs[*]}"; } | frames_of
   return 0
 }
 

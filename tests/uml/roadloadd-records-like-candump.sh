@@ -46,11 +46,11 @@ wait_status_items "$work" "$frames"
 stop_and_wait "$dump"
 stop_daemon || die "roadloadd exited with status $? ($(cat "$work/daemon.err"))"
 
-recorded=("$work"/rec/*/can.log)
-[[ -f ${recorded[0]} ]] || die "roadloadd wrote no can.log"
-got=$(cat "${recorded[@]}" | wc -l)
+recorded=("$work"/rec/*/can.log.zst)
+[[ -f ${recorded[0]} ]] || die "roadloadd wrote no can.log.zst"
+got=$(zstdcat "${recorded[@]}" | wc -l)
 seen=$(wc -l <"$work/candump.log")
-if ! cmp -s <(frames_of "$work/sent.log") <(cat "${recorded[@]}" | frames_of); then
+if ! cmp -s <(frames_of "$work/sent.log") <(zstdcat "${recorded[@]}" | frames_of); then
   die "roadloadd recorded $got frames that differ from the $frames sent (candump has $seen);" \
     "it counted $(last_status_field "$work" items) read, $(last_status_field "$work" dropped) dropped by its socket," \
     "$(last_status_field "$work" ring_dropped) by its ring, $(last_status_field "$work" lines_lost) lost on disk;" \
@@ -59,12 +59,12 @@ fi
 # candump reads one frame per system call and falls behind under UML; what it did record must be
 # in the daemon's recording, in the same order.
 awk 'NR == FNR { c[++n] = $0; next } j < n && $0 == c[j + 1] { j++ } END { exit !(j == n) }' \
-  <(frames_of "$work/candump.log") <(cat "${recorded[@]}" | frames_of) ||
+  <(frames_of "$work/candump.log") <(zstdcat "${recorded[@]}" | frames_of) ||
   die "candump recorded frames that roadloadd did not, or in another order"
 dropped=$(last_status_field "$work" dropped)
 ring=$(last_status_field "$work" ring_dropped)
 lost=$(last_status_field "$work" lines_lost)
 ((dropped == 0 && ring == 0 && lost == 0)) || die "frames all there but drops reported: kernel $dropped, ring $ring, disk $lost"
-rate=$(awk 'NR==1{gsub(/[()]/,"",$1); a=$1} {gsub(/[()]/,"",$1); b=$1} END{printf "%.0f", (NR-1)/(b-a)}' "${recorded[0]}")
+rate=$(awk 'NR==1{gsub(/[()]/,"",$1); a=$1} {gsub(/[()]/,"",$1); b=$1} END{printf "%.0f", (NR-1)/(b-a)}' <(zstdcat "${recorded[0]}"))
 note "PASS: all $got frames recorded in order, no drops; candump caught $seen of them"
 note "rate: $rate frames/s = $((rate * 100 / 3817)) % of a 500 kbit/s bus's J1939 peak (goal $goal_fps = 1000 %)"

@@ -44,6 +44,18 @@ TEST(DaemonConfig, OutOfRangeValueNamesTheField) {
   EXPECT_EQ(q.error().field, "recording.quota_mib");
 }
 
+TEST(DaemonConfig, CompressionLevelIsAWholeNumberUpTo19) {
+  auto plain = load_config(write_temp("[recording]\ncompression_level = 0\n"));
+  ASSERT_TRUE(plain.ok()) << plain.error().to_string();
+  EXPECT_EQ(plain.value().recording.compression_level, 0);
+  for (const char* text :
+       {"[recording]\ncompression_level = 20\n", "[recording]\ncompression_level = 2.5\n", "[recording]\ncompression_level = -1\n"}) {
+    auto c = load_config(write_temp(text));
+    ASSERT_FALSE(c.ok()) << text;
+    EXPECT_EQ(c.error().field, "recording.compression_level") << c.error().to_string();
+  }
+}
+
 TEST(DaemonConfig, TheTrucksCalibrationIsReadAndCheckedForRange) {
   auto c = load_config(
       write_temp("[estimator]\nengine_losses = \"/etc/roadload/losses.csv\"\ncda_m2 = 6.22\ncda_sigma_m2 = 0.03\n"

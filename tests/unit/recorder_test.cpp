@@ -55,10 +55,26 @@ void record_drive(Recorder& rec) {
   }
 }
 
-TEST(Recorder, SegmentsRotateBySizeAndReadBackWhole) {
-  RecorderConfig c;
-  c.data_dir = fresh_dir("recorder-rotate");
-  c.segment_max_bytes = 200'000;
+// Each test runs on plain text and on zstd frames; sizes that must be reached are smaller for the
+// frames, which these counting payloads shrink about tenfold.
+class RecorderStreams : public testing::TestWithParam<int> {
+ protected:
+  RecorderConfig config(const char* name) const {
+    RecorderConfig c;
+    c.data_dir = fresh_dir(name);
+    c.compression_level = GetParam();
+    return c;
+  }
+  std::uint64_t bytes(std::uint64_t plain) const { return GetParam() == 0 ? plain : plain / 4; }
+};
+
+INSTANTIATE_TEST_SUITE_P(PlainAndZstd, RecorderStreams, testing::Values(0, 3), [](const testing::TestParamInfo<int>& i) {
+  return i.param == 0 ? std::string("Plain") : std::string("Zstd");
+});
+
+TEST_P(RecorderStreams, SegmentsRotateBySizeAndReadBackWhole) {
+  RecorderConfig c = config("recorder-rotate");
+  c.segment_max_bytes = bytes(200'000);
   Recorder rec(c, recording::Metadata{}, {"can0"});
   record_drive(rec);
   rec.end_segment();
@@ -67,6 +83,7 @@ TEST(Recorder, SegmentsRotateBySizeAndReadBackWhole) {
   std::size_t total = 0;
   for (const auto& s : segs) {
     EXPECT_TRUE(fs::exists(s / "meta.toml"));
+    EXPECT_TRUE(fs::exists(s / (GetParam() == 0 ? "can.log" : "can.log.zst"))) << s;
     total += frames_in(s);
   }
   EXPECT_EQ(total, 20'000u);
@@ -76,10 +93,9 @@ TEST(Recorder, SegmentsRotateBySizeAndReadBackWhole) {
 
 // The segments of one run carry its id and their places in it, so they join back into the drive:
 // given in reverse, every frame comes back once and in order.
-TEST(Recorder, SegmentsOfOneRunJoinIntoTheWholeDrive) {
-  RecorderConfig c;
-  c.data_dir = fresh_dir("recorder-join");
-  c.segment_max_bytes = 200'000;
+TEST_P(RecorderStreams, SegmentsOfOneRunJoinIntoTheWholeDrive) {
+  RecorderConfig c = config("recorder-join");
+  c.segment_max_bytes = bytes(200'000);
   {
     Recorder rec(c, recording::Metadata{}, {"can0"});
     record_drive(rec);
@@ -116,11 +132,10 @@ TEST(Recorder, SegmentsOfOneRunJoinIntoTheWholeDrive) {
   EXPECT_EQ(refused.error().field, "recording_id") << refused.error().to_string();
 }
 
-TEST(Recorder, QuotaDeletesTheOldestSegments) {
-  RecorderConfig c;
-  c.data_dir = fresh_dir("recorder-quota");
-  c.segment_max_bytes = 100'000;
-  c.quota_bytes = 300'000;
+TEST_P(RecorderStreams, QuotaDeletesTheOldestSegments) {
+  RecorderConfig c = config("recorder-quota");
+  c.segment_max_bytes = bytes(100'000);
+  c.quota_bytes = bytes(300'000);
   Recorder rec(c, recording::Metadata{}, {"can0"});
   CaptureTime now = capture_time_from_ns(0);
   for (std::int64_t i = 0; i < 40'000; ++i) {
@@ -129,10 +144,10 @@ TEST(Recorder, QuotaDeletesTheOldestSegments) {
   }
   rec.end_segment();
   rec.tick(now);
-  std::uint64_t bytes = 0;
+  std::uint64_t in_dir = 0;
   for (const auto& e : fs::recursive_directory_iterator(c.data_dir))
-    if (e.is_regular_file()) bytes += e.file_size();
-  EXPECT_LE(bytes, c.quota_bytes + 50'000);  // plus the new segment's meta.toml and headers
+    if (e.is_regular_file()) in_dir += e.file_size();
+  EXPECT_LE(in_dir, c.quota_bytes + 50'000);  // plus the new segment's meta.toml and headers
   EXPECT_GT(rec.status().segments_deleted, 0u);
   // The newest segments stay: the last frame written is on disk.
   const auto segs = segments(c.data_dir);
@@ -156,16 +171,15 @@ class FileSizeLimit {
   rlimit old_{};
 };
 
-TEST(Recorder, WriteFailureIsReportedAndEveryLineAccountedFor) {
-  RecorderConfig c;
-  c.data_dir = fresh_dir("recorder-full");
+TEST_P(RecorderStreams, WriteFailureIsReportedAndEveryLineAccountedFor) {
+  RecorderConfig c = config("recorder-full");
   Recorder rec(c, recording::Metadata{}, {"can0"});
   CaptureTime now = capture_time_from_ns(0);
   rec.tick(now);
   constexpr std::int64_t kFrames = 30'000;  // 1.5 MB of lines: more than the buffer holds
   std::int64_t i = 0;
   {
-    const FileSizeLimit limit(100'000);
+    const FileSizeLimit limit(bytes(100'000) / (GetParam() == 0 ? 1 : 4));
     for (; i < kFrames / 2; ++i) {
       rec.write(frame(i));
       if (i % 100 == 0) rec.tick(now += Nanoseconds{25'000'000});

@@ -190,7 +190,11 @@ void ErrorLog::add(ParseError e) {
 
 std::uint64_t ErrorLog::count_in(std::string_view name) const {
   std::uint64_t n = 0;
-  for (const auto& [file, count] : by_file_) n += std::string_view(file).ends_with(name) ? count : 0;
+  for (const auto& [file, count] : by_file_) {
+    std::string_view f(file);
+    if (f.ends_with(kCompressedSuffix)) f.remove_suffix(std::string_view(kCompressedSuffix).size());
+    n += f.ends_with(name) ? count : 0;
+  }
   return n;
 }
 
@@ -211,8 +215,17 @@ const char* stream_file(unsigned bit) {
   }
 }
 
+std::optional<fs::path> find_stream(const fs::path& dir, const char* name) {
+  std::error_code ec;
+  fs::path p = dir / name;
+  if (fs::exists(p, ec)) return p;
+  p += kCompressedSuffix;
+  if (fs::exists(p, ec)) return p;
+  return std::nullopt;
+}
+
 Parsed<std::unique_ptr<Stream>> open_stream(unsigned bit, const std::filesystem::path& dir, const InterfaceTable* interfaces) {
-  const fs::path p = dir / stream_file(bit);
+  const fs::path p = find_stream(dir, stream_file(bit)).value_or(dir / stream_file(bit));
   switch (bit) {
     case kCanStream: {
       auto can = CandumpStream::open(p.string(), interfaces);
@@ -288,7 +301,7 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned 
     r.has_meta_ = true;
   }
   for (unsigned bit : kStreamBits) {
-    if ((streams & bit) == 0 || !fs::exists(dir / stream_file(bit))) continue;
+    if ((streams & bit) == 0 || !find_stream(dir, stream_file(bit))) continue;
     auto s = open_stream(bit, dir, nullptr);
     if (!s) return s.error();
     r.streams_.push_back(std::move(s.value()));

@@ -44,7 +44,7 @@ class ChainStream final : public Stream {
     current_.reset();
     while (next_folder_ < folders_.size()) {
       const fs::path& dir = folders_[next_folder_++];
-      if (!fs::exists(dir / stream_file(bit_))) continue;
+      if (!find_stream(dir, stream_file(bit_))) continue;
       auto s = open_stream(bit_, dir, carried_.get());
       if (!s) {
         errors.add(s.error());
@@ -59,7 +59,8 @@ class ChainStream final : public Stream {
 
   void check_order(CaptureTime t, ErrorLog& errors) {
     if (segment_start_ && seen_ && t < last_) {
-      errors.add(ParseError{(folders_[next_folder_ - 1] / stream_file(bit_)).string(), 0, "t",
+      const fs::path& dir = folders_[next_folder_ - 1];
+      errors.add(ParseError{find_stream(dir, stream_file(bit_)).value_or(dir / stream_file(bit_)).string(), 0, "t",
                             "this segment starts before the previous one ends: not the next part of the drive"});
     }
     segment_start_ = false;
@@ -141,7 +142,8 @@ Parsed<RecordingReader> RecordingReader::open_drive(std::span<const std::string>
   const std::vector<fs::path> folders(segments.begin(), segments.end());
   for (unsigned bit : kStreamBits) {
     if ((streams & bit) == 0) continue;
-    const bool any = std::any_of(folders.begin(), folders.end(), [&](const fs::path& d) { return fs::exists(d / stream_file(bit)); });
+    const bool any = std::any_of(folders.begin(), folders.end(),
+                                 [&](const fs::path& d) { return find_stream(d, stream_file(bit)).has_value(); });
     if (any) r.streams_.push_back(std::make_unique<ChainStream>(bit, folders));
   }
   if (r.streams_.empty()) return ParseError{segments[0], 0, "", "not a recording: no can.log or sensor CSV in any segment"};

@@ -1,6 +1,9 @@
 #pragma once
 // Reads a text file line by line through a fixed buffer: memory stays bounded whatever the file
-// size, and every line comes with its number for error messages.
+// size, and every line comes with its number for error messages. A file that starts with zstd's
+// magic number (roadloadd's streams, `zstd` output) is decompressed on the way, frame after frame;
+// a stream that ends inside a frame (the recorder stopped while writing it) or a damaged frame is
+// an error() after the lines before it.
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -35,12 +38,19 @@ class LineReader {
   struct FileCloser {
     void operator()(std::FILE* f) const;
   };
+  struct Zstd;
+  struct ZstdDeleter {
+    void operator()(Zstd* z) const;
+  };
   LineReader(std::string path, std::FILE* f, std::size_t buffer_bytes);
   bool refill();
+  bool refill_zstd();
+  void detect_compression();
   std::optional<std::string_view> skip_overlong();
 
   std::string path_;
   std::unique_ptr<std::FILE, FileCloser> file_;
+  std::unique_ptr<Zstd, ZstdDeleter> zstd_;  // null for plain text
   std::vector<char> buf_;
   std::size_t begin_ = 0;
   std::size_t end_ = 0;

@@ -21,6 +21,8 @@ inline constexpr const char* kAccelFile = "accel.csv";
 inline constexpr const char* kGnssFile = "gnss.csv";
 inline constexpr const char* kWeatherFile = "weather.csv";
 inline constexpr const char* kMetaFile = "meta.toml";
+// A stream may be stored compressed, as roadloadd writes it: its name and this suffix.
+inline constexpr const char* kCompressedSuffix = ".zst";
 
 struct SensorInfo {
   std::int64_t id = 0;   // the `sensor` column of accel.csv

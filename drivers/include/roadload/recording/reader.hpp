@@ -30,7 +30,8 @@ class ErrorLog {
   void add(ParseError e);
   std::uint64_t count() const { return count_; }
   const std::vector<ParseError>& kept() const { return kept_; }
-  // The errors in files whose path ends with `name` (a stream: "can.log", "accel.csv", ...).
+  // The errors in files whose path ends with `name` (a stream: "can.log", "accel.csv", ...), or with
+  // `name` compressed.
   std::uint64_t count_in(std::string_view name) const;
 
  private:
@@ -91,8 +92,12 @@ CaptureTime stamp_of(const Record& r);
 Parsed<Metadata> read_metadata(const std::filesystem::path& dir);
 
 inline constexpr unsigned kStreamBits[] = {kCanStream, kAccelStream, kGnssStream, kWeatherStream};
-// A stream's file in a recording folder, and the stream read from it.
+// A stream's file name in a recording folder, and the stream read from it.
 const char* stream_file(unsigned bit);
+// The file that holds stream file `name` in `dir`: `name` itself or, compressed, `name.zst`; nullopt
+// when neither exists. A plain file is read first when a folder holds both (a copy decompressed
+// beside its original).
+std::optional<std::filesystem::path> find_stream(const std::filesystem::path& dir, const char* name);
 Parsed<std::unique_ptr<Stream>> open_stream(unsigned bit, const std::filesystem::path& dir, const InterfaceTable* interfaces);
 
 // What a command given several recordings reads: one path is itself; several must be segments of

@@ -4,10 +4,17 @@
 // error) truncates the file back to its last whole line, keeps the unwritten lines in the buffer
 // for the next attempt and refuses new lines only once the buffer is full: each refused line is
 // counted, nothing is lost silently, and the file always reads back line by line.
+//
+// Given a FrameCompressor, the file is a sequence of independent zstd frames instead (`zstdcat`
+// gives back the text): a frame is closed and written at each sync() and whenever the buffer
+// fills, so a crash or power cut loses at most the open frame; flush() leaves the lines in the
+// buffer. A frame that fails to write is cut from the file and compressed again at the next try.
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
+
+#include "roadload/firmware/frame_compressor.hpp"
 
 namespace roadload::firmware {
 
@@ -20,25 +27,34 @@ class AppendFile {
   AppendFile& operator=(const AppendFile&) = delete;
   ~AppendFile();
 
-  // Creates (or appends to) `path`; false with errno set when it cannot.
-  bool open(const std::string& path);
+  // Creates (or appends to) `path`, in frames of `compressor` when one is given (it must outlive
+  // the file); false with errno set when it cannot.
+  bool open(const std::string& path, FrameCompressor* compressor = nullptr);
   bool is_open() const { return fd_ >= 0; }
   // Buffers a line (with its newline). False when the line was refused and counted as lost.
   bool append(std::string_view line);
-  // Hands the buffer to the kernel; false on a write error (the buffer is kept).
+  // Hands the buffer to the kernel; false on a write error (the buffer is kept). Compressed: does
+  // nothing, the frame stays open until sync().
   bool flush();
-  // flush() then fdatasync().
+  // Writes the buffer (compressed: closes the frame) then fdatasync().
   bool sync();
   // Syncs and closes; false if anything failed.
   bool close();
 
+  // Bytes in the file and, not yet compressed, in the buffer.
   std::uint64_t bytes() const { return written_ + used_; }
+  std::uint64_t frames() const { return frames_; }
   std::uint64_t lines_lost() const { return lost_; }
   int last_errno() const { return errno_; }
   const std::string& path() const { return path_; }
 
  private:
+  bool write_out();
+  bool write_frame();
+
   int fd_ = -1;
+  FrameCompressor* compressor_ = nullptr;
+  std::uint64_t frames_ = 0;
   std::string path_;
   std::unique_ptr<char[]> buffer_;
   std::size_t used_ = 0;

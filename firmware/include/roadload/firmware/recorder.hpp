@@ -5,9 +5,11 @@
 // directory holds more than the quota. Lines reach the kernel within a second and the disk at
 // every fsync interval, so a crash or SIGKILL loses at most that interval and every file reads
 // back whole. A write error (disk full) is reported and retried each tick; the lines that did not
-// fit meanwhile are counted as lost.
+// fit meanwhile are counted as lost. With a compression level, each stream is written as zstd
+// frames (`can.log.zst`, ...) closed at every fsync: the same interval is all a crash can lose.
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,7 @@ struct RecorderConfig {
   Nanoseconds segment_max{3600'000'000'000};
   std::uint64_t segment_max_bytes = 512ull << 20;
   std::uint64_t quota_bytes = 8192ull << 20;
+  int compression_level = 1;  // zstd's; 0 writes plain text
 };
 
 struct RecorderStatus {
@@ -71,6 +74,7 @@ class Recorder {
   std::uint64_t segment_bytes() const;
 
   RecorderConfig config_;
+  std::unique_ptr<FrameCompressor> compressor_;  // null for plain text
   recording::Metadata meta_;
   std::vector<std::string> interfaces_;
   Stream can_{{}, recording::kCanFile, {}};
