@@ -102,11 +102,9 @@ results::Provenance provenance(const DaemonConfig& c, const Vehicle& vehicle, co
   p.route = c.estimator.route;
   p.route_name = est.route_name;
   p.route_hash = est.route_hash;
-  p.engine_losses = c.estimator.engine_losses.empty() ? "EEC3's nominal friction percent" : c.estimator.engine_losses;
-  char cda[96];
-  std::snprintf(cda, sizeof cda, "%.3f m2 +- %.3f (%s)", truck.cda_prior_m2, truck.cda_sigma_m2,
-                c.estimator.cda_m2 > 0 ? "[estimator] cda_m2" : "the vehicle file");
-  p.cda = cda;
+  p.engine_losses = results::engine_losses_text(c.estimator.engine_losses);
+  p.cda = results::cda_text(truck.cda_prior_m2, truck.cda_sigma_m2,
+                            c.estimator.cda_m2 > 0 ? "[estimator] cda_m2" : "the vehicle file");
   return p;
 }
 

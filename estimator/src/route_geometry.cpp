@@ -1,5 +1,6 @@
 #include "roadload/route_geometry.hpp"
 
+#include <GeographicLib/Geocentric.hpp>
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
 #include <algorithm>
@@ -24,6 +25,10 @@ std::optional<RouteGeometry> RouteGeometry::build(std::span<const GeoPoint> poin
     double ex = 0, ey = 0, ez = 0;
     plane.Forward(points[i + 1].lat_deg, points[i + 1].lon_deg, 0.0, ex, ey, ez);
     g.planes_.push_back({points[i].lat_deg, points[i].lon_deg, ex, ey});
+    g.plane_length_m_.push_back(std::hypot(ex, ey));
+    std::array<double, 3> start{};
+    GeographicLib::Geocentric::WGS84().Forward(points[i].lat_deg, points[i].lon_deg, 0.0, start[0], start[1], start[2]);
+    g.start_ecef_m_.push_back(start);
   }
   return g;
 }
@@ -34,21 +39,50 @@ std::size_t RouteGeometry::segment(double s_m) const {
   return static_cast<std::size_t>(std::upper_bound(cumulative_m_.begin(), cumulative_m_.end(), s_m) - cumulative_m_.begin()) - 1;
 }
 
-RouteGeometry::Projection RouteGeometry::project(double lat_deg, double lon_deg) const {
+RouteGeometry::Projection RouteGeometry::onto(std::size_t i, double lat_deg, double lon_deg) const {
   // Each segment in the tangent plane at its start: exact enough for survey spacing of < 1 km.
+  const Plane& pl = planes_[i];
+  const double ex = pl.end_x_m, ey = pl.end_y_m;
+  double px = 0, py = 0, pz = 0;
+  GeographicLib::LocalCartesian(pl.lat0_deg, pl.lon0_deg, 0.0).Forward(lat_deg, lon_deg, 0.0, px, py, pz);
+  const double len2 = ex * ex + ey * ey;
+  double t = (px * ex + py * ey) / len2;
+  // The first and last segments extend beyond the ends, so a truck running in is placed.
+  if (i > 0) t = std::max(t, 0.0);
+  if (i + 2 < points_.size()) t = std::min(t, 1.0);
+  return {cumulative_m_[i] + t * (cumulative_m_[i + 1] - cumulative_m_[i]), std::hypot(px - t * ex, py - t * ey)};
+}
+
+double RouteGeometry::offset_bound_m(std::size_t i, const std::array<double, 3>& q) const {
+  if (i == 0 || i + 2 >= points_.size()) return 0.0;
+  const std::array<double, 3>& s = start_ecef_m_[i];
+  const double chord_m = std::sqrt((q[0] - s[0]) * (q[0] - s[0]) + (q[1] - s[1]) * (q[1] - s[1]) + (q[2] - s[2]) * (q[2] - s[2]));
+  // In the segment's tangent plane the fix is the chord tilted by the Earth's curvature away from
+  // its start (by asin(chord / 2R), R no less than 6,300 km on the ellipsoid), less 1 % for the
+  // ellipsoid; the segment reaches no further than its length.
+  const double tilt = chord_m / (2 * 6.3e6);
+  return 0.99 * chord_m * std::sqrt(std::max(0.0, 1 - tilt * tilt)) - plane_length_m_[i] - 1e-3;
+}
+
+RouteGeometry::Projection RouteGeometry::project(double lat_deg, double lon_deg) const {
+  std::array<double, 3> q{};
+  GeographicLib::Geocentric::WGS84().Forward(lat_deg, lon_deg, 0.0, q[0], q[1], q[2]);
+  // The nearest segment by the bound gives a distance; only the segments whose bound is within it
+  // can be nearer. The result is the one every segment's projection would give: the smallest
+  // offset, the first segment of equal ones.
+  std::size_t guess = 0;
+  double guess_bound = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i + 2 < points_.size(); ++i) {
+    const double b = offset_bound_m(i, q);
+    if (b < guess_bound) guess_bound = b, guess = i;
+  }
+  const double within_m = std::min({onto(0, lat_deg, lon_deg).offset_m, onto(planes_.size() - 1, lat_deg, lon_deg).offset_m,
+                                    onto(guess, lat_deg, lon_deg).offset_m});
   Projection best{0.0, std::numeric_limits<double>::infinity()};
   for (std::size_t i = 0; i < planes_.size(); ++i) {
-    const Plane& pl = planes_[i];
-    const double ex = pl.end_x_m, ey = pl.end_y_m;
-    double px = 0, py = 0, pz = 0;
-    GeographicLib::LocalCartesian(pl.lat0_deg, pl.lon0_deg, 0.0).Forward(lat_deg, lon_deg, 0.0, px, py, pz);
-    const double len2 = ex * ex + ey * ey;
-    double t = (px * ex + py * ey) / len2;
-    // The first and last segments extend beyond the ends, so a truck running in is placed.
-    if (i > 0) t = std::max(t, 0.0);
-    if (i + 2 < points_.size()) t = std::min(t, 1.0);
-    const double off = std::hypot(px - t * ex, py - t * ey);
-    if (off < best.offset_m) best = {cumulative_m_[i] + t * (cumulative_m_[i + 1] - cumulative_m_[i]), off};
+    if (offset_bound_m(i, q) > within_m) continue;
+    const Projection p = onto(i, lat_deg, lon_deg);
+    if (p.offset_m < best.offset_m) best = p;
   }
   return best;
 }

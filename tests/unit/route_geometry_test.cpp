@@ -1,6 +1,7 @@
 // A place along the route back to a point on the map: the inverse of projecting a fix onto it.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "roadload/route_geometry.hpp"
@@ -25,6 +26,39 @@ TEST(RouteGeometry, APlaceAlongItProjectsBackToItself) {
   EXPECT_NEAR(route->at(0).lat_deg, 45.0, 1e-9);
   EXPECT_NEAR(route->at(route->length_m()).lon_deg, -92.986, 1e-9);
   EXPECT_NEAR(route->at(-50).lat_deg, 45.0, 1e-9);
+}
+
+// A mountain road of 2,001 points: forty hairpins whose legs, 2 km long, lie 60 m apart.
+std::vector<GeoPoint> hairpins() {
+  std::vector<GeoPoint> pts;
+  constexpr double kLegDeg = 2000.0 / 111'320.0, kApartDeg = 60.0 / (111'320.0 * 0.7071);
+  for (int leg = 0; leg < 40; ++leg) {
+    for (int k = 0; k < 50; ++k) {
+      const double along = (leg % 2 == 0 ? k : 49 - k) / 49.0 * kLegDeg;
+      pts.push_back({45.0 + along, -93.0 + leg * kApartDeg, 300.0 + leg});
+    }
+  }
+  pts.push_back({45.0 - 0.001, -93.0 + 39 * kApartDeg, 340.0});  // the last leg runs south, and on
+  return pts;
+}
+
+TEST(RouteGeometry, AFixIsPlacedOnTheNearestLegOfAWindingRoad) {
+  const auto route = RouteGeometry::build(hairpins());
+  ASSERT_TRUE(route);
+  for (double s = 500; s < route->length_m() - 500; s += 1234.5) {
+    const GeoPoint p = route->at(s);
+    // 20 m east of the road: nearer this leg than its neighbours, 60 m away.
+    const double east_deg = 20.0 / (111'320.0 * std::cos(p.lat_deg * M_PI / 180));
+    const auto off = route->project(p.lat_deg, p.lon_deg + east_deg);
+    EXPECT_NEAR(off.offset_m, 20.0, 0.1) << "at " << s;
+    EXPECT_NEAR(off.s_m, s, 0.5) << "at " << s;
+  }
+  // Far from the road (another continent, the antipode) a fix still gets the nearest place.
+  const auto far = route->project(-33.9, 151.2);
+  EXPECT_GT(far.offset_m, 1e6);
+  EXPECT_TRUE(std::isfinite(far.s_m));
+  const auto antipode = route->project(-45.0, 87.0);
+  EXPECT_TRUE(std::isfinite(antipode.offset_m));
 }
 
 }  // namespace

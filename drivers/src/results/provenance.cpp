@@ -1,8 +1,18 @@
 #include "roadload/results/provenance.hpp"
 
+#include <cstdio>
+
 #include "roadload/results/json.hpp"
 
 namespace roadload::results {
+
+std::string cda_text(double cda_m2, double sigma_m2, const std::string& source) {
+  char text[96];
+  std::snprintf(text, sizeof text, "%.3f m2 +- %.3f (", cda_m2, sigma_m2);
+  return text + source + ")";
+}
+
+std::string engine_losses_text(const std::string& table) { return table.empty() ? "EEC3's nominal friction percent" : table; }
 
 std::string provenance_json(const Provenance& p) {
   const auto text = [](const std::string& v) { return v.empty() ? std::string("null") : json_quote(v); };

@@ -2,6 +2,7 @@
 // Where on the route the truck is: a surveyed polyline with elevation, distances along it on the
 // WGS84 ellipsoid (GeographicLib), GNSS fixes projected onto it. The grade and its uncertainty
 // come from a GradeProfile (grade_profile.hpp) built on it.
+#include <array>
 #include <optional>
 #include <span>
 #include <vector>
@@ -29,12 +30,20 @@ class RouteGeometry {
 
  private:
   std::size_t segment(double s_m) const;
+  // The fix's place along segment i and its distance from it, in the segment's tangent plane.
+  Projection onto(std::size_t i, double lat_deg, double lon_deg) const;
+  // No more than onto(i).offset_m for a fix at Earth-centred `q`: found without a projection, so
+  // that a fix is projected exactly onto the few segments near it, not onto every one of a long
+  // route's. Zero for the end segments, which reach beyond their ends.
+  double offset_bound_m(std::size_t i, const std::array<double, 3>& q) const;
 
   // Each segment in the tangent plane at its start: its end there, and the plane's origin.
   struct Plane {
     double lat0_deg, lon0_deg, end_x_m, end_y_m;
   };
   std::vector<Plane> planes_;
+  std::vector<std::array<double, 3>> start_ecef_m_;  // each segment's start, Earth-centred
+  std::vector<double> plane_length_m_;               // each segment's length in its tangent plane
   std::vector<GeoPoint> points_;
   std::vector<double> cumulative_m_;
   std::vector<double> azimuth_deg_;

@@ -37,11 +37,8 @@ Provenance provenance(const AnalyzeOptions& o, const recording::Metadata& meta, 
     break;
   }
   p.vehicle_hash = content_hash(format_vehicle(vehicle));
-  p.engine_losses = o.losses_file.empty() ? "EEC3's nominal friction percent" : o.losses_file;
-  char cda[96];
-  std::snprintf(cda, sizeof cda, "%.3f m2 +- %.3f (%s)", cfg.filter.truck.cda_prior_m2, cfg.filter.truck.cda_sigma_m2,
-                o.cda_m2 ? "--cda" : "the vehicle file");
-  p.cda = cda;
+  p.engine_losses = results::engine_losses_text(o.losses_file);
+  p.cda = results::cda_text(cfg.filter.truck.cda_prior_m2, cfg.filter.truck.cda_sigma_m2, o.cda_m2 ? "--cda" : "the vehicle file");
   if (o.torque_scale || o.torque_scale_sigma) {
     char ts[64];
     std::snprintf(ts, sizeof ts, "%+.4f +- %.4f", o.torque_scale.value_or(0), o.torque_scale_sigma.value_or(0));

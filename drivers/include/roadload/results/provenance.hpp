@@ -24,6 +24,11 @@ struct Provenance {
   std::string torque_scale;             // the engine torque's scale and its sigma, when given
 };
 
+// "6.200 m2 +- 0.600 (the vehicle file)": the drag area prior and where it came from.
+std::string cda_text(double cda_m2, double sigma_m2, const std::string& source);
+// The engine-loss table's path, or what stands in for one when none is given.
+std::string engine_losses_text(const std::string& table);
+
 // trip.json's "provenance" member (`  "provenance": {...}`), empty fields as null.
 std::string provenance_json(const Provenance& p);
 
