@@ -8,8 +8,7 @@ namespace roadload {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr std::uint64_t kNisBatch = 50;           // 5 s at CCVS1's 10 Hz, longer than the innovations' memory
-constexpr std::size_t kSmootherCapacity = 36000;  // an hour at CCVS1's 10 Hz before it grows
+constexpr std::uint64_t kNisBatch = 50;  // 5 s at CCVS1's 10 Hz, longer than the innovations' memory
 
 }  // namespace
 
@@ -40,8 +39,7 @@ DriveAnalyzer::DriveAnalyzer(const j1939::Database& db, RouteGeometry route, std
       feed_(db),
       position_(config_.antenna_behind_front_m, config_.max_gnss_offset_m),
       cells_(std::move(cells), truck_length_m(config_.axles), config_.keep_history),
-      filter_(filter_config(config_, !cells_.spans().empty())),
-      smoother_(config_.keep_history ? kSmootherCapacity : 0) {
+      filter_(filter_config(config_, !cells_.spans().empty())) {
   if (const auto* m = db.find_name("CCVS1")) ccvs1_pgn_ = m->pgn;
   if (config_.keep_history) filter_.attach(&smoother_);
   for (const CellSpan& c : cells_.spans()) {

@@ -9,6 +9,23 @@
 
 namespace roadload {
 
+namespace {
+
+double distance_m(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// How far from a segment's start a point at `chord_m` lies, at least, in the start's tangent plane:
+// the chord tilted by the Earth's curvature (by asin(chord / 2R), R no less than 6,300 km on the
+// ellipsoid), less 1 % for the ellipsoid. It grows with the chord up to kMonotonicM.
+constexpr double kMonotonicM = 8.9e6;
+double in_plane_at_least_m(double chord_m) {
+  const double tilt = chord_m / (2 * 6.3e6);
+  return 0.99 * chord_m * std::sqrt(std::max(0.0, 1 - tilt * tilt));
+}
+
+}  // namespace
+
 std::optional<RouteGeometry> RouteGeometry::build(std::span<const GeoPoint> points) {
   if (points.size() < 2) return std::nullopt;
   const auto& geod = GeographicLib::Geodesic::WGS84();
@@ -29,6 +46,17 @@ std::optional<RouteGeometry> RouteGeometry::build(std::span<const GeoPoint> poin
     std::array<double, 3> start{};
     GeographicLib::Geocentric::WGS84().Forward(points[i].lat_deg, points[i].lon_deg, 0.0, start[0], start[1], start[2]);
     g.start_ecef_m_.push_back(start);
+  }
+  // Blocks of the segments between the ends (1 .. n-2), each about its middle segment's start.
+  const std::size_t n = g.planes_.size();
+  for (std::size_t first = 1; first + 1 < n; first += kBlock) {
+    const std::size_t last = std::min(first + kBlock, n - 1);
+    Block b{g.start_ecef_m_[(first + last) / 2], 0.0, 0.0};
+    for (std::size_t i = first; i < last; ++i) {
+      b.reach_m = std::max(b.reach_m, distance_m(g.start_ecef_m_[i], b.center_ecef_m));
+      b.longest_m = std::max(b.longest_m, g.plane_length_m_[i]);
+    }
+    g.blocks_.push_back(b);
   }
   return g;
 }
@@ -55,35 +83,48 @@ RouteGeometry::Projection RouteGeometry::onto(std::size_t i, double lat_deg, dou
 
 double RouteGeometry::offset_bound_m(std::size_t i, const std::array<double, 3>& q) const {
   if (i == 0 || i + 2 >= points_.size()) return 0.0;
-  const std::array<double, 3>& s = start_ecef_m_[i];
-  const double chord_m = std::sqrt((q[0] - s[0]) * (q[0] - s[0]) + (q[1] - s[1]) * (q[1] - s[1]) + (q[2] - s[2]) * (q[2] - s[2]));
-  // In the segment's tangent plane the fix is the chord tilted by the Earth's curvature away from
-  // its start (by asin(chord / 2R), R no less than 6,300 km on the ellipsoid), less 1 % for the
-  // ellipsoid; the segment reaches no further than its length.
-  const double tilt = chord_m / (2 * 6.3e6);
-  return 0.99 * chord_m * std::sqrt(std::max(0.0, 1 - tilt * tilt)) - plane_length_m_[i] - 1e-3;
+  // The segment reaches no further from its start than its length.
+  return in_plane_at_least_m(distance_m(q, start_ecef_m_[i])) - plane_length_m_[i] - 1e-3;
+}
+
+double RouteGeometry::block_bound_m(std::size_t b, const std::array<double, 3>& q) const {
+  const Block& k = blocks_[b];
+  // Every start lies within reach of the centre: its chord is at least this one's less the reach.
+  const double nearest_m = distance_m(q, k.center_ecef_m) - k.reach_m;
+  if (nearest_m <= 0 || nearest_m + 2 * k.reach_m > kMonotonicM) return 0.0;
+  return in_plane_at_least_m(nearest_m) - k.longest_m - 1e-3;
 }
 
 RouteGeometry::Projection RouteGeometry::project(double lat_deg, double lon_deg) const {
   std::array<double, 3> q{};
   GeographicLib::Geocentric::WGS84().Forward(lat_deg, lon_deg, 0.0, q[0], q[1], q[2]);
-  // The nearest segment by the bound gives a distance; only the segments whose bound is within it
-  // can be nearer. The result is the one every segment's projection would give: the smallest
-  // offset, the first segment of equal ones.
-  std::size_t guess = 0;
-  double guess_bound = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i + 2 < points_.size(); ++i) {
-    const double b = offset_bound_m(i, q);
-    if (b < guess_bound) guess_bound = b, guess = i;
+  // The ends and the nearest segment of the nearest block by the bounds give a distance; only the
+  // segments whose bound is within it can be nearer. The result is the one every segment's
+  // projection would give: the smallest offset, the first segment of equal ones.
+  const std::size_t last = planes_.size() - 1;
+  const Projection first_end = onto(0, lat_deg, lon_deg), last_end = onto(last, lat_deg, lon_deg);
+  double within_m = std::min(first_end.offset_m, last_end.offset_m);
+  std::size_t block = 0;
+  for (std::size_t b = 1; b < blocks_.size(); ++b) {
+    if (block_bound_m(b, q) < block_bound_m(block, q)) block = b;
   }
-  const double within_m = std::min({onto(0, lat_deg, lon_deg).offset_m, onto(planes_.size() - 1, lat_deg, lon_deg).offset_m,
-                                    onto(guess, lat_deg, lon_deg).offset_m});
-  Projection best{0.0, std::numeric_limits<double>::infinity()};
-  for (std::size_t i = 0; i < planes_.size(); ++i) {
-    if (offset_bound_m(i, q) > within_m) continue;
-    const Projection p = onto(i, lat_deg, lon_deg);
-    if (p.offset_m < best.offset_m) best = p;
+  if (!blocks_.empty()) {
+    std::size_t guess = 1 + block * kBlock;
+    for (std::size_t i = guess; i < std::min(1 + (block + 1) * kBlock, last); ++i) {
+      if (offset_bound_m(i, q) < offset_bound_m(guess, q)) guess = i;
+    }
+    within_m = std::min(within_m, onto(guess, lat_deg, lon_deg).offset_m);
   }
+  Projection best = first_end;
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    if (block_bound_m(b, q) > within_m) continue;
+    for (std::size_t i = 1 + b * kBlock; i < std::min(1 + (b + 1) * kBlock, last); ++i) {
+      if (offset_bound_m(i, q) > within_m) continue;
+      const Projection p = onto(i, lat_deg, lon_deg);
+      if (p.offset_m < best.offset_m) best = p;
+    }
+  }
+  if (last_end.offset_m < best.offset_m) best = last_end;
   return best;
 }
 

@@ -292,7 +292,7 @@ TEST(CrrFilter, SmootherTracksAPavementChangeBetterThanTheFilter) {
   cfg.crr_walk_per_sqrt_s = 1e-4;  // pavements change
   const Drive d = make_drive(6, 900, 0.0050, 6.2, cfg, true, 450.0, 0.0065);
   CrrFilter f(cfg);
-  ekf::RtsSmoother<CrrState::count> smoother(d.inputs.size() + 1);
+  ekf::RtsSmoother<CrrState::count> smoother;
   f.attach(&smoother);
   f.start(capture_time_from_ns(0), d.speed_meas[0]);
   std::vector<double> filtered;

@@ -1,7 +1,10 @@
 // A place along the route back to a point on the map: the inverse of projecting a fix onto it.
 #include <gtest/gtest.h>
 
+#include <GeographicLib/Geocentric.hpp>
+#include <array>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "roadload/route_geometry.hpp"
@@ -59,6 +62,34 @@ TEST(RouteGeometry, AFixIsPlacedOnTheNearestLegOfAWindingRoad) {
   EXPECT_TRUE(std::isfinite(far.s_m));
   const auto antipode = route->project(-45.0, 87.0);
   EXPECT_TRUE(std::isfinite(antipode.offset_m));
+}
+
+// Against the road drawn every half metre: a fix up to 300 m off any leg is as far from the road as
+// the nearest drawn point (to the drawing's quarter metre), whichever leg or hairpin that is.
+TEST(RouteGeometry, AFixIsAsFarAsTheNearestPointOfTheRoad) {
+  const auto route = RouteGeometry::build(hairpins());
+  ASSERT_TRUE(route);
+  const auto& earth = GeographicLib::Geocentric::WGS84();
+  const auto ecef = [&](double lat, double lon) {
+    std::array<double, 3> e{};
+    earth.Forward(lat, lon, 0.0, e[0], e[1], e[2]);
+    return e;
+  };
+  std::vector<std::array<double, 3>> drawn;
+  for (double s = 0; s <= route->length_m(); s += 0.5) {
+    const GeoPoint p = route->at(s);
+    drawn.push_back(ecef(p.lat_deg, p.lon_deg));
+  }
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> along(100.0, route->length_m() - 100.0), across(-300.0, 300.0);
+  for (int k = 0; k < 300; ++k) {
+    const GeoPoint p = route->at(along(rng));
+    const double lon = p.lon_deg + across(rng) / (111'320.0 * std::cos(p.lat_deg * M_PI / 180));
+    const auto q = ecef(p.lat_deg, lon);
+    double nearest = 1e300;
+    for (const auto& d : drawn) nearest = std::min(nearest, std::hypot(q[0] - d[0], q[1] - d[1], q[2] - d[2]));
+    EXPECT_NEAR(route->project(p.lat_deg, lon).offset_m, nearest, 0.3) << "fix " << k;
+  }
 }
 
 }  // namespace

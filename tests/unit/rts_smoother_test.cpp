@@ -19,7 +19,7 @@ constexpr double kPrior = 4.0, kWalk = 0.3, kNoise = 0.5;  // variances
 using Scalar = Eigen::Matrix<double, 1, 1>;
 
 struct Problem {
-  RtsSmoother<1> smoother{kSteps};
+  RtsSmoother<1> smoother;
   Eigen::MatrixXd joint;  // posterior covariance of the states at steps 0..kSteps
 };
 

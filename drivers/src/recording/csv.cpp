@@ -19,6 +19,30 @@ std::size_t split(std::string_view line, std::array<std::string_view, CsvReader:
 
 bool skippable(std::string_view line) { return line.empty() || line[0] == '#'; }
 
+// A plain decimal ("-12.345678") of at most 15 digits is an integer below 2^53 over a power of ten
+// below 10^22, both exact in a double, so one IEEE division gives the correctly rounded value
+// from_chars gives (Clinger's fast path). Anything else (exponents, more digits) is left to it.
+std::optional<double> plain_decimal(std::string_view s) {
+  static constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  const bool negative = !s.empty() && s[0] == '-';
+  if (negative) s.remove_prefix(1);
+  std::uint64_t mantissa = 0;
+  std::size_t digits = 0, fraction = 0;
+  bool point = false;
+  for (const char c : s) {
+    if (c == '.' && !point) {
+      point = true;
+      continue;
+    }
+    if (c < '0' || c > '9' || ++digits > 15) return std::nullopt;
+    mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
+    fraction += point ? 1 : 0;
+  }
+  if (digits == 0 || (point && fraction == 0)) return std::nullopt;
+  const double v = static_cast<double>(mantissa) / kPow10[fraction];
+  return negative ? -v : v;
+}
+
 }  // namespace
 
 std::optional<std::int64_t> parse_i64(std::string_view s) {
@@ -29,6 +53,7 @@ std::optional<std::int64_t> parse_i64(std::string_view s) {
 }
 
 std::optional<double> parse_f64(std::string_view s) {
+  if (const auto fast = plain_decimal(s)) return fast;
   double v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || end != s.data() + s.size() || s.empty() || !std::isfinite(v)) return std::nullopt;

@@ -319,6 +319,8 @@ const InterfaceTable& RecordingReader::interfaces() const {
 }
 
 const Record* RecordingReader::next() {
+  // One stream (a can.log, a folder of one) is already in its order: no heads to compare.
+  if (streams_.size() == 1) return streams_[0]->next(current_, errors_) ? &current_ : nullptr;
   if (!primed_) {
     heads_.resize(streams_.size());
     live_.resize(streams_.size());
