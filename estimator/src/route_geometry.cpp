@@ -102,23 +102,29 @@ RouteGeometry::Projection RouteGeometry::project(double lat_deg, double lon_deg)
   // segments whose bound is within it can be nearer. The result is the one every segment's
   // projection would give: the smallest offset, the first segment of equal ones.
   const std::size_t last = planes_.size() - 1;
+  // Block b holds the segments [1 + b kBlock, its end): those between the route's ends.
+  const auto end_of = [&](std::size_t b) { return std::min(1 + (b + 1) * kBlock, last); };
   const Projection first_end = onto(0, lat_deg, lon_deg), last_end = onto(last, lat_deg, lon_deg);
   double within_m = std::min(first_end.offset_m, last_end.offset_m);
   std::size_t block = 0;
+  double block_bound = blocks_.empty() ? 0.0 : block_bound_m(0, q);
   for (std::size_t b = 1; b < blocks_.size(); ++b) {
-    if (block_bound_m(b, q) < block_bound_m(block, q)) block = b;
+    const double bound = block_bound_m(b, q);
+    if (bound < block_bound) block = b, block_bound = bound;
   }
   if (!blocks_.empty()) {
     std::size_t guess = 1 + block * kBlock;
-    for (std::size_t i = guess; i < std::min(1 + (block + 1) * kBlock, last); ++i) {
-      if (offset_bound_m(i, q) < offset_bound_m(guess, q)) guess = i;
+    double guess_bound = offset_bound_m(guess, q);
+    for (std::size_t i = guess + 1; i < end_of(block); ++i) {
+      const double bound = offset_bound_m(i, q);
+      if (bound < guess_bound) guess = i, guess_bound = bound;
     }
     within_m = std::min(within_m, onto(guess, lat_deg, lon_deg).offset_m);
   }
   Projection best = first_end;
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     if (block_bound_m(b, q) > within_m) continue;
-    for (std::size_t i = 1 + b * kBlock; i < std::min(1 + (b + 1) * kBlock, last); ++i) {
+    for (std::size_t i = 1 + b * kBlock; i < end_of(b); ++i) {
       if (offset_bound_m(i, q) > within_m) continue;
       const Projection p = onto(i, lat_deg, lon_deg);
       if (p.offset_m < best.offset_m) best = p;

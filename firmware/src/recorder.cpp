@@ -211,7 +211,6 @@ void Recorder::tick(CaptureTime now) {
     last_flush_ = now;
     if (sync) last_sync_ = now;
   }
-  status_.lines_lost = std::max(status_.lines_lost, status_.lines_lost);
   if (now - segment_start_ >= config_.segment_max || segment_bytes() >= config_.segment_max_bytes) {
     end_segment();
     start_segment(now);

@@ -41,7 +41,7 @@ Written write(const std::vector<std::string>& lines, std::size_t per_sync, int l
   const double t0 = thread_cpu_s();
   for (std::size_t i = 0; i < lines.size(); ++i) {
     f.append(lines[i]);
-    if ((i + 1) % per_sync == 0) f.flush(), f.sync();
+    if ((i + 1) % per_sync == 0) f.sync();
   }
   f.close();
   Written w{fs::file_size(out), thread_cpu_s() - t0};
