@@ -32,14 +32,15 @@ std::size_t drain(Ring& ring, std::size_t max, Fn&& fn) {
 std::int64_t utc_now_ns() { return io::read_clock(CLOCK_REALTIME).count(); }
 
 // A source that lags while it reads (a starved thread catching up, a replay slower than asked)
-// holds the others back only while their rings have room: once one is half full the horizon is
-// lifted, and the lagging source's items go out of order rather than a device's being dropped.
+// holds the others back only while the devices' rings have room: once one is half full the horizon
+// is lifted, and the lagging source's items go out of order rather than a device's being dropped.
+// A replay's full ring lifts nothing: it waits for room, and nothing is lost by waiting.
 template <typename RingOf>
 bool any_half_full(DaemonSources& sources, RingOf ring_of) {
   bool full = false;
   sources.for_each([&](auto& c) {
     const auto& ring = ring_of(c);
-    full = full || ring.size() >= ring.capacity() / 2;
+    full = full || (!c.waits_for_room() && ring.size() >= ring.capacity() / 2);
   });
   return full;
 }
@@ -118,12 +119,20 @@ void lower_to_delivered(const Channel& c, CaptureTime now, Nanoseconds wait, Cap
   if (now - c.heard_at() <= wait) through = std::min(through, c.delivered_through());
 }
 
-// Items up to here can be merged: every source has delivered what it stamped before it, less the
-// merge delay for stamps that reach their thread late (a FIFO read, a kernel queue).
+// Items up to here can be merged: every source has delivered what it stamped before it, a device
+// less the merge delay for stamps that reach its thread late (a FIFO read, a kernel queue). A
+// replay hands its stream on in order, each item as it goes, so it needs no delay: with one, a
+// fast replay's full ring (0.1 s of the accelerometers at ten times real time) could lie wholly
+// inside the delay, and nothing would ever be merged.
 CaptureTime Daemon::merge_horizon(CaptureTime now) {
   CaptureTime through = CaptureTime::max();
-  sources_.for_each([&](const auto& c) { lower_to_delivered(c, now, setup_.max_merge_wait, through); });
-  return through == CaptureTime::max() ? through : through - setup_.merge_delay;
+  sources_.for_each([&](const auto& c) {
+    CaptureTime delivered = CaptureTime::max();
+    lower_to_delivered(c, now, setup_.max_merge_wait, delivered);
+    if (delivered != CaptureTime::max() && !c.waits_for_room()) delivered -= setup_.merge_delay;
+    through = std::min(through, delivered);
+  });
+  return through;
 }
 
 // One file per stream holds several sources (buses, accelerometers), and a recording's streams

@@ -13,14 +13,13 @@ namespace roadload::firmware::test {
 namespace {
 
 // Three of the scenario's eight accelerometers: the merge's order needs several sources, not the
-// estimator's full load, which under the sanitizers on a loaded machine could fall behind the
-// pace and fill half a ring, where the merge stops waiting by design.
+// estimator's full load.
 constexpr std::size_t kAccelerometers = 3;
 
 // The daemon's setup with the recording synced once an hour, not each second of the drive (five
-// times a wall second at the test's pace): a sync stalled by other tests' disk writes holds the
-// writer while its rings fill, and past half a ring the merge stops waiting by design. What these
-// tests check is the merge's order, not the recording's durability (daemon_records_drive_test).
+// times a wall second at the test's pace): a sync stalled by other tests' disk writes would hold
+// the writer, and the replayed sources with it, past the merge's wait. What these tests check is
+// the merge's order, not the recording's durability (daemon_records_drive_test).
 DaemonSetup merge_setup(const SimulatedDrive& drive, const std::string& dir) {
   DaemonSetup setup = daemon_setup(drive, dir);
   if (setup.recording) setup.recording->fsync_interval = std::chrono::hours(1);
@@ -81,6 +80,45 @@ TEST(DaemonMerge, AStarvedCanThreadChangesNothingTheFilterComputes) {
   EXPECT_EQ(starved.speed_mps, steady.speed_mps);
   EXPECT_EQ(starved.crr, steady.crr);
   EXPECT_EQ(starved.crr_hi, steady.crr_hi);
+}
+
+// Unpaced, as `roadloadd --replay-rate 0` replays: every source hands out its items as fast as it
+// reads them, far ahead of the daemon's clock, so the rings fill and the sources wait for room.
+// The CAN thread is starved for a fifth of the merge's wait halfway through, long enough for
+// every accelerometer's ring to fill meanwhile. Nothing may go out of order: the filter computes
+// exactly what the paced replay does, run after run.
+TEST(DaemonMerge, AnUnpacedReplayComputesWhatAPacedOneDoes) {
+  const SimulatedDrive drive(16);
+  auto run = [&](double speedup, std::chrono::milliseconds can_stall, const std::string& name) {
+    const std::string dir = temp_dir(name);
+    std::atomic<bool> gate{true};
+    const Pace pace = start_pace(drive);
+    Pace sources_pace = pace;
+    sources_pace.speedup = speedup;
+    PaceClock clock(pace);
+    DaemonSources sources = memory_sources(drive, sources_pace, gate, 1.0);
+    sources.can.front() = std::make_unique<CanChannel>(
+        std::make_unique<StallingSource<CanFrame>>(
+            std::make_unique<MemorySource<CanFrame>>(drive.sink.frames, gate, drive.sink.frames.size(), "can0", sources_pace),
+            drive.sink.frames.size() / 2, can_stall),
+        SourceKind::can, "can0");
+    Daemon daemon(merge_setup(drive, dir), std::move(sources), clock);
+    daemon.start();
+    wait_for(daemon);
+    daemon.stop();
+    std::filesystem::remove_all(dir);
+    return daemon.report().estimate;
+  };
+  const LiveEstimate paced = run(kPace, std::chrono::milliseconds(0), "roadloadd-merge-paced");
+  ASSERT_TRUE(paced.started);
+  EXPECT_GT(paced.s_front_m, 150.0);
+  for (int i = 0; i < 2; ++i) {
+    const LiveEstimate unpaced = run(1e9, std::chrono::milliseconds(200), "roadloadd-merge-unpaced");
+    EXPECT_EQ(unpaced.s_front_m, paced.s_front_m) << "run " << i;
+    EXPECT_EQ(unpaced.speed_mps, paced.speed_mps) << "run " << i;
+    EXPECT_EQ(unpaced.crr, paced.crr) << "run " << i;
+    EXPECT_EQ(unpaced.crr_hi, paced.crr_hi) << "run " << i;
+  }
 }
 
 // The lowest-numbered sensor's samples (memory_sources() gives it the first channel) from a
@@ -145,8 +183,8 @@ TEST(DaemonMerge, AThreadLateToItsFirstReadLeavesTheRecordingInOrder) {
 }
 
 // An accelerometer thread that hangs before its first read for three of the merge's waits: the
-// others stop waiting for it after one (or once one of their rings is half full), so the live
-// filter runs meanwhile, and every row it holds is still recorded when it comes back.
+// others stop waiting for it after one, so the live filter runs meanwhile, and every row it holds is still recorded when it comes
+// back.
 TEST(DaemonMerge, AHungSourceHoldsTheOthersBackOnlyForTheWait) {
   const SimulatedDrive drive(16, kAccelerometers);
   const std::string dir = temp_dir("roadloadd-merge-hung");

@@ -50,6 +50,32 @@ TEST(ResultsDir, ReadsCellsTripAndSpectra) {
   fs::remove_all(d);
 }
 
+// Reasons hold commas and quotes: the writer quotes them (RFC 4180), and every reader must too.
+TEST(ResultsDir, QuotedFieldsKeepTheirCommasAndQuotes) {
+  const fs::path d = results_folder("quoted",
+                                    "cell,crr,reason\n1,nan,\"not identified: 12 updates, mean NIS 0.4\"\n"
+                                    "2,nan,\"the \"\"model\"\", as said\"\n3,0.006,\n");
+  const auto r = read_results_dir(d.string());
+  ASSERT_TRUE(r.ok()) << r.error().to_string();
+  const NumberTable& cells = r.value().cells;
+  ASSERT_EQ(cells.rows(), 3u);
+  EXPECT_EQ(cells.text(0, *cells.column("reason")), "not identified: 12 updates, mean NIS 0.4");
+  EXPECT_EQ(cells.text(1, *cells.column("reason")), "the \"model\", as said");
+  EXPECT_EQ(cells.text(2, *cells.column("reason")), "");
+  EXPECT_DOUBLE_EQ(cells.values("crr")[2], 0.006);
+  fs::remove_all(d);
+}
+
+TEST(ResultsDir, AnOpenQuoteNamesFileAndLine) {
+  const fs::path d = results_folder("open-quote", "cell,crr,reason\n1,nan,\"cut, short\n");
+  const auto r = read_results_dir(d.string());
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().file, (d / "cells.csv").string());
+  EXPECT_EQ(r.error().line, 2);
+  EXPECT_NE(r.error().message.find("quoted field"), std::string::npos) << r.error().message;
+  fs::remove_all(d);
+}
+
 TEST(ResultsDir, ABadNumberNamesFileLineAndColumn) {
   const fs::path d = results_folder("bad", "cell,start_m,crr,reason\n1,0,0.0061,\n2,100,0.00x7,\n");
   const auto r = read_results_dir(d.string());

@@ -4,20 +4,42 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "roadload/recording/csv.hpp"
 
 namespace roadload::results {
 namespace {
 
-std::vector<std::string> split(const std::string& line) {
+// RFC 4180 fields, as LineBuilder::field writes them: a field holding a comma or a quote is in
+// quotes, its quotes doubled. Nothing when a quote is left open.
+std::optional<std::vector<std::string>> split(const std::string& line) {
   std::vector<std::string> fields;
-  std::size_t start = 0;
+  std::size_t at = 0;
   while (true) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(line.substr(start, comma - start));
-    if (comma == std::string::npos) return fields;
-    start = comma + 1;
+    std::string field;
+    if (at < line.size() && line[at] == '"') {
+      for (++at;; ++at) {
+        if (at >= line.size()) return std::nullopt;
+        if (line[at] != '"') {
+          field += line[at];
+        } else if (at + 1 < line.size() && line[at + 1] == '"') {
+          field += '"';
+          ++at;
+        } else {
+          ++at;
+          break;
+        }
+      }
+      if (at < line.size() && line[at] != ',') return std::nullopt;
+    } else {
+      const std::size_t comma = std::min(line.find(',', at), line.size());
+      field = line.substr(at, comma - at);
+      at = comma;
+    }
+    fields.push_back(std::move(field));
+    if (at >= line.size()) return fields;
+    ++at;
   }
 }
 
@@ -48,7 +70,9 @@ Parsed<NumberTable> NumberTable::read(const std::string& path, std::span<const s
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> fields = split(line);
+    auto split_line = split(line);
+    if (!split_line) return ParseError{path, number, "", "a quoted field is not closed"};
+    std::vector<std::string> fields = std::move(*split_line);
     if (t.columns_.empty()) {
       t.columns_ = std::move(fields);
       for (const std::string& c : t.columns_) {

@@ -67,6 +67,8 @@ class Channel {
   // A replay at its end; a live source never finishes.
   bool finished() const { return finished_.load(std::memory_order_acquire); }
   bool is_replay() const { return source_->status().stamps == StampSource::recording; }
+  // A replay waits for room in its rings rather than drop (set by start()).
+  bool waits_for_room() const { return replay_; }
   // Every item stamped at or before this is in the rings: a thread the scheduler starved, or a
   // device read late, holds this back, and the estimator waits for it rather than take its items
   // out of order. After the end of a replay, the end of time.
@@ -85,7 +87,7 @@ class Channel {
     while (!stop.load(std::memory_order_relaxed)) {
       const CaptureTime asked = clock.now();
       const std::size_t n = source_->read(batch, kReadTimeout);
-      pass_on(batch, n, stop);
+      pass_on(batch, n, stop, clock);
       // A read that was not cut short by the batch's size returned everything stamped before it
       // began; a full batch only what it holds.
       CaptureTime through = n > 0 ? batch[n - 1].t : asked;
@@ -98,15 +100,16 @@ class Channel {
     for (int i = 0; i < kDrainReads && source_->status().state != io::SourceState::ended; ++i) {
       const std::size_t n = source_->read(batch, Nanoseconds{0});
       if (n == 0) break;
-      pass_on(batch, n, stop);
+      pass_on(batch, n, stop, clock);
     }
     publish();
     delivered_through_ns_.store(to_ns(CaptureTime::max()), std::memory_order_release);
     finished_.store(true, std::memory_order_release);
   }
 
-  // A device cannot wait, so a full ring drops and counts; a replay can, so it waits for room.
-  void push(SpscRing<T, RingCapacity>& ring, const T& item, const std::atomic<bool>& stop) {
+  // A device cannot wait, so a full ring drops and counts; a replay can, so it waits for room. A
+  // replay waiting on the consumer is not a hung source: it stays heard from.
+  void push(SpscRing<T, RingCapacity>& ring, const T& item, const std::atomic<bool>& stop, const io::WaitClock& clock) {
     if (!replay_) {
       ring.try_push(item);
       return;
@@ -116,14 +119,19 @@ class Channel {
         ring.try_push(item);
         return;
       }
+      heard_ns_.store(to_ns(clock.now()), std::memory_order_release);
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   }
 
-  void pass_on(const std::array<T, kBatch>& batch, std::size_t n, const std::atomic<bool>& stop) {
+  // A replay's stream is in time order, so each item handed on delivers everything stamped before
+  // it: a replay that waits for room mid-batch then holds the others back only to what it has
+  // handed on, and the oldest item of its full ring is always within their reach.
+  void pass_on(const std::array<T, kBatch>& batch, std::size_t n, const std::atomic<bool>& stop, const io::WaitClock& clock) {
     for (std::size_t i = 0; i < n; ++i) {
-      push(to_writer_, batch[i], stop);
-      if (feed_estimator_) push(to_estimator_, batch[i], stop);
+      push(to_writer_, batch[i], stop, clock);
+      if (feed_estimator_) push(to_estimator_, batch[i], stop, clock);
+      if (replay_) delivered_through_ns_.store(to_ns(batch[i].t), std::memory_order_release);
       if constexpr (std::is_same_v<T, CanFrame>) bits_seen_ += can_frame_bits(batch[i]);
     }
     bits_.store(bits_seen_, std::memory_order_relaxed);
