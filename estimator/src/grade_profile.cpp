@@ -6,12 +6,12 @@
 #include <optional>
 
 #include "roadload/grade_error_scale.hpp"
+#include "roadload/numbers.hpp"
 #include "roadload/running_stats.hpp"
 
 namespace roadload {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // A slope needs three bins at least: two give a difference with nothing to check it against.
 constexpr std::size_t kMinWindowBins = 3;
 

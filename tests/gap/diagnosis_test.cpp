@@ -11,7 +11,7 @@
 namespace roadload::gap {
 namespace {
 
-constexpr Eigen::Index kFeatures = 240;
+constexpr Eigen::Index kProblemFeatures = 240;
 
 struct Synthetic {
   Problem problem;
@@ -19,15 +19,15 @@ struct Synthetic {
 
   explicit Synthetic(std::size_t candidates) {
     std::normal_distribution<double> normal;
-    for (Eigen::Index i = 0; i < kFeatures; ++i) {
-      problem.keys.push_back({"run", i < kFeatures / 2 ? "torque_nm" : "psd_db:TLF1", "cell " + std::to_string(i / 2),
+    for (Eigen::Index i = 0; i < kProblemFeatures; ++i) {
+      problem.keys.push_back({"run", i < kProblemFeatures / 2 ? "torque_nm" : "psd_db:TLF1", "cell " + std::to_string(i / 2),
                               static_cast<std::uint8_t>(i % 2)});
     }
     for (std::size_t c = 0; c < candidates; ++c) {
       // Each response a smooth shape over the features, with a little curvature.
-      Eigen::VectorXd d1(kFeatures), d2(kFeatures);
+      Eigen::VectorXd d1(kProblemFeatures), d2(kProblemFeatures);
       const double phase = normal(rng), freq = 0.02 + 0.01 * static_cast<double>(c);
-      for (Eigen::Index i = 0; i < kFeatures; ++i) {
+      for (Eigen::Index i = 0; i < kProblemFeatures; ++i) {
         const double shape = std::sin(freq * static_cast<double>(i) + phase) +
                              0.3 * static_cast<double>(static_cast<Eigen::Index>(c % 3) == i % 3);
         d1(i) = 2.0 * shape;  // at magnitude 1
@@ -35,11 +35,11 @@ struct Synthetic {
       }
       problem.candidates.push_back(Candidate::from_two("effect-" + std::to_string(c), "unit", 0.0, 0.0, 3.0, 1.0, d1, 2.0, d2));
     }
-    problem.z = Eigen::VectorXd::Zero(kFeatures);
+    problem.z = Eigen::VectorXd::Zero(kProblemFeatures);
   }
   void add_noise() {
     std::normal_distribution<double> normal;
-    for (Eigen::Index i = 0; i < kFeatures; ++i) problem.z(i) += normal(rng);
+    for (Eigen::Index i = 0; i < kProblemFeatures; ++i) problem.z(i) += normal(rng);
   }
   std::string chosen_name(const Diagnosis& d, std::size_t i = 0) const {
     return d.chosen ? problem.candidates[d.chosen->effects[i]].name : "none";
@@ -97,7 +97,7 @@ TEST(GapDiagnosis, AFitThatDoesNotCarryToTheOtherHalfIsNotNamed) {
   // The residual has effect 2's shape on half 0 only: a fit on half 0 predicts half 1 wrongly.
   Synthetic s(6);
   const Eigen::VectorXd r = s.problem.candidates[2].response(2.0);
-  for (Eigen::Index i = 0; i < kFeatures; ++i) s.problem.z(i) = i % 2 == 0 ? r(i) : 0.0;
+  for (Eigen::Index i = 0; i < kProblemFeatures; ++i) s.problem.z(i) = i % 2 == 0 ? r(i) : 0.0;
   s.add_noise();
   const Diagnosis d = diagnose(s.problem);
   EXPECT_FALSE(d.chosen) << s.chosen_name(d);
@@ -123,19 +123,19 @@ TEST(GapDiagnosis, OfTwoLookalikesNamesTheOneWhoseFittedMagnitudeIsRealistic) {
 TEST(GapLocate, RanksTheChannelWithTheExcessFirstAndNamesItsWorstPlace) {
   Synthetic s(1);
   s.add_noise();
-  s.problem.z(kFeatures - 7) = 12.0;  // one feature of the vibration channel
-  s.problem.z(kFeatures - 9) = 6.0;
+  s.problem.z(kProblemFeatures - 7) = 12.0;  // one feature of the vibration channel
+  s.problem.z(kProblemFeatures - 9) = 6.0;
   const auto where = locate(s.problem.keys, s.problem.z, 5);
   ASSERT_FALSE(where.empty());
   EXPECT_EQ(where.front().channel, "psd_db:TLF1");
-  EXPECT_EQ(where.front().worst_where, s.problem.keys[kFeatures - 7].where);
+  EXPECT_EQ(where.front().worst_where, s.problem.keys[kProblemFeatures - 7].where);
   EXPECT_DOUBLE_EQ(where.front().worst_z, 12.0);
   EXPECT_GT(where.front().significance, 5.0);
 }
 
 TEST(GapRms, OfOneHalfCountsOnlyItsValidFeatures) {
   Synthetic s(1);
-  for (Eigen::Index i = 0; i < kFeatures; ++i) s.problem.z(i) = i % 2 == 0 ? 2.0 : 4.0;
+  for (Eigen::Index i = 0; i < kProblemFeatures; ++i) s.problem.z(i) = i % 2 == 0 ? 2.0 : 4.0;
   s.problem.z(3) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_DOUBLE_EQ(rms(s.problem.z, s.problem.keys, 0), 2.0);
   EXPECT_DOUBLE_EQ(rms(s.problem.z, s.problem.keys, 1), 4.0);

@@ -17,7 +17,7 @@ struct LogLogFit {
   double slope;        // the waviness, as -w
 };
 
-LogLogFit fit_loglog(const test::Psd& psd, double lo, double hi) {
+LogLogFit fit_loglog(const roadload::test::Psd& psd, double lo, double hi) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int count = 0;
   for (std::size_t k = 1; k < psd.freq.size(); ++k) {
@@ -30,7 +30,7 @@ LogLogFit fit_loglog(const test::Psd& psd, double lo, double hi) {
   return {std::exp((sy - slope * sx) / count), slope};
 }
 
-double peak_frequency(const test::Psd& psd, double lo, double hi) {
+double peak_frequency(const roadload::test::Psd& psd, double lo, double hi) {
   double best = 0, best_f = 0;
   for (std::size_t k = 0; k < psd.freq.size(); ++k) {
     if (psd.freq[k] >= lo && psd.freq[k] <= hi && psd.density[k] > best) {
@@ -63,7 +63,7 @@ TEST(Iso8608, RandomProfileHasTheClassPsd) {
     const double gd = iso8608_class_gd_m3(cls);
     const ProfileSegment seg{0.0, 20000.0, gd, {}};
     const auto p = RoadProfile::generate({&seg, 1}, 0.0, 20000.0, static_cast<std::uint64_t>(cls));
-    const auto fit = fit_loglog(test::welch(p.raw_samples(), 1.0 / p.dx_m(), 4096), 0.05, 1.0);
+    const auto fit = fit_loglog(roadload::test::welch(p.raw_samples(), 1.0 / p.dx_m(), 4096), 0.05, 1.0);
     RecordProperty(std::string("class_X_level_ratio").replace(6, 1, 1, cls), std::to_string(fit.level_at_n0 / gd));
     RecordProperty(std::string("class_X_slope").replace(6, 1, 1, cls), std::to_string(fit.slope));
     EXPECT_NEAR(fit.level_at_n0 / gd, 1.0, 0.10) << cls;
@@ -163,13 +163,13 @@ TEST(JointedConcrete, JointLinesAtSpacingAndSpeed) {
   for (const Case c : {Case{4.572, 13.4112, 2.933}, Case{8.5344, 24.587, 2.881}}) {
     const ProfileSegment seg{0.0, 10000.0, 0.0, {c.spacing_m, 0.002, 0.0005}};
     const auto p = RoadProfile::generate({&seg, 1}, 0.0, 10000.0, 7);
-    const auto spatial = test::welch(p.raw_samples(), 1.0 / p.dx_m(), 4096);
+    const auto spatial = roadload::test::welch(p.raw_samples(), 1.0 / p.dx_m(), 4096);
     const double peak_n = peak_frequency(spatial, 0.05, 5.0);
     RecordProperty("line_cycles_per_m_" + std::to_string(c.spacing_m), std::to_string(peak_n));
     EXPECT_NEAR(peak_n, 1.0 / c.spacing_m, spatial.freq[1]) << c.spacing_m;
 
     constexpr double kFs_hz = 200.0;
-    const auto temporal = test::welch(in_time(p, c.speed_mps, kFs_hz), kFs_hz, 8192);
+    const auto temporal = roadload::test::welch(in_time(p, c.speed_mps, kFs_hz), kFs_hz, 8192);
     const double df = temporal.freq[1];
     const double line = peak_frequency(temporal, 0.5, 20.0);
     RecordProperty("line_hz_" + std::to_string(c.spacing_m), std::to_string(line));

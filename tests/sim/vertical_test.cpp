@@ -263,7 +263,7 @@ double dominant_frequency_hz(const AxleParams& p) {
     start = end;
     accel.push_back(model.outputs(0).sprung_accel_mps2);
   }
-  const test::Psd psd = test::welch(accel, 1.0 / kDt_s, 16384);
+  const roadload::test::Psd psd = roadload::test::welch(accel, 1.0 / kDt_s, 16384);
   std::size_t best = 1;
   for (std::size_t k = 1; psd.freq[k] < 8.0; ++k)
     if (psd.density[k] > psd.density[best]) best = k;

@@ -6,15 +6,15 @@
 namespace roadload::recording {
 namespace {
 
-struct Parsed {
+struct ParsedLine {
   std::optional<LineError> error;
   LineResult result;
   CanFrame frame;
 };
 
-Parsed parse(std::string_view line) {
+ParsedLine parse(std::string_view line) {
   static InterfaceTable ifaces;
-  Parsed p;
+  ParsedLine p;
   p.error = parse_candump_line(line, ifaces, p.frame, p.result);
   return p;
 }
@@ -26,7 +26,7 @@ std::string format(const CanFrame& f) {
 }
 
 TEST(CandumpLine, ExtendedFrameWithMicroseconds) {
-  const Parsed p = parse("(1635188455.029900) can0 0CF00400#607D844A1400F084");
+  const ParsedLine p = parse("(1635188455.029900) can0 0CF00400#607D844A1400F084");
   ASSERT_FALSE(p.error);
   EXPECT_EQ(p.result, LineResult::frame);
   EXPECT_EQ(p.frame.kind, CanFrameKind::extended);
@@ -37,7 +37,7 @@ TEST(CandumpLine, ExtendedFrameWithMicroseconds) {
 }
 
 TEST(CandumpLine, NanosecondStamps) {
-  const Parsed p = parse("(12.000000001) vcan0 123#");
+  const ParsedLine p = parse("(12.000000001) vcan0 123#");
   ASSERT_FALSE(p.error);
   EXPECT_EQ(to_ns(p.frame.t), 12000000001);
   EXPECT_EQ(p.frame.kind, CanFrameKind::standard);
@@ -46,10 +46,10 @@ TEST(CandumpLine, NanosecondStamps) {
 
 TEST(CandumpLine, RemoteErrorAndFdFramesAreTold) {
   EXPECT_EQ(parse("(1.000000) can0 123#R").frame.kind, CanFrameKind::remote);
-  const Parsed err = parse("(1.000000) can0 20000080#0000000000000000");
+  const ParsedLine err = parse("(1.000000) can0 20000080#0000000000000000");
   EXPECT_EQ(err.frame.kind, CanFrameKind::error);
   EXPECT_EQ(err.frame.id, 0x80u);
-  const Parsed fd = parse("(1.000000) can0 18FEF100##1112233445566778899AABBCC");
+  const ParsedLine fd = parse("(1.000000) can0 18FEF100##1112233445566778899AABBCC");
   ASSERT_FALSE(fd.error);
   EXPECT_EQ(fd.frame.kind, CanFrameKind::fd);
   EXPECT_EQ(fd.frame.fd_flags, 1);
@@ -59,7 +59,7 @@ TEST(CandumpLine, RemoteErrorAndFdFramesAreTold) {
 
 TEST(CandumpLine, InterfaceNameWithControlBytesIsRejected) {
   constexpr std::string_view line("(1.000000) can\0\0 123#", 23);
-  const Parsed p = parse(line);
+  const ParsedLine p = parse(line);
   ASSERT_TRUE(p.error);
   EXPECT_STREQ(p.error->field, "interface");
 }
@@ -69,7 +69,7 @@ TEST(CandumpLine, BlankLinesAndCommentsAreIgnoredAnythingElseIsMalformed) {
   EXPECT_EQ(parse("  \r").result, LineResult::ignored);
   EXPECT_EQ(parse("# comment").result, LineResult::ignored);
   EXPECT_FALSE(parse("# comment").error);
-  const Parsed garbage = parse("garbage");
+  const ParsedLine garbage = parse("garbage");
   ASSERT_TRUE(garbage.error);
   EXPECT_STREQ(garbage.error->field, "timestamp");
 }
@@ -79,7 +79,7 @@ TEST(CandumpLine, FormatRoundTripsEveryKind) {
        {"(1635188455.029900) can0 0CF00400#607D844A1400F084", "(0000000001.000000) can0 123#R", "(0000000001.000000) can0 123#R2",
         "(0000000001.000000) can0 1CECFF00#R", "(0000000001.000000) can0 20000080#0000000000000000",
         "(0000000001.000000) can0 18FEF100##1112233445566778899AABBCC", "(0000000001.000000) can0 7FF#"}) {
-    const Parsed p = parse(line);
+    const ParsedLine p = parse(line);
     ASSERT_FALSE(p.error) << line;
     EXPECT_EQ(format(p.frame), line);
   }
@@ -93,7 +93,7 @@ struct BadLine {
 class CandumpLineRejects : public testing::TestWithParam<BadLine> {};
 
 TEST_P(CandumpLineRejects, NamingTheField) {
-  const Parsed p = parse(GetParam().line);
+  const ParsedLine p = parse(GetParam().line);
   ASSERT_TRUE(p.error) << GetParam().line;
   EXPECT_STREQ(p.error->field, GetParam().field);
 }

@@ -11,12 +11,12 @@
 namespace roadload {
 namespace {
 
-constexpr std::string_view kColumns[] = {"rpm", "loss_nm", "sigma_nm", "friction_nm"};
+constexpr std::string_view kLossColumns[] = {"rpm", "loss_nm", "sigma_nm", "friction_nm"};
 
 }  // namespace
 
 Parsed<model::EngineLossMap> load_engine_loss_file(const std::string& path) {
-  auto csv = recording::CsvReader::open(path, kColumns);
+  auto csv = recording::CsvReader::open(path, kLossColumns);
   if (!csv) return csv.error();
   model::EngineLossMap map;
   std::span<const std::string_view> row;

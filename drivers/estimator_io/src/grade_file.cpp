@@ -15,7 +15,7 @@
 namespace roadload {
 namespace {
 
-constexpr std::string_view kColumns[] = {"s_m", "elevation_m", "elevation_sigma_m", "grade_pct", "grade_sigma_pct", "passes"};
+constexpr std::string_view kGradeColumns[] = {"s_m", "elevation_m", "elevation_sigma_m", "grade_pct", "grade_sigma_pct", "passes"};
 
 constexpr std::string_view kBaseKey = "# slope_base_m = ";
 constexpr std::string_view kCorrelationKey = "# error_correlation_m = ";
@@ -40,7 +40,7 @@ std::optional<double> field(std::string_view text) {
 }  // namespace
 
 Parsed<GradeProfile> load_grade_file(const std::string& path, double route_length_m) {
-  auto csv = recording::CsvReader::open(path, kColumns);
+  auto csv = recording::CsvReader::open(path, kGradeColumns);
   if (!csv) return csv.error();
   std::vector<GradeBin> bins;
   std::span<const std::string_view> row;

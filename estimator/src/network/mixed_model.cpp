@@ -4,12 +4,10 @@
 #include <limits>
 
 #include "roadload/network/minimize.hpp"
+#include "roadload/numbers.hpp"
 
 namespace roadload::network {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kZ90 = 1.6448536269514722;
 
 // The model's cross products, which do not change with the variances: K'WK and K'Wy for
 // K = [X Z], and y'Wy.

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <limits>
 
+#include "roadload/numbers.hpp"
+
 namespace roadload::network {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kZ90 = 1.6448536269514722;
 // RMS of (v / v_ref)^2 - 1 below which speeds are one speed: 0.1 is 30 against 33 mph.
 constexpr double kMinSpeedSpread = 0.1;
 

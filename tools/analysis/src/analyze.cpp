@@ -25,6 +25,7 @@
 #include "roadload/grade_file.hpp"
 #include "roadload/grade_profile.hpp"
 #include "roadload/gravity_check.hpp"
+#include "roadload/numbers.hpp"
 #include "roadload/recording/reader.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/results/json.hpp"
@@ -34,8 +35,6 @@
 
 namespace roadload::cli {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A file the analysis reads beside the recording; prints its error and gives the exit status.
 template <typename T>

@@ -1,6 +1,7 @@
 #include "drive_record.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "roadload/content_hash.hpp"
@@ -9,8 +10,6 @@
 
 namespace roadload::fleet {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 [[noreturn]] void fail(const std::string& file, long line, const std::string& field, const std::string& why) {
   throw ResultsError(ParseError{file, line, field, why});
@@ -91,8 +90,8 @@ const char* const kResultColumns[] = {"samples",        "crr",          "crr_lo"
 const std::size_t kResultColumnCount = std::size(kResultColumns);
 
 std::string direction_of(double start_lat, double start_lon, double end_lat, double end_lon) {
-  const double north = end_lat - start_lat, east = (end_lon - start_lon) * std::cos(start_lat * kPi / 180);
-  const double bearing = std::fmod(std::atan2(east, north) * 180 / kPi + 360, 360);
+  const double north = end_lat - start_lat, east = (end_lon - start_lon) * std::cos(start_lat * std::numbers::pi / 180);
+  const double bearing = std::fmod(std::atan2(east, north) * 180 / std::numbers::pi + 360, 360);
   static const char* const names[] = {"NB", "EB", "SB", "WB"};
   return names[static_cast<int>(std::fmod(bearing + 45, 360) / 90)];
 }

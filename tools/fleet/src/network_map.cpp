@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "network_text.hpp"
 #include "roadload/report/svg_chart.hpp"
@@ -12,7 +13,6 @@ namespace {
 
 using report::escape_html;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kWidth = 860, kPad = 30, kLaneOffset = 3.5;
 constexpr double kAreaKm = 30;  // roads whose centres lie closer share one map
 
@@ -22,7 +22,7 @@ struct Area {
 };
 
 double km_between(double lat_a, double lon_a, double lat_b, double lon_b) {
-  const double north = (lat_b - lat_a) * 111.2, east = (lon_b - lon_a) * 111.2 * std::cos(lat_a * kPi / 180);
+  const double north = (lat_b - lat_a) * 111.2, east = (lon_b - lon_a) * 111.2 * std::cos(lat_a * std::numbers::pi / 180);
   return std::hypot(north, east);
 }
 
@@ -61,7 +61,7 @@ std::string hover(const NetworkSection& s) {
 
 // Long because it lays out one map: the projection, the frame and each section as a lane.
 std::string area_svg(const NetworkView& v, const Area& a, double lo, double hi) {
-  const double kx = 111.2 * std::cos(a.lat0 * kPi / 180), ky = 111.2;
+  const double kx = 111.2 * std::cos(a.lat0 * std::numbers::pi / 180), ky = 111.2;
   double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
   for (std::size_t i : a.sections) {
     const NetworkSection& s = v.sections[i];

@@ -6,12 +6,12 @@
 #include "roadload/db/database.hpp"
 #include "roadload/fleet/network.hpp"
 #include "roadload/fleet/schema.hpp"
+#include "roadload/numbers.hpp"
 
 namespace roadload::fleet {
 namespace {
 
 constexpr double kDaysPerYear = 365;
-constexpr double kZ90 = 1.6448536269514722;  // the results' intervals are 90 %
 
 // One drive's result on one section, as the database holds it.
 struct Cell {

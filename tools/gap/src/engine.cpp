@@ -12,11 +12,11 @@
 
 #include "noise_floor.hpp"
 #include "resimulated.hpp"
+#include "roadload/numbers.hpp"
 
 namespace roadload::gap {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::uint64_t kNoiseSeed0 = 1000;
 
 // The recordings' features in the library's order. A recording may carry other sensors than the

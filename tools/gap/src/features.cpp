@@ -10,6 +10,7 @@
 
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/drive_signals.hpp"
+#include "roadload/numbers.hpp"
 #include "roadload/recording/metadata_vehicle.hpp"
 #include "roadload/route_position.hpp"
 #include "roadload/running_stats.hpp"
@@ -17,8 +18,6 @@
 
 namespace roadload::gap {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double mean_or_nan(double sum, double n) { return n > 0 ? sum / n : kNaN; }
 

@@ -5,10 +5,10 @@
 #include <limits>
 #include <map>
 
+#include "roadload/numbers.hpp"
+
 namespace roadload::gap {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Each feature's scatter over the residuals, pooled with its channel's so eight drives do not make
 // a few features look too quiet, and never below the channel's resolution.
