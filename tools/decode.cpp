@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -88,9 +88,13 @@ void print_tp(std::FILE* out, const j1939::Message& m, const recording::Interfac
   std::fputc('\n', out);
 }
 
-void print_pgn_stats(std::FILE* out, const std::map<j1939::Pgn, PgnStats>& stats, const j1939::Database& db) {
+void print_pgn_stats(std::FILE* out, const std::unordered_map<j1939::Pgn, PgnStats>& stats, const j1939::Database& db) {
   std::fprintf(out, "pgn,name,frames,sources,mean_period_ms,tp_messages\n");
-  for (const auto& [pgn, s] : stats) {
+  std::vector<j1939::Pgn> pgns;
+  for (const auto& kv : stats) pgns.push_back(kv.first);
+  std::sort(pgns.begin(), pgns.end());
+  for (const j1939::Pgn pgn : pgns) {
+    const PgnStats& s = stats.at(pgn);
     const j1939::MessageDef* def = db.find(pgn);
     std::string sources;
     for (std::size_t a = 0; a < s.sources.size(); ++a) {
@@ -139,7 +143,7 @@ int decode(const DecodeOptions& o) {
   static char out_buf[1 << 16];
   std::setvbuf(stdout, out_buf, _IOFBF, sizeof out_buf);
   j1939::MessageAssembler assembler;
-  std::map<j1939::Pgn, PgnStats> stats;
+  std::unordered_map<j1939::Pgn, PgnStats> stats;
   KindCounts kinds;
   // The same judge of lost and repeated frames as roadloadd's status, over the same stamps.
   j1939::CadenceMonitor cadence;

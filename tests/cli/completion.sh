@@ -23,8 +23,17 @@ complete_words() {
   printf '%s\n' "${COMPREPLY[@]}"
 }
 
+# What the program itself said, for a failure's message: the completion hides its errors.
+listing_of() {
+  local out rc
+  out=$("$@" 2>&1)
+  rc=$?
+  echo "'${*##*/} ' exited $rc: $(tail -3 <<<"$out" | tr '\n' ' ')"
+}
+
 [[ $(complete_words "$roadload" ana) == analyze ]] || fail "'roadload ana' completes to: $(complete_words "$roadload" ana)"
-complete_words "$roadload" analyze --ve | grep -qx -- --vehicle || fail "'roadload analyze --ve' lacks --vehicle"
+complete_words "$roadload" analyze --ve | grep -qx -- --vehicle ||
+  fail "'roadload analyze --ve' lacks --vehicle; $(listing_of "$roadload" --complete analyze)"
 complete_words "$roadload" route "" | grep -qx build || fail "'roadload route' lacks its action build"
 complete_words "$roadload" gap bench --ca | grep -qx -- --cases || fail "'roadload gap bench --ca' lacks --cases"
 complete_words "$roadloadd" --data | grep -qx -- --data-dir || fail "'roadloadd --data' lacks --data-dir"

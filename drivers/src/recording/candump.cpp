@@ -78,7 +78,7 @@ std::optional<LineError> parse_bytes(std::string_view s, std::size_t max, CanFra
 
 }  // namespace
 
-std::optional<std::uint8_t> InterfaceTable::intern(std::string_view name) {
+std::optional<std::uint8_t> InterfaceTable::find(std::string_view name) {
   if (last_ < count_ && names_[last_] == name) return last_;
   for (std::size_t i = 0; i < count_; ++i) {
     if (names_[i] == name) {
@@ -86,6 +86,11 @@ std::optional<std::uint8_t> InterfaceTable::intern(std::string_view name) {
       return last_;
     }
   }
+  return std::nullopt;
+}
+
+std::optional<std::uint8_t> InterfaceTable::intern(std::string_view name) {
+  if (const auto i = find(name)) return i;
   if (count_ == kMax) return std::nullopt;
   names_[count_] = std::string(name);
   return static_cast<std::uint8_t>(count_++);
@@ -99,17 +104,23 @@ std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTabl
   result = LineResult::ignored;
   // Blank lines and comments are passed over; any other line is a frame or an error, so that a
   // file of something else is refused rather than read as a drive without frames.
-  if (line.find_first_not_of(" \t\r") == std::string_view::npos || line[0] == '#') return std::nullopt;
-  if (line[0] != '(') return LineError{"timestamp", "expected a candump -L line: (seconds.fraction) iface ID#DATA"};
+  if (line.empty() || line[0] != '(') {
+    if (line.find_first_not_of(" \t\r") == std::string_view::npos || line[0] == '#') return std::nullopt;
+    return LineError{"timestamp", "expected a candump -L line: (seconds.fraction) iface ID#DATA"};
+  }
   if (auto e = parse_stamp(line, out.t)) return e;
   if (line.empty() || line[0] != ' ') return LineError{"interface", "expected ' ' after timestamp"};
   line.remove_prefix(1);
   const std::size_t sp = line.find(' ');
   if (sp == 0 || sp == std::string_view::npos) return LineError{"interface", "missing interface name"};
   const std::string_view name = line.substr(0, sp);
-  if (!valid_interface_name(name)) return LineError{"interface", "not a network interface name"};
-  const auto idx = ifaces.intern(name);
-  if (!idx) return LineError{"interface", "more than 16 interfaces"};
+  // A name already in the table was valid when it went in.
+  auto idx = ifaces.find(name);
+  if (!idx) {
+    if (!valid_interface_name(name)) return LineError{"interface", "not a network interface name"};
+    idx = ifaces.intern(name);
+    if (!idx) return LineError{"interface", "more than 16 interfaces"};
+  }
   out.iface = *idx;
   line.remove_prefix(sp + 1);
 

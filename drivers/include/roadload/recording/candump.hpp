@@ -16,6 +16,8 @@ class InterfaceTable {
   static constexpr std::size_t kMax = 16;
   // Returns the index of `name`, adding it if new; nullopt when the table is full.
   std::optional<std::uint8_t> intern(std::string_view name);
+  // The index of `name` if it is in the table.
+  std::optional<std::uint8_t> find(std::string_view name);
   std::string_view name(std::uint8_t index) const;
   std::size_t size() const { return count_; }
 

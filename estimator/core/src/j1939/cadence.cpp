@@ -1,7 +1,9 @@
 #include "roadload/j1939/cadence.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "roadload/j1939/id.hpp"
 #include "roadload/j1939/transport.hpp"
@@ -19,6 +21,16 @@ constexpr double kPeriodGain = 0.05;
 
 constexpr Nanoseconds kWindow{1'000'000};
 constexpr Nanoseconds kPause{1'000'000'000};
+
+// The first `len` (at most 8) of 8 readable bytes as one number: two frames' data compare in one
+// load each, where a memcmp call per frame showed in a decode's profile.
+std::uint64_t first_bytes(const std::uint8_t* data, std::uint8_t len) {
+  std::uint64_t v;
+  std::memcpy(&v, data, sizeof v);
+  if (len >= 8) return v;
+  if constexpr (std::endian::native == std::endian::little) return v & ((std::uint64_t{1} << (8 * len)) - 1);
+  return len == 0 ? 0 : v >> (8 * (8 - len));
+}
 
 bool bursty(Pgn pgn) { return pgn == kPgnTpCm || pgn == kPgnTpDt || pgn == kPgnEtpCm || pgn == kPgnEtpDt || pgn == kPgnRequest; }
 
@@ -92,7 +104,7 @@ void CadenceMonitor::push(const CanFrame& frame) {
     return;
   }
   const std::uint8_t len = std::min<std::uint8_t>(frame.len, 8);
-  const bool same = s->len == len && std::equal(frame.data.begin(), frame.data.begin() + len, s->data.begin());
+  const bool same = s->len == len && first_bytes(frame.data.data(), len) == first_bytes(s->data.data(), len);
   const bool first = !s->seen;
   const double dt_s = to_seconds(frame.t - s->last);
   s->seen = true;
