@@ -1,5 +1,5 @@
-// Numbers in recordings are read exactly as std::from_chars reads them, whether by the fast path
-// for plain decimals or not: the same double for every text, the same refusals.
+// Numbers in recordings are read exactly as std::from_chars reads them, whether by the fast paths
+// for plain decimals and plain integers or not: the same value for every text, the same refusals.
 #include <gtest/gtest.h>
 
 #include <charconv>
@@ -67,6 +67,26 @@ TEST(ParseF64, EveryDecimalReadsAsFromCharsReadsIt) {
                         "1,5",
                         "999999999999999.9"}) {
     expect_same(s);
+  }
+}
+
+std::optional<std::int64_t> reference_i64(const std::string& s) {
+  std::int64_t v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size() || s.empty()) return std::nullopt;
+  return v;
+}
+
+TEST(ParseI64, EveryIntegerReadsAsFromCharsReadsIt) {
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 100'000; ++i) {
+    const std::uint64_t bits = rng() >> (rng() % 64);
+    const std::string s = std::to_string(static_cast<std::int64_t>(bits)) + (i % 1000 == 0 ? "x" : "");
+    ASSERT_EQ(parse_i64(s), reference_i64(s)) << "'" << s << "'";
+  }
+  for (const char* s : {"0", "007", "-0", "-1", "+1", "", "-", " 1", "1 ", "1.0", "1e3", "9223372036854775807", "9223372036854775808",
+                        "-9223372036854775808", "9999999999999999999", "18446744073709551616", "12345678901234567890"}) {
+    ASSERT_EQ(parse_i64(s), reference_i64(s)) << "'" << s << "'";
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 namespace roadload::recording {
 namespace {
@@ -25,27 +26,43 @@ bool skippable(std::string_view line) { return line.empty() || line[0] == '#'; }
 std::optional<double> plain_decimal(std::string_view s) {
   static constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
   const bool negative = !s.empty() && s[0] == '-';
-  if (negative) s.remove_prefix(1);
+  std::size_t i = negative ? 1 : 0;
+  const std::size_t first = i;
   std::uint64_t mantissa = 0;
-  std::size_t digits = 0, fraction = 0;
-  bool point = false;
-  for (const char c : s) {
-    if (c == '.' && !point) {
-      point = true;
-      continue;
-    }
-    if (c < '0' || c > '9' || ++digits > 15) return std::nullopt;
-    mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
-    fraction += point ? 1 : 0;
+  for (; i < s.size() && static_cast<unsigned char>(s[i] - '0') <= 9; ++i)
+    mantissa = mantissa * 10 + static_cast<unsigned>(s[i] - '0');
+  const std::size_t whole = i - first;
+  std::size_t fraction = 0;
+  if (i < s.size() && s[i] == '.') {
+    const std::size_t begin = ++i;
+    for (; i < s.size() && static_cast<unsigned char>(s[i] - '0') <= 9; ++i)
+      mantissa = mantissa * 10 + static_cast<unsigned>(s[i] - '0');
+    fraction = i - begin;
+    if (fraction == 0) return std::nullopt;
   }
-  if (digits == 0 || (point && fraction == 0)) return std::nullopt;
+  // Anything left (an exponent, a second point) or more digits than a double holds exactly.
+  if (i != s.size() || whole + fraction == 0 || whole + fraction > 15) return std::nullopt;
   const double v = static_cast<double>(mantissa) / kPow10[fraction];
   return negative ? -v : v;
+}
+
+// The stamps and sensor numbers: non-negative decimal integers of at most 19 digits, which a
+// uint64 holds. Anything else (a sign, an int64 overflowed) is left to from_chars.
+std::optional<std::int64_t> plain_integer(std::string_view s) {
+  if (s.empty() || s.size() > 19) return std::nullopt;
+  std::uint64_t v = 0;
+  for (const char c : s) {
+    if (static_cast<unsigned char>(c - '0') > 9) return std::nullopt;
+    v = v * 10 + static_cast<unsigned>(c - '0');
+  }
+  if (v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) return std::nullopt;
+  return static_cast<std::int64_t>(v);
 }
 
 }  // namespace
 
 std::optional<std::int64_t> parse_i64(std::string_view s) {
+  if (const auto fast = plain_integer(s)) return fast;
   std::int64_t v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || end != s.data() + s.size() || s.empty()) return std::nullopt;
