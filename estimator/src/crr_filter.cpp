@@ -84,7 +84,7 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
 
   Vec next = x;
   Mat f = Mat::Identity();
-  Mat q = Mat::Zero();
+  Vec q = Vec::Zero();  // white process noise, one variance per state
   if (in.usable) {
     next(CrrState::speed) = v + dt * accel;
     f(CrrState::speed, CrrState::speed) += dt * (-2.0 * half_rho * x(CrrState::cda) * std::abs(v_air) / m_eff);
@@ -97,23 +97,23 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
     // The mass moves the weight's forces and the inertia: d(accel)/d(scale) at the scale's value.
     f(CrrState::speed, CrrState::mass_scale) = dt * (-(r.grade_n + r.rolling_n) / mass_scale - accel * m0) / m_eff;
     const double sf = std::hypot(config_.force_noise_n, config_.aero_force_noise_per_sqrt_hz * aero) / m_eff;
-    q(CrrState::speed, CrrState::speed) = sf * sf * dt;
+    q(CrrState::speed) = sf * sf * dt;
   } else {
     // The force balance cannot be trusted (brakes, clutch open): carry the speed by its
     // measurements alone and leave the parameters untouched.
     ++counters_.unusable_predicts;
     const double sf = config_.unusable_force_noise_n / m_eff;
-    q(CrrState::speed, CrrState::speed) = sf * sf * dt;
+    q(CrrState::speed) = sf * sf * dt;
   }
-  q(CrrState::crr, CrrState::crr) = config_.crr_walk_per_sqrt_s * config_.crr_walk_per_sqrt_s * dt + crr_jump_variance;
-  q(CrrState::cda, CrrState::cda) = config_.cda_walk_per_sqrt_s * config_.cda_walk_per_sqrt_s * dt;
+  q(CrrState::crr) = config_.crr_walk_per_sqrt_s * config_.crr_walk_per_sqrt_s * dt + crr_jump_variance;
+  q(CrrState::cda) = config_.cda_walk_per_sqrt_s * config_.cda_walk_per_sqrt_s * dt;
   const double bias_walk = config_.torque_bias_walk_nm_per_sqrt_s;
-  q(CrrState::torque_bias, CrrState::torque_bias) = bias_walk * bias_walk * dt;
+  q(CrrState::torque_bias) = bias_walk * bias_walk * dt;
   // The grade error decorrelates with distance travelled; its variance tends to the profile's here.
   const double phi = std::exp(-std::abs(v) * dt / config_.grade_error_correlation_m);
   f(CrrState::grade_error, CrrState::grade_error) = phi;
   next(CrrState::grade_error) = phi * x(CrrState::grade_error);
-  q(CrrState::grade_error, CrrState::grade_error) = in.grade_sigma_rad * in.grade_sigma_rad * (1.0 - phi * phi);
+  q(CrrState::grade_error) = in.grade_sigma_rad * in.grade_sigma_rad * (1.0 - phi * phi);
   // The ripple: the road's, a Gauss-Markov process along the road as the inputs give it, and the
   // force errors that integrate to nothing, one in time (config); each tick's share of the latter
   // has the density of white force noise of the same size.
@@ -124,11 +124,11 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
   const Decay ripple = lumped({in.ripple_sigma_mps, phi_road}, {bounded_mps, std::exp(-dt / tau_s)});
   f(CrrState::ripple, CrrState::ripple) = ripple.phi;
   next(CrrState::ripple) = ripple.phi * x(CrrState::ripple);
-  q(CrrState::ripple, CrrState::ripple) = ripple.q;
+  q(CrrState::ripple) = ripple.q;
   const Vec x_before = core_.x();
   const Mat p_before = core_.p();
   core_.predict(next, f, q);
-  if (smoother_ != nullptr) smoother_->record_predict(x_before, p_before, f, core_.x(), core_.p());
+  if (smoother_ != nullptr) smoother_->record_predict(x_before, p_before, f, core_.x(), q);
   ++counters_.predicts;
 }
 

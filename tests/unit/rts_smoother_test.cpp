@@ -38,7 +38,7 @@ Problem solve(std::mt19937& rng) {
     if (k == kSteps) break;
     const Scalar x = core.x(), p = core.p();
     core.predict(x, Scalar::Identity(), Scalar::Constant(kWalk));
-    out.smoother.record_predict(x, p, Scalar::Identity(), core.x(), core.p());
+    out.smoother.record_predict(x, p, Scalar::Identity(), core.x(), Scalar::Constant(kWalk));
     info(k, k) += 1.0 / kWalk;
     info(k + 1, k + 1) += 1.0 / kWalk;
     info(k, k + 1) -= 1.0 / kWalk;

@@ -13,6 +13,16 @@ struct UpdateResult {
   double innovation = 0.0;  // first component of y, for logs
 };
 
+// F P F' + Q for a diagonal Q (white noise on each state), made exactly symmetric. One function
+// for the filter and the smoother, which recomputes it rather than keep a copy per step.
+template <int N>
+Eigen::Matrix<double, N, N> predicted_covariance(const Eigen::Matrix<double, N, N>& p, const Eigen::Matrix<double, N, N>& f,
+                                                 const Eigen::Matrix<double, N, 1>& q_diagonal) {
+  Eigen::Matrix<double, N, N> out = f * p * f.transpose();
+  out.diagonal() += q_diagonal;
+  return 0.5 * (out + out.transpose());
+}
+
 template <int N>
 class KalmanCore {
  public:
@@ -29,11 +39,10 @@ class KalmanCore {
   // torque bias at one steady speed), so that model errors are not absorbed into them.
   void set_consider(int index, bool consider) { consider_(index) = consider ? 0.0 : 1.0; }
 
-  // x <- x_next (the caller integrated the nonlinear model), P <- F P F' + Q.
-  void predict(const Vec& x_next, const Mat& f, const Mat& q) {
+  // x <- x_next (the caller integrated the nonlinear model), P <- F P F' + Q, Q diagonal.
+  void predict(const Vec& x_next, const Mat& f, const Vec& q_diagonal) {
     x_ = x_next;
-    p_ = f * p_ * f.transpose() + q;
-    p_ = 0.5 * (p_ + p_.transpose());
+    p_ = predicted_covariance<N>(p_, f, q_diagonal);
   }
 
   // Measurement z of dimension M with prediction h(x) = zhat and Jacobian H. The innovation is

@@ -3,14 +3,16 @@
 // step's estimate then uses the data on both sides of it. Steps are kept in a deque: a drive of
 // any length holds what it uses, never a second copy while a vector grows. The backward pass
 // writes each step's smoothed estimate over its filtered one and its gain over its Jacobian, which
-// it no longer needs (an hour at 10 Hz: 75 MB, where the vector of all eight had reserved 124 MB
-// and grown to 150 past the hour).
+// it no longer needs; the predicted covariance is computed again from the process noise's
+// diagonal, as the filter computed it, rather than kept (1,512 bytes a step of 9 states).
 #include <cstddef>
 #include <deque>
 #include <span>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+
+#include "roadload/ekf/kalman.hpp"
 
 namespace roadload::ekf {
 
@@ -25,9 +27,10 @@ class RtsSmoother {
     double weight;
   };
 
-  // One prediction: the filtered estimate before it, its Jacobian, and the predicted estimate.
-  void record_predict(const Vec& x_filtered, const Mat& p_filtered, const Mat& f, const Vec& x_pred, const Mat& p_pred) {
-    steps_.push_back({x_filtered, p_filtered, f, x_pred, p_pred});
+  // One prediction: the filtered estimate before it, its Jacobian, the predicted state and the
+  // process noise's diagonal (KalmanCore::predict's).
+  void record_predict(const Vec& x_filtered, const Mat& p_filtered, const Mat& f, const Vec& x_pred, const Vec& q_diagonal) {
+    steps_.push_back({x_filtered, p_filtered, f, x_pred, q_diagonal});
   }
   // The filtered estimate at the end of the recorded interval (after the last update).
   void finish(const Vec& x_last, const Mat& p_last) {
@@ -41,12 +44,13 @@ class RtsSmoother {
     Mat ps = p_last_;
     for (std::size_t k = steps_.size(); k-- > 0;) {
       Step& s = steps_[k];
+      const Mat p_pred = predicted_covariance<N>(s.p, s.f_then_gain, s.q_diagonal);
       // G = P_f F' P_pred^-1, from a factorisation of the (symmetric) predicted covariance.
-      const Eigen::LDLT<Mat> ldlt(s.p_pred);
+      const Eigen::LDLT<Mat> ldlt(p_pred);
       const Mat g = ldlt.solve(s.f_then_gain * s.p).transpose();
       s.f_then_gain = g;
       s.x = s.x + g * (xs - s.x_pred);
-      s.p = s.p + g * (ps - s.p_pred) * g.transpose();
+      s.p = s.p + g * (ps - p_pred) * g.transpose();
       s.p = 0.5 * (s.p + s.p.transpose());
       xs = s.x;
       ps = s.p;
@@ -83,7 +87,7 @@ class RtsSmoother {
     Mat p;            // filtered, then smoothed
     Mat f_then_gain;  // the prediction's Jacobian, then the gain that ties this step to the next
     Vec x_pred;
-    Mat p_pred;
+    Vec q_diagonal;
   };
   std::deque<Step> steps_;
   Vec x_last_ = Vec::Zero();
