@@ -50,16 +50,23 @@ class StallingSource final : public io::Source<T> {
   bool stalled_ = false;
 };
 
-LiveEstimate live_estimate(const SimulatedDrive& drive, std::chrono::milliseconds can_stall, const std::string& name) {
+// The live estimate once the drive has been replayed, its CAN thread starved for `can_stall` of
+// wall time halfway through. The sources hand out the drive `speedup` times faster than real time
+// (1e9: unpaced, as fast as they are read) while the daemon's clock keeps the test's pace.
+LiveEstimate live_estimate(const SimulatedDrive& drive, std::chrono::milliseconds can_stall, const std::string& name,
+                           double speedup = kPace) {
   const std::string dir = temp_dir(name);
   std::atomic<bool> gate{true};
   const Pace pace = start_pace(drive);
+  Pace sources_pace = pace;
+  sources_pace.speedup = speedup;
   PaceClock clock(pace);
-  DaemonSources sources = memory_sources(drive, pace, gate, 1.0);
+  DaemonSources sources = memory_sources(drive, sources_pace, gate, 1.0);
   const std::size_t half = drive.sink.frames.size() / 2;
   sources.can.front() = std::make_unique<CanChannel>(
       std::make_unique<StallingSource<CanFrame>>(
-          std::make_unique<MemorySource<CanFrame>>(drive.sink.frames, gate, drive.sink.frames.size(), "can0", pace), half, can_stall),
+          std::make_unique<MemorySource<CanFrame>>(drive.sink.frames, gate, drive.sink.frames.size(), "can0", sources_pace), half,
+          can_stall),
       SourceKind::can, "can0");
   Daemon daemon(merge_setup(drive, dir), std::move(sources), clock);
   daemon.start();
@@ -89,31 +96,11 @@ TEST(DaemonMerge, AStarvedCanThreadChangesNothingTheFilterComputes) {
 // exactly what the paced replay does, run after run.
 TEST(DaemonMerge, AnUnpacedReplayComputesWhatAPacedOneDoes) {
   const SimulatedDrive drive(16);
-  auto run = [&](double speedup, std::chrono::milliseconds can_stall, const std::string& name) {
-    const std::string dir = temp_dir(name);
-    std::atomic<bool> gate{true};
-    const Pace pace = start_pace(drive);
-    Pace sources_pace = pace;
-    sources_pace.speedup = speedup;
-    PaceClock clock(pace);
-    DaemonSources sources = memory_sources(drive, sources_pace, gate, 1.0);
-    sources.can.front() = std::make_unique<CanChannel>(
-        std::make_unique<StallingSource<CanFrame>>(
-            std::make_unique<MemorySource<CanFrame>>(drive.sink.frames, gate, drive.sink.frames.size(), "can0", sources_pace),
-            drive.sink.frames.size() / 2, can_stall),
-        SourceKind::can, "can0");
-    Daemon daemon(merge_setup(drive, dir), std::move(sources), clock);
-    daemon.start();
-    wait_for(daemon);
-    daemon.stop();
-    std::filesystem::remove_all(dir);
-    return daemon.report().estimate;
-  };
-  const LiveEstimate paced = run(kPace, std::chrono::milliseconds(0), "roadloadd-merge-paced");
+  const LiveEstimate paced = live_estimate(drive, std::chrono::milliseconds(0), "roadloadd-merge-paced");
   ASSERT_TRUE(paced.started);
   EXPECT_GT(paced.s_front_m, 150.0);
   for (int i = 0; i < 2; ++i) {
-    const LiveEstimate unpaced = run(1e9, std::chrono::milliseconds(200), "roadloadd-merge-unpaced");
+    const LiveEstimate unpaced = live_estimate(drive, std::chrono::milliseconds(200), "roadloadd-merge-unpaced", 1e9);
     EXPECT_EQ(unpaced.s_front_m, paced.s_front_m) << "run " << i;
     EXPECT_EQ(unpaced.speed_mps, paced.speed_mps) << "run " << i;
     EXPECT_EQ(unpaced.crr, paced.crr) << "run " << i;
