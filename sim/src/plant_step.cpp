@@ -142,7 +142,7 @@ void TruckPlant::step(double dt_s, const Environment& env) {
   if (state_.clutch_engaged) lock_clutch();
   m.omega0 = state_.engine_rpm * kRadps_per_rpm;
   const double radius = truck_.drive_radius_m();
-  state_.heading_deg = route_.at(x0).heading_deg;
+  state_.heading_deg = route_.heading_deg(x0);
   state_.grade_rad = route_.grade_rad(x0 - truck_.cg_position_m());
   Resisting r = resisting(env, x0);
   const double parasitic = parasitic_torque_nm(m.omega0);

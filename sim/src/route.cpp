@@ -1,6 +1,7 @@
 #include "roadload/sim/route.hpp"
 
 #include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/GeodesicLine.hpp>
 #include <algorithm>
 #include <cmath>
 
@@ -62,7 +63,10 @@ Parsed<Route> Route::build(RouteDef def) {
     geod.Inverse(def.points[i].lat_deg, def.points[i].lon_deg, def.points[i + 1].lat_deg, def.points[i + 1].lon_deg, s12, azi1, azi2);
     if (s12 < 1e-3) return ParseError{where, 0, "point[" + std::to_string(i + 1) + "]", "repeats the previous point"};
     r.cumulative_m_.push_back(r.cumulative_m_.back() + s12);
-    r.azimuth_deg_.push_back(azi1);
+    // Route::at's caps are those Geodesic::Direct gives its own line, so positions keep its bits.
+    r.lines_.emplace_back(geod, def.points[i].lat_deg, def.points[i].lon_deg, azi1,
+                          GeographicLib::GeodesicLine::LATITUDE | GeographicLib::GeodesicLine::LONGITUDE |
+                              GeographicLib::GeodesicLine::AZIMUTH | GeographicLib::GeodesicLine::DISTANCE_IN);
   }
   for (const Cell& c : def.cells) {
     if (c.start_m < 0 || c.end_m > r.cumulative_m_.back() + 1e-6 || c.end_m <= c.start_m) {
@@ -90,19 +94,25 @@ Parsed<Route> Route::build(RouteDef def) {
   return r;
 }
 
+std::size_t Route::segment_at(double s_m) const {
+  if (s_m >= cumulative_m_.back()) return lines_.size() - 1;
+  if (s_m <= 0) return 0;
+  return static_cast<std::size_t>(std::upper_bound(cumulative_m_.begin(), cumulative_m_.end(), s_m) - cumulative_m_.begin()) - 1;
+}
+
 Route::Position Route::at(double s_m) const {
-  const auto& geod = GeographicLib::Geodesic::WGS84();
-  std::size_t i = 0;
-  if (s_m >= cumulative_m_.back()) {
-    i = azimuth_deg_.size() - 1;
-  } else if (s_m > 0) {
-    i = static_cast<std::size_t>(std::upper_bound(cumulative_m_.begin(), cumulative_m_.end(), s_m) - cumulative_m_.begin()) - 1;
-  }
-  const RoutePoint& p = def_->points[i];
+  const std::size_t i = segment_at(s_m);
   double lat = 0, lon = 0, azi2 = 0;
-  geod.Direct(p.lat_deg, p.lon_deg, azimuth_deg_[i], s_m - cumulative_m_[i], lat, lon, azi2);
+  lines_[i].Position(s_m - cumulative_m_[i], lat, lon, azi2);
   const double heading = std::fmod(azi2 + 360.0, 360.0);
   return {lat, lon, heading, elevation_m(s_m)};
+}
+
+double Route::heading_deg(double s_m) const {
+  const std::size_t i = segment_at(s_m);
+  double lat = 0, lon = 0, azi2 = 0;
+  lines_[i].GenPosition(false, s_m - cumulative_m_[i], GeographicLib::GeodesicLine::AZIMUTH, lat, lon, azi2, lat, lat, lat, lat, lat);
+  return std::fmod(azi2 + 360.0, 360.0);
 }
 
 double Route::elevation_m(double s_m) const {

@@ -2,6 +2,7 @@
 // A road as the plant drives it: a geodetic polyline with elevation, and cells (pavement test
 // sections) with surface, CRR and roughness. Distances are metres along the polyline from its
 // first point; positions before and after it extend along the end bearings so a truck can run in.
+#include <GeographicLib/GeodesicLine.hpp>
 #include <memory>
 #include <span>
 #include <string>
@@ -48,6 +49,8 @@ class Route {
   const RouteDef& def() const { return *def_; }
   double length_m() const { return cumulative_m_.back(); }
   Position at(double s_m) const;
+  // The heading alone, as at() gives it: the plant needs it every step, the position it does not.
+  double heading_deg(double s_m) const;
   double elevation_m(double s_m) const;  // surveyed elevation, smoothed over 60 m as a road is built
   double grade_rad(double s_m) const;
   // The cell at s, or nullptr between cells.
@@ -58,9 +61,11 @@ class Route {
 
  private:
   Route() = default;
+  std::size_t segment_at(double s_m) const;
   std::shared_ptr<const RouteDef> def_;
   std::vector<double> cumulative_m_;  // distance at each point
-  std::vector<double> azimuth_deg_;   // azimuth leaving each point
+  // The geodesic leaving each point, set up once: setting one up costs as much as walking it.
+  std::vector<GeographicLib::GeodesicLine> lines_;
   // Smoothed elevation every kElevationStep_m from elev_origin_m.
   std::vector<double> elevation_;
   double elev_origin_m_ = 0;
