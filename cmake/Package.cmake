@@ -21,6 +21,8 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # The maintainer scripts call systemd-sysusers, systemd-tmpfiles and deb-systemd-helper.
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "systemd, init-system-helpers")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "gpsd, can-utils, logrotate")
+# flac -d and zstdcat read the recordings' accelerometer and other streams without roadload.
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "flac, zstd")
 # The Python module (docs/python.md) is for Debian's python3 with its pandas, and `roadload batch`
 # runs on its python3-distributed; the programs need none of them, so they are recommended.
 if(ROADLOAD_PYTHON)

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "roadload/accel/adxl355.hpp"
 #include "roadload/content_hash.hpp"
 #include "roadload/definitions.hpp"
 #include "roadload/engine_loss_file.hpp"
@@ -17,6 +18,7 @@
 #include "roadload/firmware/status_log.hpp"
 #include "roadload/io/directory_lock.hpp"
 #include "roadload/io/posix_time.hpp"
+#include "roadload/recording/flac_accel.hpp"
 #include "roadload/recording/metadata_vehicle.hpp"
 #include "roadload/recording/vehicle_setup.hpp"
 #include "roadload/route_file.hpp"
@@ -146,7 +148,32 @@ void configure_estimator(const DaemonConfig& c, const Estimation& est, DaemonSet
   for (const std::string& why : layout.skipped) notes.push_back("spectra: no contact force for " + why);
 }
 
-std::optional<RecorderConfig> recorder_config(const RecordingConfig& r) {
+// Which accelerometers go to FLAC: a part's step follows from its range; a replay's sensors keep
+// the layout they were recorded in (a replayed accel.csv holds decimals, not counts).
+std::vector<AccelFlacSensor> accel_flac_sensors(const DaemonConfig& c, const BuiltSources& b, std::vector<std::string>& notes) {
+  std::vector<AccelFlacSensor> out;
+  if (c.recording.accel_format != "flac") return out;
+  if (!b.replaying) {
+    for (const AccelConfig& a : c.accelerometers) {
+      if (const auto code = accel::Adxl355::range_code(static_cast<int>(a.range_g))) {
+        out.push_back({a.id, a.odr_hz, accel::adxl355::mps2_per_lsb(*code)});
+      }
+    }
+    return out;
+  }
+  for (const auto& path : recording::find_accel_flac(c.replay.recording)) {
+    auto info = recording::read_accel_flac_info(path);
+    if (!info) {
+      notes.push_back("recording: " + info.error().to_string() + "; that sensor goes to accel.csv");
+      continue;
+    }
+    out.push_back({info.value().sensor, info.value().rate_hz, info.value().step_mps2});
+  }
+  return out;
+}
+
+std::optional<RecorderConfig> recorder_config(const DaemonConfig& c, const BuiltSources& b, std::vector<std::string>& notes) {
+  const RecordingConfig& r = c.recording;
   if (!r.enabled) return std::nullopt;
   RecorderConfig rc;
   rc.data_dir = r.data_dir;
@@ -155,6 +182,7 @@ std::optional<RecorderConfig> recorder_config(const RecordingConfig& r) {
   rc.segment_max_bytes = static_cast<std::uint64_t>(r.segment_max_mib * 1048576.0);
   rc.quota_bytes = static_cast<std::uint64_t>(r.quota_mib * 1048576.0);
   rc.compression_level = r.compression_level;
+  rc.accel_flac = accel_flac_sensors(c, b, notes);
   return rc;
 }
 
@@ -206,7 +234,7 @@ int run(const CommandLine& cl) {
   if (!log.open()) return fail("status: " + log.error());
 
   DaemonSetup setup;
-  setup.recording = recorder_config(c.recording);
+  setup.recording = recorder_config(c, built.value(), notes);
   setup.metadata = metadata(c, built.value(), est.vehicle);
   setup.interfaces = built.value().interfaces;
   setup.buses = built.value().buses;

@@ -159,12 +159,19 @@ int psd(const Options& o) {
     if (channels.empty()) return usage_error("psd", "no accelerometer in " + input + "/meta.toml matches");
     for (const Channel& c : channels)
       if (c.fs_hz != channels[0].fs_hz) return usage_error("psd", "sensors at different rates: give --fs or one --sensor");
-    const std::string_view cols[] = {"t_ns", "sensor", "x_mps2", "y_mps2", "z_mps2"};
-    // A drive's segments continue one another: each one's samples go on where the last left off.
-    for (std::size_t i = 0; i < o.inputs.size() && rc == kExitOk; ++i)
-      rc = feed(
-          recording::find_stream(o.inputs[i], recording::kAccelFile).value_or(o.inputs[i] + "/" + recording::kAccelFile).string(),
-          cols, channels);
+    // A drive's segments continue one another; accel.csv or the sensors' FLAC files alike.
+    auto drive = recording::RecordingReader::open_drive(o.inputs, recording::kAccelStream);
+    if (!drive) return fail_data(drive.error());
+    while (const recording::Record* r = drive.value().next()) {
+      const auto& s = std::get<AccelSample>(*r);
+      const std::array<double, 3> xyz{s.x_mps2, s.y_mps2, s.z_mps2};
+      for (Channel& c : channels) {
+        if (c.sensor != s.sensor) continue;
+        c.psd->push(xyz[c.axis]);
+        ++c.samples;
+      }
+    }
+    if (drive.value().errors().count() > 0) return fail_data(drive.value().errors().kept().front());
   }
   if (rc != kExitOk) return rc;
   for (const Channel& c : channels) {

@@ -49,7 +49,7 @@ int list_scenarios() {
 }
 
 struct SimulateOptions {
-  std::string scenario, out, truth_dir, vehicle;
+  std::string scenario, out, truth_dir, vehicle, accel_format = "text";
   std::uint64_t seed = 1;
   std::vector<std::string> effects;
   std::optional<double> duration_s;
@@ -69,6 +69,10 @@ void add_options(CLI::App& cmd, SimulateOptions& o) {
   cmd.add_option("--effect", o.effects, "switch an effect on with magnitude M (its typical value if omitted);\nrepeatable")
       ->type_name("NAME[=M]");
   cmd.add_option("--duration", o.duration_s, "stop after S simulated seconds")->type_name("S")->check(real_in(0.1, 1e6));
+  cmd.add_option("--accel-format", o.accel_format,
+                 "the accelerometers as accel.csv (text, default) or as FLAC counts, one\naccel-ID.flac per sensor (flac)")
+      ->type_name("FORMAT")
+      ->check(CLI::IsMember({"text", "flac"}));
   cmd.add_flag("--list-effects", o.list_effects, "list the effects with unit, typical value and range, then exit");
   cmd.add_flag("--list-scenarios", o.list_scenarios, "list the built-in scenarios, then exit");
   cmd.add_flag("-q,--quiet", o.quiet, "no progress on standard error");
@@ -129,6 +133,14 @@ int simulate(const SimulateOptions& o) {
   sim::Simulation simulation(sc, o.seed, db);
   auto writer = recording::RecordingWriter::create(o.out, simulation.metadata());
   if (!writer) return fail(writer.error(), kExitNoInput);
+  if (o.accel_format == "flac") {
+    const std::vector<double> steps = simulation.accel_steps_mps2();
+    for (const auto& sensor : simulation.metadata().sensors) {
+      if (sensor.kind != "accelerometer") continue;
+      const auto id = static_cast<std::uint8_t>(sensor.id);
+      if (auto err = writer.value().accel_as_flac(id, sensor.rate_hz, steps.at(id))) return fail(*err, kExitNoInput);
+    }
+  }
   std::optional<sim::TruthRecorder> truth;
   if (!o.truth_dir.empty()) {
     truth.emplace(simulation.route(), simulation.plant().truck());

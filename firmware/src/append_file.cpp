@@ -16,7 +16,7 @@ bool AppendFile::open(const std::string& path, FrameCompressor* compressor) {
   close();
   compressor_ = compressor;
   frames_ = 0;
-  if (!buffer_) buffer_ = std::make_unique<char[]>(kBufferBytes);
+  if (!buffer_) buffer_ = std::make_unique<char[]>(capacity_);
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0640);
   if (fd_ < 0) {
     errno_ = errno;
@@ -39,11 +39,11 @@ bool AppendFile::append(std::string_view line) {
   // A full buffer goes out now; after a failed frame, not before the next sync(): compressing the
   // same lines again for every line that arrives would cost a core while the disk is full.
   const bool retry = compressor_ == nullptr || errno_ == 0;
-  if (used_ + line.size() > kBufferBytes && !(retry && write_out()) && used_ + line.size() > kBufferBytes) {
+  if (used_ + line.size() > capacity_ && !(retry && write_out()) && used_ + line.size() > capacity_) {
     ++lost_;
     return false;
   }
-  if (line.size() > kBufferBytes) {
+  if (line.size() > capacity_) {
     ++lost_;
     return false;
   }

@@ -69,7 +69,10 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
   }
   if (const toml::table* t = f.table(root, "recording")) {
     const std::string w = "recording.";
-    f.only(*t, {"enabled", "data_dir", "fsync_interval_s", "segment_max_s", "segment_max_mib", "quota_mib", "compression_level"}, w);
+    f.only(*t,
+           {"enabled", "data_dir", "fsync_interval_s", "segment_max_s", "segment_max_mib", "quota_mib", "compression_level",
+            "accel_format"},
+           w);
     RecordingConfig& r = c.recording;
     r.enabled = f.flag(*t, "enabled", w).value_or(r.enabled);
     r.data_dir = f.text(*t, "data_dir", w).value_or(r.data_dir);
@@ -79,6 +82,7 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
     r.quota_mib = f.number(*t, "quota_mib", w, r.quota_mib);
     const double level = f.number(*t, "compression_level", w, r.compression_level);
     r.compression_level = level >= 0 && level <= 19 && level == std::floor(level) ? static_cast<int>(level) : -1;
+    r.accel_format = f.text(*t, "accel_format", w).value_or(r.accel_format);
   }
   if (const toml::table* t = f.table(root, "status")) {
     f.only(*t, {"text_file", "json_file", "interval_s"}, "status.");
@@ -193,6 +197,8 @@ std::optional<ParseError> validate(const DaemonConfig& c) {
     return field_error("recording.quota_mib", "expected twice segment_max_mib to 1073741824 (1 PiB)");
   }
   if (r.compression_level < 0) return field_error("recording.compression_level", "expected a whole number, 0 (plain text) to 19");
+  if (r.accel_format != "flac" && r.accel_format != "text")
+    return field_error("recording.accel_format", "expected \"flac\" or \"text\"");
   if (c.status.text_file.empty()) return field_error("status.text_file", "must not be empty");
   if (!(c.status.interval.count() >= 0.1 && c.status.interval.count() <= 60)) {
     return field_error("status.interval_s", "expected 0.1 to 60");
@@ -234,7 +240,7 @@ std::string format_config(const DaemonConfig& c) {
   o << "\n[recording]\nenabled = " << (r.enabled ? "true" : "false") << "\ndata_dir = " << quoted(r.data_dir)
     << "\nfsync_interval_s = " << r.fsync_interval.count() << "\nsegment_max_s = " << r.segment_max.count()
     << "\nsegment_max_mib = " << r.segment_max_mib << "\nquota_mib = " << r.quota_mib
-    << "\ncompression_level = " << r.compression_level << "\n";
+    << "\ncompression_level = " << r.compression_level << "\naccel_format = " << quoted(r.accel_format) << "\n";
   o << "\n[status]\ntext_file = " << quoted(c.status.text_file) << "\njson_file = " << quoted(c.status.json_file)
     << "\ninterval_s = " << c.status.interval.count() << "\n";
   o << "\n[replay]\nrecording = " << quoted(c.replay.recording) << "\nrate = " << c.replay.rate

@@ -143,14 +143,14 @@ std::size_t merge(Channels& channels, CaptureTime horizon, std::size_t max, Fn&&
   std::size_t n = 0;
   while (n < max) {
     bool complete = true;
-    const auto best = oldest_head(channels.size(), [&](std::size_t i) -> std::optional<CaptureTime> {
-      const auto* head = channels[i]->to_writer().peek();
-      if (head == nullptr) {
-        complete = complete && channels[i]->finished();
-        return std::nullopt;
-      }
-      return head->t;
-    });
+    const auto best = oldest_head(
+        channels.size(),
+        [&](std::size_t i) {
+          if (channels[i]->to_writer().peek() != nullptr) return true;
+          complete = complete && channels[i]->finished();
+          return false;
+        },
+        [&](std::size_t i) { return channels[i]->to_writer().peek()->t; });
     if (!best) break;
     auto& ring = channels[*best]->to_writer();
     if (!complete && ring.peek()->t > horizon) break;
@@ -210,14 +210,16 @@ CaptureTime Daemon::can_horizon(CaptureTime now) {
 // also at or before `place_horizon`).
 bool Daemon::estimate_next(CaptureTime horizon, CaptureTime place_horizon) {
   const std::size_t placing = sources_.can.size() + sources_.accel.size();
-  const auto best = oldest_head(sources_.count(), [&](std::size_t i) {
-    const CaptureTime limit = i >= placing ? std::min(horizon, place_horizon) : horizon;
-    return sources_.visit(i, [&](auto& c) -> std::optional<CaptureTime> {
-      const auto* head = c.to_estimator().peek();
-      if (head == nullptr || head->t > limit) return std::nullopt;
-      return head->t;
-    });
-  });
+  const auto best = oldest_head(
+      sources_.count(),
+      [&](std::size_t i) {
+        const CaptureTime limit = i >= placing ? std::min(horizon, place_horizon) : horizon;
+        return sources_.visit(i, [&](auto& c) {
+          const auto* head = c.to_estimator().peek();
+          return head != nullptr && head->t <= limit;
+        });
+      },
+      [&](std::size_t i) { return sources_.visit(i, [](auto& c) { return c.to_estimator().peek()->t; }); });
   if (!best) return false;
   sources_.visit(*best, [this](auto& c) {
     auto& ring = c.to_estimator();

@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "roadload/recording/candump.hpp"
+#include "roadload/recording/flac_accel.hpp"
 
 namespace roadload::firmware {
 
@@ -93,6 +94,13 @@ Recorder::Recorder(RecorderConfig config, recording::Metadata meta, std::vector<
     : config_(std::move(config)), meta_(std::move(meta)), interfaces_(std::move(interfaces)) {
   if (config_.compression_level > 0)
     compressor_ = std::make_unique<FrameCompressor>(config_.compression_level, AppendFile::kBufferBytes);
+  for (const AccelFlacSensor& a : config_.accel_flac) {
+    auto f = std::make_unique<FlacStream>();
+    f->sensor = a;
+    f->encoder = std::make_unique<recording::FlacEncoder>();
+    flac_by_sensor_[a.sensor] = f.get();
+    flac_.push_back(std::move(f));
+  }
   meta_.recording_id = new_recording_id();
   meta_.segment = 0;
   scan_data_dir();
@@ -179,13 +187,52 @@ void Recorder::write(const CanFrame& f) {
   append(can_, {buf, n + 1});
 }
 
-void Recorder::write(const AccelSample& s) { append(accel_, recording::format_row(s, line_)); }
+void Recorder::write(const AccelSample& s) {
+  if (FlacStream* f = flac_by_sensor_[s.sensor]) return write_flac(*f, s);
+  append(accel_, recording::format_row(s, line_));
+}
+
+void Recorder::write_flac(FlacStream& f, const AccelSample& s) {
+  const auto row = recording::accel_flac_row(s, f.sensor.step_mps2);
+  if (!row || folder_.empty()) {
+    // A value off the sensor's steps cannot be stored as counts: counted, as a line that did not fit.
+    ++status_.lines_lost;
+    return;
+  }
+  if (!f.file.is_open()) {
+    const std::string path = folder_ + "/" + recording::accel_flac_file(f.sensor.sensor);
+    if (!f.file.open(path)) {
+      note_error(path, f.file.last_errno());
+      ++status_.lines_lost;
+      return;
+    }
+    const auto header = recording::start_accel_flac(*f.encoder, f.sensor.sensor, f.sensor.rate_hz, f.sensor.step_mps2);
+    put(f, header, f.encoder->samples_written());
+  }
+  const std::uint64_t before = f.encoder->samples_written();
+  put(f, f.encoder->push(*row), before);
+  ++status_.lines;
+}
+
+void Recorder::put(FlacStream& f, std::span<const std::uint8_t> bytes, std::uint64_t samples_before) {
+  if (bytes.empty()) return;
+  if (!f.file.append({reinterpret_cast<const char*>(bytes.data()), bytes.size()})) {
+    status_.lines_lost += f.encoder->samples_written() - samples_before;
+  }
+}
+
+bool Recorder::flush_file(AppendFile& file, bool sync) {
+  if (!file.is_open() || (sync ? file.sync() : file.flush())) return true;
+  note_error(file.path(), file.last_errno());
+  return false;
+}
 void Recorder::write(const GnssFix& s) { append(gnss_, recording::format_row(s, line_)); }
 void Recorder::write(const WeatherSample& s) { append(weather_, recording::format_row(s, line_)); }
 
 std::uint64_t Recorder::segment_bytes() const {
   std::uint64_t total = 0;
   for (const Stream* s : {&can_, &accel_, &gnss_, &weather_}) total += s->file.bytes();
+  for (const auto& f : flac_) total += f->file.bytes();
   return total;
 }
 
@@ -197,12 +244,14 @@ void Recorder::tick(CaptureTime now) {
   const bool sync = now - last_sync_ >= config_.fsync_interval;
   if (sync || now - last_flush_ >= kFlushPeriod) {
     bool ok = true;
-    for (Stream* s : {&can_, &accel_, &gnss_, &weather_}) {
-      if (!s->file.is_open()) continue;
-      if (!(sync ? s->file.sync() : s->file.flush())) {
-        ok = false;
-        note_error(s->file.path(), s->file.last_errno());
+    for (Stream* s : {&can_, &accel_, &gnss_, &weather_}) ok = flush_file(s->file, sync) && ok;
+    for (const auto& f : flac_) {
+      // The open block becomes a frame at each fsync, as the zstd streams' frames do.
+      if (sync && f->file.is_open()) {
+        const std::uint64_t before = f->encoder->samples_written();
+        put(*f, f->encoder->close_frame(), before);
       }
+      ok = flush_file(f->file, sync) && ok;
     }
     if (ok && status_.error != 0) {
       status_.error = 0;
@@ -225,6 +274,12 @@ void Recorder::end_segment() {
     const std::uint64_t before = s->file.lines_lost();
     if (!s->file.close()) note_error(s->file.path(), s->file.last_errno());
     status_.lines_lost += s->file.lines_lost() - before;
+  }
+  for (const auto& f : flac_) {
+    if (!f->file.is_open()) continue;
+    const std::uint64_t before = f->encoder->samples_written();
+    put(*f, f->encoder->close_frame(true), before);
+    if (!f->file.close()) note_error(f->file.path(), f->file.last_errno());
   }
   closed_.emplace_back(status_.segment, folder_bytes(folder_));
   folder_.clear();

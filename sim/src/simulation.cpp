@@ -337,6 +337,12 @@ std::string Simulation::truth_toml() const {
   return o.str();
 }
 
+std::vector<double> Simulation::accel_steps_mps2() const {
+  std::vector<double> out;
+  for (const auto& a : p_->accels) out.push_back(a.step_mps2());
+  return out;
+}
+
 RunSummary Simulation::run(SampleSink& sink, TruthRecorder* truth, const std::function<void(double)>& progress) {
   Parts& p = *p_;
   const Scenario& sc = p.scenario;

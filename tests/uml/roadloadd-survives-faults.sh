@@ -5,7 +5,8 @@
 #      is either recorded or counted as lost;
 #   3. SIGKILL at a random moment loses at most the open zstd frame of each stream, closed at every
 #      fsync (0.5 s here; a frame candump saw 1 s before the kill is on file, whatever the load),
-#      and every file it leaves reads back without error.
+#      and every file it leaves reads back without error;
+#   4. the same with the accelerometers written as FLAC: whole frames, the open one lost at most.
 # usage (inside UML, through uml-run): roadloadd-survives-faults.sh ROADLOADD_BIN ROADLOAD_BIN
 set -euo pipefail
 
@@ -116,3 +117,40 @@ read -r late window < <(awk -v k="$killed_at" -v r="$recorded" '
   END { printf "%d %.3f\n", late, seen ? w : 0 }' "$d/candump.log")
 ((late == 0)) || die "after SIGKILL: $late frames candump saw more than 1 s before the kill are not on file"
 note "PASS 3: SIGKILL: $recorded frames on file in whole zstd frames; the first one missing arrived $window s before the kill (limit 1 s)"
+
+# 4. SIGKILL while the accelerometers are recorded as FLAC (roadloadd's default for a replay of a
+#    recording that has them so): every file left decodes (`flac -t`: whole frames, CRCs good), each
+#    sensor's counts are the start of what was replayed, and nothing replayed more than 1 s before
+#    the kill is missing (the open frame is closed at every fsync, 0.5 s here).
+d=$work/flac
+mkdir -p "$d"
+"$roadload" simulate --scenario mnroad-mainline-30mph --duration 30 --seed 3 --out "$d/sim" --accel-format flac -q ||
+  die "roadload simulate --accel-format flac failed"
+start_daemon "$d" --config "$work/kill/sync.toml" --replay "$d/sim"
+sleep "$(awk -v r="$RANDOM" 'BEGIN { printf "%.3f", 1.5 + r / 32768 * 2.0 }')"
+kill -KILL "$daemon"
+read -r killed_at _ </proc/uptime  # the capture clock (CLOCK_MONOTONIC) in 10 ms steps
+wait "$daemon" 2>/dev/null || true
+raw() { flac -d -s -c --force-raw-format --endian=little --sign=signed "$1" | od -An -v -t d4 -w20; }
+shopt -s nullglob
+files=("$d"/rec/*/accel-*.flac)
+shopt -u nullglob
+((${#files[@]} == 8)) || die "after SIGKILL: ${#files[@]} accelerometer FLAC files, expected 8"
+for f in "$d"/rec/*/*.zst; do zstd -tq "$f" || die "after SIGKILL $f holds a frame cut short"; done
+worst=0 samples=0
+for f in "${files[@]}"; do
+  flac -t -s "$f" 2>"$d/flac.err" || die "after SIGKILL $f does not decode: $(cat "$d/flac.err")"
+  id=${f##*/accel-}
+  raw "$f" >"$d/got"
+  raw "$d/sim/accel-$id" >"$d/sent"
+  n=$(wc -l <"$d/got")
+  ((n > 0)) || die "after SIGKILL $f holds no sample"
+  cmp -s <(awk '{ print $1, $2, $3 }' "$d/got") <(head -n "$n" "$d/sent" | awk '{ print $1, $2, $3 }') ||
+    die "after SIGKILL $f is not the start of what was replayed"
+  late=$(tail -n 1 "$d/got" | awk -v k="$killed_at" '{ printf "%.3f", k - ($4 + $5 / 1e9) }')
+  worst=$(awk -v a="$worst" -v b="$late" 'BEGIN { print (b > a ? b : a) }')
+  samples=$((samples + n))
+done
+awk -v w="$worst" 'BEGIN { exit !(w < 1.0) }' ||
+  die "after SIGKILL: a sensor's last sample on file was replayed $worst s before the kill (limit 1 s)"
+note "PASS 4: SIGKILL: $samples accelerometer samples in 8 FLAC files of whole frames, the start of what was replayed; the last on file ${worst} s before the kill at worst (limit 1 s)"

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "roadload/firmware/recorder.hpp"
+#include "roadload/recording/flac_accel.hpp"
 #include "roadload/recording/reader.hpp"
 
 namespace roadload::firmware {
@@ -199,6 +200,91 @@ TEST_P(RecorderStreams, WriteFailureIsReportedAndEveryLineAccountedFor) {
   const std::size_t on_disk = frames_in(segs[0]);
   EXPECT_GT(rec.status().lines_lost, 0u);
   EXPECT_EQ(on_disk + rec.status().lines_lost, static_cast<std::size_t>(kFrames));
+}
+
+// Accelerometers with a known step go to their FLAC files, the others to accel.csv beside them.
+constexpr double kStep = 9.80665 / 256000;
+
+AccelSample accel(std::uint8_t sensor, std::int64_t i) {
+  const double count = static_cast<double>((i * 7919 + sensor * 104729) % 20001 - 10000);
+  return {capture_time_from_ns(1'000'000'000 + i * 250'000 + sensor), sensor, count * kStep, -count * kStep,
+          (256000 + count) * kStep};
+}
+
+std::vector<AccelSample> accel_read(const std::vector<fs::path>& segs, std::uint64_t* errors = nullptr) {
+  std::vector<std::string> paths;
+  for (const auto& s : segs) paths.push_back(s.string());
+  auto r = recording::RecordingReader::open_drive(paths);
+  EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().to_string());
+  std::vector<AccelSample> out;
+  if (!r.ok()) return out;
+  while (const auto* rec = r.value().next()) out.push_back(std::get<AccelSample>(*rec));
+  if (errors != nullptr) *errors = r.value().errors().count();
+  return out;
+}
+
+TEST_P(RecorderStreams, AccelerometersWithAStepGoToFlacAcrossSegments) {
+  RecorderConfig c = config("recorder-flac");
+  c.segment_max = Nanoseconds{3'000'000'000};
+  c.accel_flac = {{0, 4000, kStep}, {3, 4000, kStep}};
+  Recorder rec(c, recording::Metadata{}, {"can0"});
+  CaptureTime now = capture_time_from_ns(0);
+  rec.tick(now);
+  constexpr std::int64_t kSamples = 30'000;  // 7.5 s at 4 kHz
+  for (std::int64_t i = 0; i < kSamples; ++i) {
+    for (const std::uint8_t sensor : std::array<std::uint8_t, 3>{0, 3, 5}) rec.write(accel(sensor, i));
+    if (i % 100 == 0) rec.tick(now += Nanoseconds{25'000'000});
+  }
+  // Off the sensor's steps: cannot be stored as counts, and is counted.
+  rec.write(AccelSample{capture_time_from_ns(9'000'000'000), 0, 0.1, 0, 0});
+  rec.end_segment();
+  const auto segs = segments(c.data_dir);
+  ASSERT_GE(segs.size(), 3u);
+  EXPECT_TRUE(fs::exists(segs[0] / "accel-0.flac"));
+  EXPECT_TRUE(fs::exists(segs[0] / "accel-3.flac"));
+  EXPECT_TRUE(fs::exists(segs[0] / (GetParam() == 0 ? "accel.csv" : "accel.csv.zst")));
+  EXPECT_EQ(rec.status().lines, 3u * kSamples);
+  EXPECT_EQ(rec.status().lines_lost, 1u);
+  // The drive reads back whole: the FLAC sensors exactly, the text one to its six decimals.
+  std::uint64_t errors = 0;
+  const auto got = accel_read(segs, &errors);
+  EXPECT_EQ(errors, 0u);
+  ASSERT_EQ(got.size(), 3u * kSamples);
+  std::vector<std::int64_t> seen(6, 0);
+  for (const AccelSample& a : got) {
+    ASSERT_TRUE(a.sensor == 0 || a.sensor == 3 || a.sensor == 5);
+    const AccelSample want = accel(a.sensor, seen[a.sensor]++);
+    ASSERT_EQ(a.t, want.t);
+    const double tolerance = a.sensor == 5 ? 1e-6 : 0.0;  // six decimals, rounded
+    ASSERT_NEAR(a.x_mps2, want.x_mps2, tolerance);
+    ASSERT_NEAR(a.z_mps2, want.z_mps2, tolerance);
+  }
+}
+
+// What a power cut leaves: every file as it is on disk after an fsync, the recorder still running.
+TEST_P(RecorderStreams, AFlacStreamOnDiskHoldsEverySampleUpToTheLastSync) {
+  RecorderConfig c = config("recorder-flac-cut");
+  c.fsync_interval = Nanoseconds{500'000'000};
+  c.accel_flac = {{0, 4000, kStep}};
+  Recorder rec(c, recording::Metadata{}, {"can0"});
+  CaptureTime now = capture_time_from_ns(0);
+  rec.tick(now);
+  std::int64_t synced = 0;
+  for (std::int64_t i = 0; i < 10'050; ++i) {  // the last 50 after the last fsync
+    rec.write(accel(0, i));
+    if (i % 100 == 99) {
+      rec.tick(now += Nanoseconds{25'000'000});
+      if (i % 2000 == 1999) synced = i + 1;  // every 20 ticks: 500 ms, an fsync
+    }
+  }
+  const auto segs = segments(c.data_dir);
+  ASSERT_EQ(segs.size(), 1u);
+  std::uint64_t errors = 0;
+  const auto on_disk = accel_read(segs, &errors);
+  EXPECT_EQ(errors, 0u);
+  EXPECT_GE(on_disk.size(), static_cast<std::size_t>(synced));
+  EXPECT_LT(on_disk.size(), static_cast<std::size_t>(synced + 4096));
+  for (std::size_t i = 0; i < on_disk.size(); ++i) ASSERT_EQ(on_disk[i].t, accel(0, static_cast<std::int64_t>(i)).t);
 }
 
 }  // namespace

@@ -108,7 +108,7 @@ Adxl355::Fault Adxl355::prepare() {
   if (!write(kRange, static_cast<std::uint8_t>((rx_[1] & ~kRangeMask) | range_code_))) return fail(Fault::spi, kRange);
   set_entries_ = 0;
   stray_entries_ = 0;
-  mps2_per_lsb_ = kStandardGravity / (kLsbPerG2g / static_cast<double>(1 << (range_code_ - 1)));
+  mps2_per_lsb_ = mps2_per_lsb(range_code_);
   return Fault::none;
 }
 

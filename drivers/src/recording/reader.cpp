@@ -9,6 +9,7 @@
 
 #include "roadload/merge.hpp"
 #include "roadload/recording/csv.hpp"
+#include "roadload/recording/flac_accel.hpp"
 
 namespace roadload::recording {
 namespace {
@@ -39,9 +40,7 @@ class CsvStream final : public Stream {
         errors.add(csv_.field_error(bad->first, bad->second));
         continue;
       }
-      if (s.t < last_) ++counts_.backwards;
-      last_ = s.t;
-      ++counts_.records;
+      count(s.t);
       out = s;
       return true;
     }
@@ -52,7 +51,6 @@ class CsvStream final : public Stream {
   CsvReader csv_;
   const char* name_;
   Convert convert_;
-  CaptureTime last_{};
 };
 
 using FieldError = std::optional<std::pair<std::size_t, std::string>>;
@@ -224,7 +222,19 @@ std::optional<fs::path> find_stream(const fs::path& dir, const char* name) {
   return std::nullopt;
 }
 
+bool has_stream(const fs::path& dir, unsigned bit) {
+  return find_stream(dir, stream_file(bit)).has_value() || (bit == kAccelStream && !find_accel_flac(dir).empty());
+}
+
 Parsed<std::unique_ptr<Stream>> open_stream(unsigned bit, const std::filesystem::path& dir, const InterfaceTable* interfaces) {
+  if (bit == kAccelStream) {
+    if (auto flac = find_accel_flac(dir); !flac.empty()) {
+      if (!find_stream(dir, kAccelFile)) return open_accel_flac(flac);
+      auto text = open_csv<AccelSample>(find_stream(dir, kAccelFile).value(), kAccelColumns, kAccelFile, to_accel);
+      if (!text) return text.error();
+      return open_accel_flac(flac, std::move(text.value()));
+    }
+  }
   const fs::path p = find_stream(dir, stream_file(bit)).value_or(dir / stream_file(bit));
   switch (bit) {
     case kCanStream: {
@@ -253,9 +263,7 @@ bool CandumpStream::next_frame(CanFrame& out, ErrorLog& errors) {
       ++counts_.ignored_lines;
       continue;
     }
-    if (out.t < last_) ++counts_.backwards;
-    last_ = out.t;
-    ++counts_.records;
+    count(out.t);
     return true;
   }
   if (lines_.error()) errors.add(*lines_.error());
@@ -300,7 +308,7 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned 
     r.has_meta_ = true;
   }
   for (unsigned bit : kStreamBits) {
-    if ((streams & bit) == 0 || !find_stream(dir, stream_file(bit))) continue;
+    if ((streams & bit) == 0 || !has_stream(dir, bit)) continue;
     auto s = open_stream(bit, dir, nullptr);
     if (!s) return s.error();
     r.streams_.push_back(std::move(s.value()));
@@ -326,10 +334,8 @@ const Record* RecordingReader::next() {
     for (std::size_t i = 0; i < streams_.size(); ++i) live_[i] = streams_[i]->next(heads_[i], errors_);
     primed_ = true;
   }
-  const auto best = oldest_head(streams_.size(), [this](std::size_t i) -> std::optional<CaptureTime> {
-    if (!live_[i]) return std::nullopt;
-    return stamp_of(heads_[i]);
-  });
+  const auto best = oldest_head(
+      streams_.size(), [this](std::size_t i) { return live_[i]; }, [this](std::size_t i) { return stamp_of(heads_[i]); });
   if (!best) return nullptr;
   current_ = heads_[*best];
   live_[*best] = streams_[*best]->next(heads_[*best], errors_);

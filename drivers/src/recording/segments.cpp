@@ -44,7 +44,7 @@ class ChainStream final : public Stream {
     current_.reset();
     while (next_folder_ < folders_.size()) {
       const fs::path& dir = folders_[next_folder_++];
-      if (!find_stream(dir, stream_file(bit_))) continue;
+      if (!has_stream(dir, bit_)) continue;
       auto s = open_stream(bit_, dir, carried_.get());
       if (!s) {
         errors.add(s.error());
@@ -142,8 +142,7 @@ Parsed<RecordingReader> RecordingReader::open_drive(std::span<const std::string>
   const std::vector<fs::path> folders(segments.begin(), segments.end());
   for (unsigned bit : kStreamBits) {
     if ((streams & bit) == 0) continue;
-    const bool any = std::any_of(folders.begin(), folders.end(),
-                                 [&](const fs::path& d) { return find_stream(d, stream_file(bit)).has_value(); });
+    const bool any = std::any_of(folders.begin(), folders.end(), [&](const fs::path& d) { return has_stream(d, bit); });
     if (any) r.streams_.push_back(std::make_unique<ChainStream>(bit, folders));
   }
   if (r.streams_.empty()) return ParseError{segments[0], 0, "", "not a recording: no can.log or sensor CSV in any segment"};

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "roadload/recording/candump.hpp"
+#include "roadload/recording/flac_accel.hpp"
 
 namespace roadload::recording {
 
@@ -144,7 +145,25 @@ std::string_view format_row(const WeatherSample& s, LineBuilder& line) {
   return line.finish();
 }
 
-void RecordingWriter::write(const AccelSample& s) { stream(accel_, kAccelFormat).write(format_row(s, line_)); }
+RecordingWriter::RecordingWriter(std::string folder) : folder_(std::move(folder)) {}
+RecordingWriter::RecordingWriter(RecordingWriter&&) noexcept = default;
+RecordingWriter& RecordingWriter::operator=(RecordingWriter&&) noexcept = default;
+RecordingWriter::~RecordingWriter() = default;
+
+std::optional<ParseError> RecordingWriter::accel_as_flac(std::uint8_t sensor, double rate_hz, double step_mps2) {
+  auto w = AccelFlacWriter::create(folder_ + "/" + accel_flac_file(sensor), sensor, rate_hz, step_mps2);
+  if (!w) return w.error();
+  flac_[sensor] = std::make_unique<AccelFlacWriter>(std::move(w.value()));
+  return std::nullopt;
+}
+
+void RecordingWriter::write(const AccelSample& s) {
+  if (AccelFlacWriter* f = flac_[s.sensor].get()) {
+    if (auto e = f->write(s); e && !error_) error_ = e;
+    return;
+  }
+  stream(accel_, kAccelFormat).write(format_row(s, line_));
+}
 
 void RecordingWriter::write(const GnssFix& s) { stream(gnss_, kGnssFormat).write(format_row(s, line_)); }
 
@@ -152,6 +171,10 @@ void RecordingWriter::write(const WeatherSample& s) { stream(weather_, kWeatherF
 
 std::optional<ParseError> RecordingWriter::close() {
   for (OutputFile* f : {&can_, &accel_, &gnss_, &weather_}) {
+    if (auto e = f->close(); e && !error_) error_ = e;
+  }
+  for (auto& f : flac_) {
+    if (!f) continue;
     if (auto e = f->close(); e && !error_) error_ = e;
   }
   return error_;

@@ -38,10 +38,9 @@ class ExtractorSink final : public sim::SampleSink {
   }
   void release(CaptureTime before) {
     auto stamp = [](const recording::Record& r) { return std::visit([](const auto& s) { return s.t; }, r); };
-    while (const auto i = oldest_head(held_.size(), [&](std::size_t k) -> std::optional<CaptureTime> {
-             if (held_[k].empty()) return std::nullopt;
-             return stamp(held_[k].front());
-           })) {
+    while (
+        const auto i = oldest_head(
+            held_.size(), [&](std::size_t k) { return !held_[k].empty(); }, [&](std::size_t k) { return stamp(held_[k].front()); })) {
       if (stamp(held_[*i].front()) >= before) return;
       std::visit([&](const auto& r) { x_.push(r); }, held_[*i].front());
       held_[*i].pop_front();

@@ -39,6 +39,9 @@ inline constexpr std::uint8_t kEntryX = 1 << 0, kEntryEmpty = 1 << 1;
 inline constexpr std::size_t kFifoEntriesMax = 96;
 inline constexpr double kLsbPerG2g = 256000;  // typical sensitivity at ±2 g; halves per range step
 inline constexpr double kStandardGravity = 9.80665;
+// m/s^2 per count at RANGE code 1, 2 or 3 (±2, ±4, ±8 g): every sample is a whole number of it,
+// which is what lets a recording store the counts (recording/flac_accel.hpp).
+constexpr double mps2_per_lsb(int range_code) { return kStandardGravity / (kLsbPerG2g / static_cast<double>(1 << (range_code - 1))); }
 
 constexpr std::uint8_t read_command(std::uint8_t reg) { return static_cast<std::uint8_t>(reg << 1 | 1); }
 constexpr std::uint8_t write_command(std::uint8_t reg) { return static_cast<std::uint8_t>(reg << 1); }

@@ -57,7 +57,16 @@ class Stream {
   const StreamCounts& counts() const { return counts_; }
 
  protected:
+  // A record handed on: counted, and counted again when its stamp runs backwards.
+  void count(CaptureTime t) {
+    if (t < last_counted_) ++counts_.backwards;
+    last_counted_ = t;
+    ++counts_.records;
+  }
   StreamCounts counts_;
+
+ private:
+  CaptureTime last_counted_{};
 };
 
 // A candump -L log, also usable alone (decode of a bare log, benchmarks).
@@ -75,7 +84,6 @@ class CandumpStream final : public Stream {
   explicit CandumpStream(LineReader lines) : lines_(std::move(lines)) {}
   LineReader lines_;
   InterfaceTable ifaces_;
-  CaptureTime last_{};
 };
 
 // Which of a folder's streams to read (a replay source reads only its own).
@@ -98,6 +106,9 @@ const char* stream_file(unsigned bit);
 // when neither exists. A plain file is read first when a folder holds both (a copy decompressed
 // beside its original).
 std::optional<std::filesystem::path> find_stream(const std::filesystem::path& dir, const char* name);
+// Whether `dir` holds the stream: its file, compressed or not, or for the accelerometers their FLAC
+// files (recording/flac_accel.hpp), read merged with accel.csv when the folder has both.
+bool has_stream(const std::filesystem::path& dir, unsigned bit);
 Parsed<std::unique_ptr<Stream>> open_stream(unsigned bit, const std::filesystem::path& dir, const InterfaceTable* interfaces);
 
 // What a command given several recordings reads: one path is itself; several must be segments of

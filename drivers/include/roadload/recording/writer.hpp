@@ -1,6 +1,7 @@
 #pragma once
 // Writes a recording folder (docs/recording-format.md): meta.toml, can.log and the CSV streams.
 // Streams are created on first use, so a recording holds only what was recorded.
+#include <array>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -13,6 +14,8 @@
 #include "roadload/samples.hpp"
 
 namespace roadload::recording {
+
+class AccelFlacWriter;
 
 // A buffered output file that remembers its first error instead of throwing.
 class OutputFile {
@@ -73,6 +76,12 @@ std::string_view format_row(const WeatherSample& s, LineBuilder& line);
 class RecordingWriter {
  public:
   static Parsed<RecordingWriter> create(const std::string& folder, const Metadata& meta);
+  RecordingWriter(RecordingWriter&&) noexcept;
+  RecordingWriter& operator=(RecordingWriter&&) noexcept;
+  ~RecordingWriter();
+
+  // From now on `sensor`'s samples go to its FLAC file (recording/flac_accel.hpp), not accel.csv.
+  std::optional<ParseError> accel_as_flac(std::uint8_t sensor, double rate_hz, double step_mps2);
 
   void write(const CanFrame& f, std::string_view iface);
   void write(const AccelSample& s);
@@ -81,11 +90,12 @@ class RecordingWriter {
   std::optional<ParseError> close();
 
  private:
-  explicit RecordingWriter(std::string folder) : folder_(std::move(folder)) {}
+  explicit RecordingWriter(std::string folder);
   OutputFile& stream(OutputFile& f, const CsvStreamFormat& format);
 
   std::string folder_;
   OutputFile can_, accel_, gnss_, weather_;
+  std::array<std::unique_ptr<AccelFlacWriter>, 256> flac_;
   std::optional<ParseError> error_;
   LineBuilder line_;
 };

@@ -23,6 +23,8 @@ class AppendFile {
   static constexpr std::size_t kBufferBytes = 1 << 18;
 
   AppendFile() = default;
+  // `capacity`: the buffer's bytes, allocated at the first open() and kept for every later file.
+  explicit AppendFile(std::size_t capacity) : capacity_(capacity) {}
   AppendFile(const AppendFile&) = delete;
   AppendFile& operator=(const AppendFile&) = delete;
   ~AppendFile();
@@ -56,6 +58,7 @@ class AppendFile {
   FrameCompressor* compressor_ = nullptr;
   std::uint64_t frames_ = 0;
   std::string path_;
+  std::size_t capacity_ = kBufferBytes;
   std::unique_ptr<char[]> buffer_;
   std::size_t used_ = 0;
   std::uint64_t used_lines_ = 0;

@@ -43,6 +43,9 @@ struct RecordingConfig {
   double segment_max_mib = 512;
   double quota_mib = 8192;    // the oldest segments go first once the data dir holds more
   int compression_level = 1;  // zstd frames (1 is smaller and faster than 3 on these streams); 0: plain text
+  // "flac": each accelerometer whose steps are known as accel-ID.flac (1/9 of accel.csv's bytes);
+  // "text": every one in accel.csv.
+  std::string accel_format = "flac";
 };
 
 struct StatusConfig {

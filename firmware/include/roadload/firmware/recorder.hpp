@@ -7,14 +7,19 @@
 // back whole. A write error (disk full) is reported and retried each tick; the lines that did not
 // fit meanwhile are counted as lost. With a compression level, each stream is written as zstd
 // frames (`can.log.zst`, ...) closed at every fsync: the same interval is all a crash can lose.
+// An accelerometer whose samples are whole steps of a known size goes to its own FLAC file
+// (`accel-ID.flac`, recording/flac_accel.hpp) instead, its frame also closed at every fsync.
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "roadload/can_frame.hpp"
 #include "roadload/firmware/append_file.hpp"
+#include "roadload/recording/flac_encoder.hpp"
 #include "roadload/recording/metadata.hpp"
 #include "roadload/recording/writer.hpp"
 #include "roadload/samples.hpp"
@@ -22,18 +27,26 @@
 
 namespace roadload::firmware {
 
+// An accelerometer recorded as FLAC counts: its id, nominal rate and step (m/s^2 per count).
+struct AccelFlacSensor {
+  std::uint8_t sensor = 0;
+  double rate_hz = 0;
+  double step_mps2 = 0;
+};
+
 struct RecorderConfig {
   std::string data_dir;
   Nanoseconds fsync_interval{1'000'000'000};
   Nanoseconds segment_max{3600'000'000'000};
   std::uint64_t segment_max_bytes = 512ull << 20;
   std::uint64_t quota_bytes = 8192ull << 20;
-  int compression_level = 1;  // zstd's; 0 writes plain text
+  int compression_level = 1;                // zstd's; 0 writes plain text
+  std::vector<AccelFlacSensor> accel_flac;  // the others go to accel.csv
 };
 
 struct RecorderStatus {
   std::string segment;                 // current segment folder name, empty when none is open
-  std::uint64_t lines = 0;             // lines accepted since start
+  std::uint64_t lines = 0;             // lines (and FLAC samples) accepted since start
   std::uint64_t lines_lost = 0;        // refused after write errors
   std::uint64_t segments = 0;          // started since start
   std::uint64_t segments_deleted = 0;  // for the quota
@@ -66,6 +79,20 @@ class Recorder {
     const char* name;
     std::string_view header;
   };
+  // One accelerometer's FLAC stream: its encoder and file live as long as the recorder, so a new
+  // segment allocates nothing.
+  struct FlacStream {
+    // Room for two frames at their largest (every channel verbatim): a frame the disk refused, and
+    // the next.
+    static constexpr std::size_t kBufferBytes = 2 * recording::FlacEncoder::kMaxFrameBytes;
+    AccelFlacSensor sensor;
+    std::unique_ptr<recording::FlacEncoder> encoder;
+    AppendFile file{kBufferBytes};
+  };
+  void write_flac(FlacStream& f, const AccelSample& s);
+  // Appends what the encoder gave (a frame, or nothing); its samples are counted lost if refused.
+  void put(FlacStream& f, std::span<const std::uint8_t> bytes, std::uint64_t samples_before);
+  bool flush_file(AppendFile& file, bool sync);
   bool start_segment(CaptureTime now);
   void append(Stream& s, std::string_view line);
   void note_error(const std::string& what, int err);
@@ -81,6 +108,8 @@ class Recorder {
   Stream accel_{{}, recording::kAccelFormat.file, recording::kAccelFormat.header};
   Stream gnss_{{}, recording::kGnssFormat.file, recording::kGnssFormat.header};
   Stream weather_{{}, recording::kWeatherFormat.file, recording::kWeatherFormat.header};
+  std::vector<std::unique_ptr<FlacStream>> flac_;
+  std::array<FlacStream*, 256> flac_by_sensor_{};
   std::string folder_;  // full path of the open segment; empty when none
   CaptureTime segment_start_{}, last_flush_{}, last_sync_{}, last_retry_{};
   bool want_segment_ = true;

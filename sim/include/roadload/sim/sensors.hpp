@@ -45,6 +45,8 @@ class Accelerometer {
   AccelSample sample(const Kinematics& k, double stamp_s);
   const AccelMount& mount() const { return mount_; }
   double rate_hz() const { return rate_hz_; }
+  // Every reading is a whole number of this (the 20-bit output's step over the range).
+  double step_mps2() const { return lsb_; }
   // Noise density of the part, (m/s^2)/sqrt(Hz).
   double noise_density() const { return noise_density_; }
 

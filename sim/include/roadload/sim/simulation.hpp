@@ -41,6 +41,8 @@ class Simulation {
 
   // What meta.toml says: sensors, vehicle, clock. Never the effects.
   recording::Metadata metadata() const;
+  // Each accelerometer's output step by sensor id, for a recording that stores counts.
+  std::vector<double> accel_steps_mps2() const;
   // truth.toml: the scenario, seed and effects.
   std::string truth_toml() const;
 

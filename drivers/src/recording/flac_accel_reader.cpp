@@ -1,0 +1,226 @@
+// Reading the accelerometers' FLAC files through libFLAC: any standard FLAC encoder's output of the
+// layout reads, not only the recorder's own, and a damaged frame is found by its CRC and skipped.
+#include <FLAC/stream_decoder.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cstdlib>
+#include <string_view>
+#include <system_error>
+
+#include "roadload/merge.hpp"
+#include "roadload/recording/flac_accel.hpp"
+
+namespace fs = std::filesystem;
+
+namespace roadload::recording {
+namespace {
+
+constexpr std::int64_t kNsPerS = 1'000'000'000;
+
+// One sensor's file, a decoded frame at a time.
+class SensorFile {
+ public:
+  static Parsed<std::unique_ptr<SensorFile>> open(const fs::path& path) {
+    std::unique_ptr<SensorFile> f(new SensorFile(path.string()));
+    f->dec_ = FLAC__stream_decoder_new();
+    if (f->dec_ == nullptr) return ParseError{f->path_, 0, "", "out of memory"};
+    FLAC__stream_decoder_set_metadata_respond(f->dec_, FLAC__METADATA_TYPE_VORBIS_COMMENT);
+    if (FLAC__stream_decoder_init_file(f->dec_, f->path_.c_str(), &SensorFile::on_frame, &SensorFile::on_metadata,
+                                       &SensorFile::on_error, f.get()) != FLAC__STREAM_DECODER_INIT_STATUS_OK) {
+      return ParseError{f->path_, 0, "file", "cannot be opened"};
+    }
+    if (!FLAC__stream_decoder_process_until_end_of_metadata(f->dec_) || !f->pending_.empty()) {
+      return f->pending_.empty() ? ParseError{f->path_, 0, "header", "not a FLAC stream"} : f->pending_.front();
+    }
+    if (!f->sensor_ || !(f->step_mps2_ > 0)) {
+      return ParseError{f->path_, 0, f->sensor_ ? "ROADLOAD_STEP_MPS2" : "ROADLOAD_SENSOR",
+                        "missing from the VORBIS_COMMENT: not a roadload accelerometer stream"};
+    }
+    return f;
+  }
+  ~SensorFile() {
+    if (dec_ != nullptr) FLAC__stream_decoder_delete(dec_);
+  }
+  SensorFile(const SensorFile&) = delete;
+  SensorFile& operator=(const SensorFile&) = delete;
+
+  std::uint8_t sensor() const { return *sensor_; }
+  double step_mps2() const { return step_mps2_; }
+  double rate_hz() const { return rate_hz_; }
+
+  bool next(AccelSample& out, ErrorLog& errors) {
+    while (pos_ == block_.size()) {
+      block_.clear();
+      pos_ = 0;
+      const bool more = !ended_ && FLAC__stream_decoder_process_single(dec_) &&
+                        FLAC__stream_decoder_get_state(dec_) != FLAC__STREAM_DECODER_END_OF_STREAM;
+      for (ParseError& e : pending_) errors.add(std::move(e));
+      pending_.clear();
+      if (!more && block_.empty()) {
+        if (!ended_ && FLAC__stream_decoder_get_state(dec_) != FLAC__STREAM_DECODER_END_OF_STREAM) {
+          errors.add(ParseError{path_, 0, field(), "cannot be decoded further"});
+        }
+        ended_ = true;
+        return false;
+      }
+    }
+    out = block_[pos_++];
+    return true;
+  }
+
+ private:
+  explicit SensorFile(std::string path) : path_(std::move(path)) {}
+
+  std::string field() const { return "frame after sample " + std::to_string(expected_); }
+
+  static FLAC__StreamDecoderWriteStatus on_frame(const FLAC__StreamDecoder*, const FLAC__Frame* frame,
+                                                 const FLAC__int32* const buffer[], void* self) {
+    auto& f = *static_cast<SensorFile*>(self);
+    const FLAC__FrameHeader& h = frame->header;
+    if (h.channels != 5 || h.bits_per_sample != 32) {
+      f.pending_.push_back(ParseError{f.path_, 0, f.field(), "not five 32-bit channels (x, y, z, s, ns)"});
+      return FLAC__STREAM_DECODER_WRITE_STATUS_ABORT;
+    }
+    const std::uint64_t first = h.number_type == FLAC__FRAME_NUMBER_TYPE_SAMPLE_NUMBER ? h.number.sample_number : f.expected_;
+    if (first != f.expected_) {
+      f.pending_.push_back(
+          ParseError{f.path_, 0, f.field(), "samples " + std::to_string(f.expected_) + " to " + std::to_string(first) + " lost"});
+    }
+    // libFLAC stands silence in for a frame it could not decode (its CRC failed, or it was lost
+    // between two good ones), to keep the samples in step. A stamp of zero in every sample is that
+    // silence, never data: the loss is reported, and those zeros are not read as samples.
+    if (std::all_of(buffer[3], buffer[3] + h.blocksize, [](FLAC__int32 v) { return v == 0; }) &&
+        std::all_of(buffer[4], buffer[4] + h.blocksize, [](FLAC__int32 v) { return v == 0; })) {
+      f.pending_.push_back(
+          ParseError{f.path_, 0, f.field(),
+                     "samples " + std::to_string(first) + " to " + std::to_string(first + h.blocksize - 1) + " damaged: not read"});
+      f.expected_ = first + h.blocksize;
+      return FLAC__STREAM_DECODER_WRITE_STATUS_CONTINUE;
+    }
+    for (unsigned i = 0; i < h.blocksize; ++i) {
+      const std::int64_t ns = buffer[4][i];
+      if (buffer[3][i] < 0 || ns < 0 || ns >= kNsPerS) {
+        f.pending_.push_back(ParseError{f.path_, 0, "sample " + std::to_string(first + i) + " stamp", "outside its range"});
+        continue;
+      }
+      AccelSample s;
+      s.t = capture_time_from_ns(std::int64_t{buffer[3][i]} * kNsPerS + ns);
+      s.sensor = *f.sensor_;
+      s.x_mps2 = buffer[0][i] * f.step_mps2_;
+      s.y_mps2 = buffer[1][i] * f.step_mps2_;
+      s.z_mps2 = buffer[2][i] * f.step_mps2_;
+      f.block_.push_back(s);
+    }
+    f.expected_ = first + h.blocksize;
+    return FLAC__STREAM_DECODER_WRITE_STATUS_CONTINUE;
+  }
+
+  static void on_metadata(const FLAC__StreamDecoder*, const FLAC__StreamMetadata* m, void* self) {
+    auto& f = *static_cast<SensorFile*>(self);
+    if (m->type == FLAC__METADATA_TYPE_STREAMINFO) f.rate_hz_ = m->data.stream_info.sample_rate;
+    if (m->type != FLAC__METADATA_TYPE_VORBIS_COMMENT) return;
+    for (FLAC__uint32 i = 0; i < m->data.vorbis_comment.num_comments; ++i) {
+      const auto& c = m->data.vorbis_comment.comments[i];
+      const std::string_view entry(reinterpret_cast<const char*>(c.entry), c.length);
+      const auto eq = entry.find('=');
+      if (eq == std::string_view::npos) continue;
+      const std::string_view key = entry.substr(0, eq), value = entry.substr(eq + 1);
+      if (key == "ROADLOAD_SENSOR") {
+        unsigned id = 0;
+        const auto r = std::from_chars(value.data(), value.data() + value.size(), id);
+        if (r.ec == std::errc{} && r.ptr == value.data() + value.size() && id <= 255) f.sensor_ = static_cast<std::uint8_t>(id);
+      } else if (key == "ROADLOAD_STEP_MPS2") {
+        const auto r = std::from_chars(value.data(), value.data() + value.size(), f.step_mps2_);
+        if (r.ec != std::errc{} || r.ptr != value.data() + value.size()) f.step_mps2_ = 0;
+      }
+    }
+  }
+
+  static void on_error(const FLAC__StreamDecoder*, FLAC__StreamDecoderErrorStatus status, void* self) {
+    auto& f = *static_cast<SensorFile*>(self);
+    f.pending_.push_back(ParseError{f.path_, 0, f.field(), FLAC__StreamDecoderErrorStatusString[status]});
+  }
+
+  std::string path_;
+  FLAC__StreamDecoder* dec_ = nullptr;
+  std::optional<std::uint8_t> sensor_;
+  double step_mps2_ = 0;
+  double rate_hz_ = 0;
+  std::vector<AccelSample> block_;
+  std::size_t pos_ = 0;
+  std::uint64_t expected_ = 0;  // the next sample number
+  std::vector<ParseError> pending_;
+  bool ended_ = false;
+};
+
+// accel.csv's rows (when the folder has one) and each sensor's FLAC file, merged by stamp; a tie
+// goes to accel.csv, then to the lower sensor id.
+class AccelFlacStream final : public Stream {
+ public:
+  AccelFlacStream(std::unique_ptr<Stream> text, std::vector<std::unique_ptr<SensorFile>> files)
+      : text_(std::move(text)), files_(std::move(files)), heads_(files_.size() + 1), live_(files_.size() + 1, false) {}
+
+  bool next(Record& out, ErrorLog& errors) override {
+    if (!primed_) {
+      for (std::size_t i = 0; i < heads_.size(); ++i) live_[i] = pull(i, heads_[i], errors);
+      primed_ = true;
+    }
+    const auto best = oldest_head(
+        heads_.size(), [this](std::size_t i) { return live_[i]; }, [this](std::size_t i) { return heads_[i].t; });
+    if (!best) return false;
+    const AccelSample s = heads_[*best];
+    live_[*best] = pull(*best, heads_[*best], errors);
+    count(s.t);
+    out = s;
+    return true;
+  }
+  const char* name() const override { return kAccelFile; }
+
+ private:
+  bool pull(std::size_t i, AccelSample& out, ErrorLog& errors) {
+    if (i > 0) return files_[i - 1]->next(out, errors);
+    if (!text_ || !text_->next(record_, errors)) return false;
+    out = std::get<AccelSample>(record_);
+    return true;
+  }
+
+  std::unique_ptr<Stream> text_;
+  std::vector<std::unique_ptr<SensorFile>> files_;
+  std::vector<AccelSample> heads_;  // [0] accel.csv's, then each file's
+  std::vector<bool> live_;
+  Record record_;
+  bool primed_ = false;
+};
+
+}  // namespace
+
+std::vector<fs::path> find_accel_flac(const fs::path& dir) {
+  std::vector<std::pair<std::uint8_t, fs::path>> found;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (const auto id = accel_flac_sensor(it->path().filename().string())) found.emplace_back(*id, it->path());
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<fs::path> out;
+  for (auto& f : found) out.push_back(std::move(f.second));
+  return out;
+}
+
+Parsed<AccelFlacInfo> read_accel_flac_info(const fs::path& path) {
+  auto f = SensorFile::open(path);
+  if (!f) return f.error();
+  return AccelFlacInfo{f.value()->sensor(), f.value()->rate_hz(), f.value()->step_mps2()};
+}
+
+Parsed<std::unique_ptr<Stream>> open_accel_flac(const std::vector<fs::path>& files, std::unique_ptr<Stream> text) {
+  std::vector<std::unique_ptr<SensorFile>> open;
+  for (const fs::path& p : files) {
+    auto f = SensorFile::open(p);
+    if (!f) return f.error();
+    open.push_back(std::move(f.value()));
+  }
+  return std::unique_ptr<Stream>(new AccelFlacStream(std::move(text), std::move(open)));
+}
+
+}  // namespace roadload::recording
