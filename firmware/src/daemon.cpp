@@ -162,7 +162,7 @@ std::size_t merge(Channels& channels, CaptureTime horizon, std::size_t max, Fn&&
   return n;
 }
 
-bool Daemon::write_pending(std::size_t max_items, CaptureTime horizon) {
+std::size_t Daemon::write_pending(std::size_t max_items, CaptureTime horizon) {
   std::size_t n = 0;
   auto write = [this](const auto& item) {
     if (recorder_) recorder_->write(item);
@@ -171,7 +171,7 @@ bool Daemon::write_pending(std::size_t max_items, CaptureTime horizon) {
   n += merge(sources_.accel, horizon, max_items, write);
   if (sources_.gnss) n += drain(sources_.gnss->to_writer(), max_items, write);
   if (sources_.weather) n += drain(sources_.weather->to_writer(), max_items, write);
-  return n > 0;
+  return n;
 }
 
 void Daemon::write_loop() {
@@ -179,15 +179,18 @@ void Daemon::write_loop() {
     const bool stopping = stop_workers_.load();
     const bool lifted = stopping || any_half_full(
                                         sources_, [](auto& c) -> auto& { return c.to_writer(); });
-    const bool wrote = write_pending(kWriteBatch, lifted ? CaptureTime::max() : merge_horizon(clock_.now()));
+    const CaptureTime now = clock_.now();
+    const std::size_t wrote = write_pending(kWriteBatch, lifted ? CaptureTime::max() : merge_horizon(now));
     if (recorder_) {
       if (rotate_.exchange(false)) recorder_->end_segment();
-      recorder_->tick(clock_.now());
+      recorder_->tick(now);
       std::lock_guard lock(mutex_);
       recorder_status_ = recorder_->status();
     }
-    if (stopping && !wrote) break;
-    if (!wrote) clock_.sleep_until(clock_.now() + kIdleSleep, kIdleSleep);
+    if (stopping && wrote == 0) break;
+    // What has come is written; the rest waits a moment to come in a batch. Taken as it trickles
+    // in, a frame or two a round, the rounds' clock readings and locks cost more than the writing.
+    if (wrote < kWriteBatch && !stopping) clock_.sleep_until(now + kIdleSleep, kIdleSleep);
   }
   if (recorder_) {
     recorder_->end_segment();
@@ -271,7 +274,7 @@ void Daemon::estimate_loop() {
       j1939_.tp_anomalies = tp.orphan_packets + tp.timed_out + tp.superseded + tp.bad_sequence + tp.malformed + tp.no_free_session;
     }
     if (stopping && n == 0) break;
-    if (n == 0) clock_.sleep_until(clock_.now() + kIdleSleep, kIdleSleep);
+    if (n < kWriteBatch && !stopping) clock_.sleep_until(now + kIdleSleep, kIdleSleep);
   }
 }
 

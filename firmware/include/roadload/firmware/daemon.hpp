@@ -113,7 +113,7 @@ class Daemon {
  private:
   void write_loop();
   void estimate_loop();
-  bool write_pending(std::size_t max_items, CaptureTime horizon);
+  std::size_t write_pending(std::size_t max_items, CaptureTime horizon);
   bool estimate_next(CaptureTime horizon, CaptureTime place_horizon);
   CaptureTime merge_horizon(CaptureTime now);
   CaptureTime can_horizon(CaptureTime now);
