@@ -66,13 +66,9 @@ printf 'name = "bench-4khz"\nroute = "%s"\nspeed_mph = 64\nstart_m = 50\nduratio
   "$here/../../config/routes/synthetic-highway.toml" "$((span + 4))" >"$work/scenario.toml"
 "$build/tools/roadload" simulate --scenario "$work/scenario.toml" --seed 1 --out "$work/sensors" --accel-format flac -q
 rm -f "$work/sensors/can.log" "$work/sensors/gnss.csv" "$work/sensors/weather.csv"
-rc=0
-"$here/../uml/uml-run" --timeout 600 -- "$here/daemon_vs_candump.sh" --kernel-part "$work" "$build" "$seconds" || rc=$?
-if ((rc == 77)); then
-  echo "daemon vs candump: skipped (uml-run: no UML kernel, or one this CPU cannot run)"
-  exit 0
-fi
-((rc == 0)) || { echo "daemon vs candump: the UML part failed (status $rc): $(cat "$work/daemon.err" 2>/dev/null)" >&2; exit 1; }
+# shellcheck source=uml-part.sh source-path=SCRIPTDIR
+. "$here/uml-part.sh"
+run_uml_part "daemon vs candump" "$work" "$here/daemon_vs_candump.sh" "$build" "$seconds"
 awk -v g="$goal_pct" -v fps="$bus_fps" '
   { d[$1] = 100 * ($3 - $2) / $8 / ($7 - $6); c[$1] = 100 * ($5 - $4) / $8 / ($7 - $6); wall = $7 - $6; fb = $9 }
   END {

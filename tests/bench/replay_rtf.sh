@@ -49,13 +49,9 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/replay-rtf.XXXXXX")
 "$build/tools/roadload" simulate --scenario highway-1h --seed 1 --duration "$seconds" --out "$work/sim" -q
 # CAN only: the sensor streams' replay drivers are measured by the daemon's own benchmark.
 rm -f "$work/sim/accel.csv"
-rc=0
-"$here/../uml/uml-run" --timeout 600 -- "$here/replay_rtf.sh" --kernel-part "$work" "$build" "$rate" || rc=$?
-if ((rc == 77)); then
-  echo "replay RTF: skipped (uml-run: no UML kernel, or one this CPU cannot run)"
-  exit 0
-fi
-((rc == 0)) || { echo "replay RTF: the UML part failed (status $rc): $(cat "$work/daemon.err" 2>/dev/null)" >&2; exit 1; }
+# shellcheck source=uml-part.sh source-path=SCRIPTDIR
+. "$here/uml-part.sh"
+run_uml_part "replay RTF" "$work" "$here/replay_rtf.sh" "$build" "$rate"
 read -r start sent done_at <"$work/times"
 frames=$(wc -l <"$work/sim/can.log")
 segs=("$work"/rec/*/)
