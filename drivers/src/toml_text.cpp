@@ -1,5 +1,29 @@
 #include "roadload/toml_text.hpp"
 
+#include <cstdio>
+
+namespace roadload {
+
+std::string toml_quoted(std::string_view s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if ((u < 0x20 && c != '\t') || u == 0x7F) {
+      char esc[8];
+      std::snprintf(esc, sizeof esc, "\\u%04X", static_cast<unsigned>(u));
+      out += esc;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace roadload
+
 namespace roadload::detail {
 
 std::optional<long> non_ascii_outside_strings(std::string_view text) {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "roadload/results/json.hpp"
+#include "roadload/toml_text.hpp"
 #include "roadload/vehicle_file.hpp"
 #include "vehicle_fields.hpp"
 
@@ -21,7 +22,6 @@ std::string number(double v) {
 }
 
 // A TOML basic string escapes as a JSON string does: quotes, backslashes, control characters as \uXXXX.
-std::string quoted(const std::string& s) { return results::json_quote(s); }
 
 class Writer {
  public:
@@ -59,22 +59,22 @@ class Writer {
 void write_axle(Writer& w, const VehicleAxle& a, std::size_t i) {
   const std::string where = "axle[" + std::to_string(i) + "].";
   w.header("axle", true);
-  w.key(where + "name", "name", quoted(a.name));
-  w.key(where + "unit", "unit", quoted(a.unit));
+  w.key(where + "name", "name", toml_quoted(a.name));
+  w.key(where + "unit", "unit", toml_quoted(a.unit));
   w.numbers(where, vf::kAxle, a);
   w.key(where + "tires", "tires", std::to_string(a.tires));
   w.key(where + "driven", "driven", a.driven ? "true" : "false");
   w.numbers(where, vf::kSuspension, a.suspension);
-  w.key(where + "axle_mount", "axle_mount", quoted(a.axle_mount));
-  w.key(where + "frame_mount", "frame_mount", quoted(a.frame_mount));
+  w.key(where + "axle_mount", "axle_mount", toml_quoted(a.axle_mount));
+  w.key(where + "frame_mount", "frame_mount", toml_quoted(a.frame_mount));
 }
 
 void write_accelerometer(Writer& w, const AccelerometerMount& m, std::size_t i) {
   const std::string where = "accelerometer[" + std::to_string(i) + "].";
   w.header("accelerometer", true);
-  w.key(where + "name", "name", quoted(m.name));
-  w.key(where + "position", "position", quoted(m.position));
-  w.key(where + "axle", "axle", quoted(m.axle));
+  w.key(where + "name", "name", toml_quoted(m.name));
+  w.key(where + "position", "position", toml_quoted(m.position));
+  w.key(where + "axle", "axle", toml_quoted(m.axle));
   w.key(where + "on_axle", "on_axle", m.on_axle ? "true" : "false");
   w.numbers(where, vf::kAccelerometer, m);
 }
@@ -84,9 +84,9 @@ void write_accelerometer(Writer& w, const AccelerometerMount& m, std::size_t i) 
 std::string format_vehicle(const Vehicle& v, const VehicleNotes& notes, std::string_view table) {
   Writer w(notes, table);
   w.header("");
-  w.key("name", "name", quoted(v.name));
-  if (!v.description.empty()) w.key("description", "description", quoted(v.description));
-  if (!v.vin.empty()) w.key("vin", "vin", quoted(v.vin));
+  w.key("name", "name", toml_quoted(v.name));
+  if (!v.description.empty()) w.key("description", "description", toml_quoted(v.description));
+  if (!v.vin.empty()) w.key("vin", "vin", toml_quoted(v.vin));
   w.header("body");
   w.numbers("body.", vf::kBody, v);
   for (const auto& n : vf::kBodyOptional) {

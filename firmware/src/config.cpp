@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "roadload/toml_fields.hpp"
+#include "roadload/toml_text.hpp"
 
 namespace roadload::firmware {
 
@@ -121,16 +122,6 @@ void read_sections(const TomlFields& f, const toml::table& root, DaemonConfig& c
   }
 }
 
-// A TOML basic string: paths may hold quotes or backslashes.
-std::string quoted(const std::string& v) {
-  std::string out = "\"";
-  for (const char ch : v) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    out += ch;
-  }
-  return out + "\"";
-}
-
 ParseError field_error(std::string field, std::string message) {
   return ParseError{"config", 0, std::move(field), std::move(message)};
 }
@@ -226,28 +217,28 @@ std::string format_config(const DaemonConfig& c) {
   std::ostringstream o;
   o << "# roadloadd settings from " << c.source << "\n";
   for (const CanBusConfig& b : c.can) {
-    o << "\n[[can]]\ninterface = " << quoted(b.interface) << "\nj1939_only = " << (b.j1939_only ? "true" : "false")
+    o << "\n[[can]]\ninterface = " << toml_quoted(b.interface) << "\nj1939_only = " << (b.j1939_only ? "true" : "false")
       << "\nbitrate_bps = " << b.bitrate_bps << "\nreceive_buffer_kib = " << b.receive_buffer_kib << "\n";
   }
   for (const AccelConfig& a : c.accelerometers) {
-    o << "\n[[accelerometer]]\nid = " << int{a.id} << "\nname = " << quoted(a.name) << "\nposition = " << quoted(a.position)
-      << "\nspidev = " << quoted(a.spidev) << "\ngpiochip = " << quoted(a.gpiochip) << "\nline = " << a.line
+    o << "\n[[accelerometer]]\nid = " << int{a.id} << "\nname = " << toml_quoted(a.name) << "\nposition = " << toml_quoted(a.position)
+      << "\nspidev = " << toml_quoted(a.spidev) << "\ngpiochip = " << toml_quoted(a.gpiochip) << "\nline = " << a.line
       << "\nrange_g = " << a.range_g << "\nodr_hz = " << a.odr_hz << "\n";
   }
-  o << "\n[gnss]\nenabled = " << (c.gnss.enabled ? "true" : "false") << "\nhost = " << quoted(c.gnss.host)
-    << "\nport = " << quoted(c.gnss.port) << "\n";
+  o << "\n[gnss]\nenabled = " << (c.gnss.enabled ? "true" : "false") << "\nhost = " << toml_quoted(c.gnss.host)
+    << "\nport = " << toml_quoted(c.gnss.port) << "\n";
   const RecordingConfig& r = c.recording;
-  o << "\n[recording]\nenabled = " << (r.enabled ? "true" : "false") << "\ndata_dir = " << quoted(r.data_dir)
+  o << "\n[recording]\nenabled = " << (r.enabled ? "true" : "false") << "\ndata_dir = " << toml_quoted(r.data_dir)
     << "\nfsync_interval_s = " << r.fsync_interval.count() << "\nsegment_max_s = " << r.segment_max.count()
     << "\nsegment_max_mib = " << r.segment_max_mib << "\nquota_mib = " << r.quota_mib
-    << "\ncompression_level = " << r.compression_level << "\naccel_format = " << quoted(r.accel_format) << "\n";
-  o << "\n[status]\ntext_file = " << quoted(c.status.text_file) << "\njson_file = " << quoted(c.status.json_file)
+    << "\ncompression_level = " << r.compression_level << "\naccel_format = " << toml_quoted(r.accel_format) << "\n";
+  o << "\n[status]\ntext_file = " << toml_quoted(c.status.text_file) << "\njson_file = " << toml_quoted(c.status.json_file)
     << "\ninterval_s = " << c.status.interval.count() << "\n";
-  o << "\n[replay]\nrecording = " << quoted(c.replay.recording) << "\nrate = " << c.replay.rate
-    << "\ncan = " << (c.replay.can ? "true" : "false") << "\norigin_file = " << quoted(c.replay.origin_file) << "\n";
-  o << "\n[vehicle]\nfile = " << quoted(c.vehicle.file) << "\n";
-  o << "\n[estimator]\nroute = " << quoted(c.estimator.route) << "\nresults_dir = " << quoted(c.estimator.results_dir)
-    << "\nengine_losses = " << quoted(c.estimator.engine_losses) << "\ncda_m2 = " << c.estimator.cda_m2
+  o << "\n[replay]\nrecording = " << toml_quoted(c.replay.recording) << "\nrate = " << c.replay.rate
+    << "\ncan = " << (c.replay.can ? "true" : "false") << "\norigin_file = " << toml_quoted(c.replay.origin_file) << "\n";
+  o << "\n[vehicle]\nfile = " << toml_quoted(c.vehicle.file) << "\n";
+  o << "\n[estimator]\nroute = " << toml_quoted(c.estimator.route) << "\nresults_dir = " << toml_quoted(c.estimator.results_dir)
+    << "\nengine_losses = " << toml_quoted(c.estimator.engine_losses) << "\ncda_m2 = " << c.estimator.cda_m2
     << "\ncda_sigma_m2 = " << c.estimator.cda_sigma_m2 << "\ncda_torque_correlation = " << c.estimator.cda_torque_correlation << "\n";
   return o.str();
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "roadload/toml_text.hpp"
 #include "roadload/vehicle_file.hpp"
 #include "roadload/vehicle_table.hpp"
 
@@ -154,12 +155,6 @@ class Reader {
   std::string_view source_;
 };
 
-std::string quoted(const std::string& s) {
-  std::ostringstream o;
-  o << toml::value<std::string>(s);
-  return o.str();
-}
-
 // toml++ 3.3 reaches undefined behaviour on some non-ASCII bare keys (found by fuzzing), so
 // the metadata is ASCII; strings can still carry any character as a \uXXXX escape.
 std::optional<ParseError> non_ascii(std::string_view text, std::string_view source) {
@@ -192,23 +187,23 @@ Parsed<Metadata> parse_metadata(std::string_view text, std::string_view source) 
 std::string format_metadata(const Metadata& m) {
   std::ostringstream o;
   o << "format = \"roadload-recording\"\nversion = " << m.version << "\n";
-  if (!m.created_by.empty()) o << "created_by = " << quoted(m.created_by) << "\n";
-  if (!m.recording_id.empty()) o << "recording_id = " << quoted(m.recording_id) << "\n";
+  if (!m.created_by.empty()) o << "created_by = " << toml_quoted(m.created_by) << "\n";
+  if (!m.recording_id.empty()) o << "recording_id = " << toml_quoted(m.recording_id) << "\n";
   if (m.segment > 0) o << "segment = " << m.segment << "\n";
-  o << "\n[clock]\nsource = " << quoted(m.clock_source) << "\n";
+  o << "\n[clock]\nsource = " << toml_quoted(m.clock_source) << "\n";
   if (m.utc_offset_ns) o << "utc_offset_ns = " << *m.utc_offset_ns << "\n";
   o << "\n[vehicle]\n";
-  for (const auto& [k, v] : m.vehicle_text) o << k << " = " << quoted(v) << "\n";
+  for (const auto& [k, v] : m.vehicle_text) o << k << " = " << toml_quoted(v) << "\n";
   o.precision(17);
   for (const auto& [k, v] : m.vehicle) o << k << " = " << toml::value<double>(v) << "\n";
   if (m.vehicle_file) o << format_vehicle(*m.vehicle_file, {}, "vehicle.file");
   o << "\n[can]\ninterfaces = [";
-  for (std::size_t i = 0; i < m.can_interfaces.size(); ++i) o << (i ? ", " : "") << quoted(m.can_interfaces[i]);
+  for (std::size_t i = 0; i < m.can_interfaces.size(); ++i) o << (i ? ", " : "") << toml_quoted(m.can_interfaces[i]);
   o << "]\n";
   for (const SensorInfo& s : m.sensors) {
-    o << "\n[[sensor]]\nid = " << s.id << "\nname = " << quoted(s.name) << "\nkind = " << quoted(s.kind) << "\n";
-    if (!s.position.empty()) o << "position = " << quoted(s.position) << "\n";
-    if (!s.part.empty()) o << "part = " << quoted(s.part) << "\n";
+    o << "\n[[sensor]]\nid = " << s.id << "\nname = " << toml_quoted(s.name) << "\nkind = " << toml_quoted(s.kind) << "\n";
+    if (!s.position.empty()) o << "position = " << toml_quoted(s.position) << "\n";
+    if (!s.part.empty()) o << "part = " << toml_quoted(s.part) << "\n";
     if (s.rate_hz > 0) o << "rate_hz = " << toml::value<double>(s.rate_hz) << "\n";
   }
   return o.str();
