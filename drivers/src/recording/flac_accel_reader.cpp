@@ -16,8 +16,6 @@ namespace fs = std::filesystem;
 namespace roadload::recording {
 namespace {
 
-constexpr std::int64_t kNsPerS = 1'000'000'000;
-
 // One sensor's file, a decoded frame at a time.
 class SensorFile {
  public:

@@ -11,7 +11,6 @@
 namespace roadload::recording {
 namespace {
 
-constexpr std::int64_t kNsPerS = 1'000'000'000;
 constexpr std::int64_t kMaxStampS = 0x7FFFFFFF;
 
 void put(OutputFile& file, std::span<const std::uint8_t> bytes) {
