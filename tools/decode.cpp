@@ -44,6 +44,30 @@ struct PgnStats {
   CaptureTime last{};
 };
 
+// The statistics indexed by the PGN itself (18 bits): a hash lookup per frame cost 7 % of a decode.
+class PgnTable {
+ public:
+  PgnStats& operator[](j1939::Pgn pgn) {
+    std::uint32_t& i = index_[pgn & kPgnMask];
+    if (i == 0) {
+      stats_.emplace_back(pgn, PgnStats{});
+      i = static_cast<std::uint32_t>(stats_.size());
+    }
+    return stats_[i - 1].second;
+  }
+  // In PGN order.
+  std::vector<std::pair<j1939::Pgn, PgnStats>> sorted() const {
+    auto out = stats_;
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    return out;
+  }
+
+ private:
+  static constexpr j1939::Pgn kPgnMask = 0x3FFFF;
+  std::vector<std::uint32_t> index_ = std::vector<std::uint32_t>(kPgnMask + 1);  // 1 + place in stats_; 0: none
+  std::vector<std::pair<j1939::Pgn, PgnStats>> stats_;
+};
+
 struct KindCounts {
   std::uint64_t extended = 0, standard = 0, remote = 0, error = 0, fd = 0;
   void add(CanFrameKind k) {
@@ -88,13 +112,9 @@ void print_tp(std::FILE* out, const j1939::Message& m, const recording::Interfac
   std::fputc('\n', out);
 }
 
-void print_pgn_stats(std::FILE* out, const std::unordered_map<j1939::Pgn, PgnStats>& stats, const j1939::Database& db) {
+void print_pgn_stats(std::FILE* out, const PgnTable& stats, const j1939::Database& db) {
   std::fprintf(out, "pgn,name,frames,sources,mean_period_ms,tp_messages\n");
-  std::vector<j1939::Pgn> pgns;
-  for (const auto& kv : stats) pgns.push_back(kv.first);
-  std::sort(pgns.begin(), pgns.end());
-  for (const j1939::Pgn pgn : pgns) {
-    const PgnStats& s = stats.at(pgn);
+  for (const auto& [pgn, s] : stats.sorted()) {
     const j1939::MessageDef* def = db.find(pgn);
     std::string sources;
     for (std::size_t a = 0; a < s.sources.size(); ++a) {
@@ -143,7 +163,7 @@ int decode(const DecodeOptions& o) {
   static char out_buf[1 << 16];
   std::setvbuf(stdout, out_buf, _IOFBF, sizeof out_buf);
   j1939::MessageAssembler assembler;
-  std::unordered_map<j1939::Pgn, PgnStats> stats;
+  PgnTable stats;
   KindCounts kinds;
   // The same judge of lost and repeated frames as roadloadd's status, over the same stamps.
   j1939::CadenceMonitor cadence;
