@@ -15,6 +15,7 @@ using Run = std::function<int()>;
 
 Run add_decode(CLI::App& roadload);
 Run add_analyze(CLI::App& roadload);
+Run add_cat(CLI::App& roadload);
 Run add_batch(CLI::App& roadload);
 Run add_calibrate(CLI::App& roadload);
 Run add_collect(CLI::App& roadload);

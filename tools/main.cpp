@@ -16,9 +16,9 @@ namespace {
 using namespace roadload::cli;
 
 // In the order `roadload --help` lists them.
-constexpr Run (*kCommands[])(CLI::App&) = {add_decode, add_analyze, add_batch,    add_calibrate, add_collect,
-                                           add_gap,    add_network, add_grade,    add_psd,       add_replay,
-                                           add_report, add_route,   add_simulate, add_vehicle};
+constexpr Run (*kCommands[])(CLI::App&) = {add_decode,  add_analyze, add_batch,   add_calibrate, add_cat,
+                                           add_collect, add_gap,     add_network, add_grade,     add_psd,
+                                           add_replay,  add_report,  add_route,   add_simulate,  add_vehicle};
 
 const HelpText kHelp{"usage: roadload <command> [options]",
                      "Measures what a heavy truck spends on rolling resistance, pavement by pavement.",

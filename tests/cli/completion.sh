@@ -45,7 +45,7 @@ touch "$work/drive.toml"
 complete_words "$roadload" analyze "$work/rec" --route "$work/dr" | has_line "$work/drive.toml" ||
   fail "--route's value does not complete to a file: $(complete_words "$roadload" analyze "$work/rec" --route "$work/dr")"
 # The hidden listing itself: every command, and no option the help does not describe.
-for c in decode analyze calibrate gap grade psd replay report route simulate vehicle; do
+for c in decode analyze calibrate cat gap grade psd replay report route simulate vehicle; do
   "$roadload" --complete | has_line "$c command" || fail "roadload --complete does not list $c"
 done
 "$roadload" --complete analyze | has_line "--out value" || fail "roadload --complete analyze lacks --out"
