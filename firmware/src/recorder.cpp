@@ -94,10 +94,11 @@ Recorder::Recorder(RecorderConfig config, recording::Metadata meta, std::vector<
     : config_(std::move(config)), meta_(std::move(meta)), interfaces_(std::move(interfaces)) {
   if (config_.compression_level > 0)
     compressor_ = std::make_unique<FrameCompressor>(config_.compression_level, AppendFile::kBufferBytes);
+  if (!config_.accel_flac.empty()) flac_scratch_ = std::make_unique<recording::FlacScratch>();
   for (const AccelFlacSensor& a : config_.accel_flac) {
     auto f = std::make_unique<FlacStream>();
     f->sensor = a;
-    f->encoder = std::make_unique<recording::FlacEncoder>();
+    f->encoder = std::make_unique<recording::FlacEncoder>(*flac_scratch_);
     flac_by_sensor_[a.sensor] = f.get();
     flac_.push_back(std::move(f));
   }

@@ -269,12 +269,12 @@ TEST_P(RecorderStreams, AFlacStreamOnDiskHoldsEverySampleUpToTheLastSync) {
   Recorder rec(c, recording::Metadata{}, {"can0"});
   CaptureTime now = capture_time_from_ns(0);
   rec.tick(now);
-  std::int64_t synced = 0;
+  std::size_t synced = 0;
   for (std::int64_t i = 0; i < 10'050; ++i) {  // the last 50 after the last fsync
     rec.write(accel(0, i));
     if (i % 100 == 99) {
       rec.tick(now += Nanoseconds{25'000'000});
-      if (i % 2000 == 1999) synced = i + 1;  // every 20 ticks: 500 ms, an fsync
+      if (i % 2000 == 1999) synced = static_cast<std::size_t>(i + 1);  // every 20 ticks: 500 ms, an fsync
     }
   }
   const auto segs = segments(c.data_dir);
@@ -282,8 +282,8 @@ TEST_P(RecorderStreams, AFlacStreamOnDiskHoldsEverySampleUpToTheLastSync) {
   std::uint64_t errors = 0;
   const auto on_disk = accel_read(segs, &errors);
   EXPECT_EQ(errors, 0u);
-  EXPECT_GE(on_disk.size(), static_cast<std::size_t>(synced));
-  EXPECT_LT(on_disk.size(), static_cast<std::size_t>(synced + 4096));
+  EXPECT_GE(on_disk.size(), synced);
+  EXPECT_LT(on_disk.size(), synced + recording::FlacEncoder::kMaxBlock);
   for (std::size_t i = 0; i < on_disk.size(); ++i) ASSERT_EQ(on_disk[i].t, accel(0, static_cast<std::int64_t>(i)).t);
 }
 

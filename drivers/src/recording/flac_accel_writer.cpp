@@ -75,7 +75,8 @@ Parsed<AccelFlacWriter> AccelFlacWriter::create(const std::string& path, std::ui
   AccelFlacWriter w;
   w.file_ = std::move(file.value());
   w.step_mps2_ = step_mps2;
-  w.encoder_ = std::make_unique<FlacEncoder>();
+  w.scratch_ = std::make_unique<FlacScratch>();
+  w.encoder_ = std::make_unique<FlacEncoder>(*w.scratch_);
   put(w.file_, start_accel_flac(*w.encoder_, sensor, rate_hz, step_mps2));
   return w;
 }

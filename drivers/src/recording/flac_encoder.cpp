@@ -64,23 +64,28 @@ struct RiceChoice {
   unsigned raw_bits = 0;
 };
 
-// The cheapest coding of one partition: a Rice parameter near the mean's log, or raw bits.
-RiceChoice best_rice(std::span<const std::int64_t> r) {
-  std::uint64_t sum = 0;
-  unsigned raw = 0;
-  for (const std::int64_t v : r) {
-    sum += zigzag(v);
-    raw = std::max(raw, signed_bits(v));
+// What a partition's codings cost follows from these alone.
+struct PartitionSums {
+  std::uint64_t sum = 0;  // of its residuals zigzagged
+  std::uint64_t n = 0;
+  unsigned raw = 0;  // the signed bits its widest residual needs
+  PartitionSums& operator+=(const PartitionSums& o) {
+    sum += o.sum;
+    n += o.n;
+    raw = std::max(raw, o.raw);
+    return *this;
   }
-  RiceChoice best;
-  best.param = kRiceEscape;
-  best.raw_bits = raw;
-  best.bits = 5 + 5 + static_cast<std::uint64_t>(raw) * r.size();
-  const std::uint64_t n = r.size();
-  const unsigned guess = n == 0 || sum < n ? 0U : static_cast<unsigned>(std::bit_width(sum / n)) - 1;
+};
+
+// The cheapest coding of a partition: a Rice parameter near its mean's log, or raw bits. A Rice
+// code of parameter k takes n (k + 1) + sum of (u >> k) bits, which is the sum over 2^k less
+// about n / 2 for the bits shifted out: estimated so from the sums rather than counted.
+RiceChoice best_rice(const PartitionSums& p) {
+  RiceChoice best{5 + 5 + std::uint64_t{p.raw} * p.n, kRiceEscape, p.raw};
+  const unsigned guess = p.n == 0 || p.sum < p.n ? 0U : static_cast<unsigned>(std::bit_width(p.sum / p.n)) - 1;
   for (unsigned k = guess == 0 ? 0 : guess - 1; k <= std::min(guess + 1, kMaxRiceParam); ++k) {
-    std::uint64_t bits = 5 + n * (k + 1);
-    for (const std::int64_t v : r) bits += zigzag(v) >> k;
+    const std::uint64_t shifted_out = k == 0 ? 0 : p.n / 2;
+    const std::uint64_t bits = 5 + p.n * (k + 1) + (p.sum >> k) - std::min(shifted_out, p.sum >> k);
     if (bits < best.bits) best = {bits, k, 0};
   }
   return best;
@@ -125,7 +130,7 @@ std::span<const std::uint8_t> FlacEncoder::start(std::size_t channels, std::uint
   channels_ = channels;
   fill_ = 0;
   first_sample_ = 0;
-  Bits b(out_);
+  Bits b(scratch_->out);
   for (const char c : std::string_view("fLaC")) b.put(static_cast<unsigned char>(c), 8);
   // STREAMINFO: frame sizes, sample count and MD5 unknown, as a stream written live has them.
   b.put(0, 1);
@@ -156,7 +161,7 @@ std::span<const std::uint8_t> FlacEncoder::start(std::size_t channels, std::uint
     le32(c.size());
     for (const char ch : c) b.put(static_cast<unsigned char>(ch), 8);
   }
-  return {out_.data(), b.size()};
+  return {scratch_->out.data(), b.size()};
 }
 
 std::span<const std::uint8_t> FlacEncoder::push(std::span<const std::int32_t> sample) {
@@ -168,7 +173,7 @@ std::span<const std::uint8_t> FlacEncoder::push(std::span<const std::int32_t> sa
 
 std::span<const std::uint8_t> FlacEncoder::close_frame(bool last) {
   if (fill_ == 0 || (fill_ < kMinBlock && !last)) return {};
-  Bits b(out_);
+  Bits b(scratch_->out);
   b.put(0x3FFE, 14);  // sync
   b.put(0, 1);
   b.put(1, 1);       // variable blocksize: the coded number is the first sample's
@@ -196,13 +201,14 @@ std::span<const std::uint8_t> FlacEncoder::close_frame(bool last) {
   b.put(crc, 16);
   first_sample_ += fill_;
   fill_ = 0;
-  return {out_.data(), b.size()};
+  return {scratch_->out.data(), b.size()};
 }
 
 namespace {
 
 // The fixed polynomial predictors: order k's residual is the k-th difference. One pass finds each
-// order's sum of magnitudes and whether all of its residuals fit; nullopt when none does.
+// order's bits (the sum of its residuals' bit widths) and whether all of them fit; the fewest bits
+// win; nullopt when no order fits.
 std::optional<unsigned> fixed_order(std::span<const std::int32_t> x) {
   const std::size_t n = x.size();
   std::array<std::uint64_t, kMaxFixedOrder + 1> magnitude{};
@@ -214,7 +220,9 @@ std::optional<unsigned> fixed_order(std::span<const std::int32_t> x) {
     for (unsigned k = 1; k <= kMaxFixedOrder; ++k) diff[k] = diff[k - 1] - prev[k - 1];
     for (unsigned k = 0; k <= kMaxFixedOrder && k <= i; ++k) {
       const auto m = static_cast<std::uint64_t>(std::llabs(diff[k]));
-      magnitude[k] += m;
+      // Bits, not size: a stamp's nanoseconds wrap once a second, and that one residual's size
+      // would outweigh a block of small ones (order 1 then cost 21 raw bits a sample).
+      magnitude[k] += static_cast<std::uint64_t>(std::bit_width(m));
       usable[k] = usable[k] && m <= kMaxResidual;
     }
     prev = diff;
@@ -238,26 +246,55 @@ void fixed_residual(std::span<const std::int32_t> x, unsigned order, std::span<s
   }
 }
 
-// Partition j of 2^p over a block of n samples, the first shortened by the warm-up.
-std::span<const std::int64_t> partition(std::span<const std::int64_t> res, unsigned order, unsigned p, std::size_t j) {
-  const std::size_t part = res.size() >> p;
-  const std::size_t from = j == 0 ? order : j * part;
-  return res.subspan(from, (j + 1) * part - from);
-}
+// A block's residual cut into 2^p partitions (the first shortened by the warm-up), for every p up
+// to the finest that divides the block and leaves each partition samples (at most 2^8): the
+// finest partitions' sums are taken in one pass, a coarser one's are theirs added.
+class Partitions {
+ public:
+  static constexpr unsigned kMaxOrder = 8;
 
-// The partition order that codes the residual in the fewest bits (those bits returned too): every
-// order that divides the block and leaves the first partition samples, up to 2^8 partitions.
-std::pair<unsigned, std::uint64_t> partition_order(std::span<const std::int64_t> res, unsigned order) {
-  std::pair<unsigned, std::uint64_t> best{0, std::numeric_limits<std::uint64_t>::max()};
-  for (unsigned p = 0; p <= 8; ++p) {
-    const std::size_t part = res.size() >> p;
-    if ((part << p) != res.size() || part <= order) break;
-    std::uint64_t bits = 0;
-    for (std::size_t j = 0; j < (std::size_t{1} << p); ++j) bits += best_rice(partition(res, order, p, j)).bits;
-    if (bits < best.second) best = {p, bits};
+  Partitions(std::span<const std::int64_t> res, unsigned order) : res_(res), order_(order) {
+    while (finest_ < kMaxOrder && ((res.size() >> (finest_ + 1)) << (finest_ + 1)) == res.size() &&
+           (res.size() >> (finest_ + 1)) > order) {
+      ++finest_;
+    }
+    for (std::size_t j = 0; j < (std::size_t{1} << finest_); ++j) {
+      for (const std::int64_t v : samples(finest_, j)) {
+        sums_[j].sum += zigzag(v);
+        sums_[j].raw = std::max(sums_[j].raw, signed_bits(v));
+      }
+      sums_[j].n = samples(finest_, j).size();
+    }
   }
-  return best;
-}
+
+  std::span<const std::int64_t> samples(unsigned p, std::size_t j) const {
+    const std::size_t part = res_.size() >> p;
+    const std::size_t from = j == 0 ? order_ : j * part;
+    return res_.subspan(from, (j + 1) * part - from);
+  }
+  PartitionSums sums(unsigned p, std::size_t j) const {
+    const std::size_t span = std::size_t{1} << (finest_ - p);
+    PartitionSums s;
+    for (std::size_t i = j * span; i < (j + 1) * span; ++i) s += sums_[i];
+    return s;
+  }
+  // The partition order that codes the residual in the fewest bits, and those bits.
+  std::pair<unsigned, std::uint64_t> cheapest() const {
+    std::pair<unsigned, std::uint64_t> best{0, std::numeric_limits<std::uint64_t>::max()};
+    for (unsigned p = 0; p <= finest_; ++p) {
+      std::uint64_t bits = 0;
+      for (std::size_t j = 0; j < (std::size_t{1} << p); ++j) bits += best_rice(sums(p, j)).bits;
+      if (bits < best.second) best = {p, bits};
+    }
+    return best;
+  }
+
+ private:
+  std::span<const std::int64_t> res_;
+  unsigned order_;
+  unsigned finest_ = 0;
+  std::array<PartitionSums, std::size_t{1} << kMaxOrder> sums_{};
+};
 
 }  // namespace
 
@@ -270,9 +307,10 @@ void FlacEncoder::encode_subframe(Bits& out, std::span<const std::int32_t> x) {
   }
   const std::optional<unsigned> fixed = fixed_order(x);
   const unsigned order = fixed.value_or(0);
-  const std::span<std::int64_t> res{residual_.data(), n};
+  const std::span<std::int64_t> res{scratch_->residual.data(), n};
   if (fixed) fixed_residual(x, order, res);
-  const auto [p, bits] = fixed ? partition_order(res, order) : std::pair<unsigned, std::uint64_t>{0, 0};
+  const Partitions parts(res, order);
+  const auto [p, bits] = fixed ? parts.cheapest() : std::pair<unsigned, std::uint64_t>{0, 0};
   if (!fixed || 6 + bits + std::uint64_t{order} * kBitsPerSample >= std::uint64_t{n} * kBitsPerSample) {
     out.put(1 << 1, 8);  // VERBATIM
     for (const std::int32_t v : x) out.put_signed(v, kBitsPerSample);
@@ -283,15 +321,14 @@ void FlacEncoder::encode_subframe(Bits& out, std::span<const std::int32_t> x) {
   out.put(1, 2);  // RICE2
   out.put(p, 4);
   for (std::size_t j = 0; j < (std::size_t{1} << p); ++j) {
-    const std::span<const std::int64_t> r = partition(res, order, p, j);
-    const RiceChoice c = best_rice(r);
+    const RiceChoice c = best_rice(parts.sums(p, j));
     out.put(c.param, 5);
     if (c.param == kRiceEscape) {
       out.put(c.raw_bits, 5);
-      for (const std::int64_t v : r) out.put_signed(v, c.raw_bits);
+      for (const std::int64_t v : parts.samples(p, j)) out.put_signed(v, c.raw_bits);
       continue;
     }
-    for (const std::int64_t v : r) {
+    for (const std::int64_t v : parts.samples(p, j)) {
       const std::uint64_t u = zigzag(v);
       out.unary(u >> c.param);
       out.put(u, c.param);

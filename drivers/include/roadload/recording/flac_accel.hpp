@@ -22,6 +22,7 @@
 namespace roadload::recording {
 
 class FlacEncoder;
+struct FlacScratch;
 
 // "accel-3.flac", and whether a file name is one of them (its sensor id).
 std::string accel_flac_file(std::uint8_t sensor);
@@ -57,6 +58,7 @@ class AccelFlacWriter {
 
  private:
   AccelFlacWriter() = default;
+  std::unique_ptr<FlacScratch> scratch_;
   std::unique_ptr<FlacEncoder> encoder_;
   OutputFile file_;
   double step_mps2_ = 0;

@@ -14,19 +14,34 @@
 
 namespace roadload::recording {
 
+inline constexpr std::size_t kFlacMaxChannels = 5;
+inline constexpr std::size_t kFlacMaxBlock = 2048;
+// A frame's worst case: every channel verbatim, plus headers.
+inline constexpr std::size_t kFlacMaxFrameBytes = kFlacMaxChannels * kFlacMaxBlock * 4 + 64;
+
+// What encoding needs only while it runs, and the bytes an encoder returns until its next call:
+// the encoders of one thread share one (a recorder of eight sensors keeps a block each, and one
+// of these).
+struct FlacScratch {
+  std::array<std::int64_t, kFlacMaxBlock> residual{};  // the chosen predictor's, channel by channel
+  std::array<std::uint8_t, kFlacMaxFrameBytes> out{};
+};
+
 class FlacEncoder {
  public:
-  static constexpr std::size_t kMaxChannels = 5;
-  static constexpr std::size_t kMaxBlock = 4096;
+  static constexpr std::size_t kMaxChannels = kFlacMaxChannels;
+  static constexpr std::size_t kMaxBlock = kFlacMaxBlock;
+  static constexpr std::size_t kMaxFrameBytes = kFlacMaxFrameBytes;
   // The smallest frame but the last, as STREAMINFO declares it.
   static constexpr std::size_t kMinBlock = 16;
-  // A frame's worst case: every channel verbatim, plus headers.
-  static constexpr std::size_t kMaxFrameBytes = kMaxChannels * kMaxBlock * 4 + 64;
+
+  explicit FlacEncoder(FlacScratch& scratch) : scratch_(&scratch) {}
 
   // `channels` of 32-bit samples at a nominal `sample_rate_hz` (1 .. 655350); `comments` are
   // VORBIS_COMMENT entries ("KEY=value"). Returns the stream's header bytes.
   std::span<const std::uint8_t> start(std::size_t channels, std::uint32_t sample_rate_hz, std::span<const std::string_view> comments);
-  // Adds one sample of every channel. Returns a frame's bytes when the block is full, else empty.
+  // Adds one sample of every channel. Returns a frame's bytes when the block is full, else empty;
+  // like every span returned, valid until the next call on an encoder sharing the scratch.
   std::span<const std::uint8_t> push(std::span<const std::int32_t> sample);
   // Closes the open block as a frame (nothing when it holds fewer than kMinBlock samples and
   // `last` is false: they stay for the next frame).
@@ -41,10 +56,8 @@ class FlacEncoder {
   std::size_t channels_ = 0;
   std::size_t fill_ = 0;
   std::uint64_t first_sample_ = 0;  // of the open block
+  FlacScratch* scratch_;
   std::array<std::array<std::int32_t, kMaxBlock>, kMaxChannels> block_{};
-  // The chosen fixed predictor's residual of the channel being encoded.
-  std::array<std::int64_t, kMaxBlock> residual_{};
-  std::array<std::uint8_t, kMaxFrameBytes> out_{};
 };
 
 }  // namespace roadload::recording

@@ -108,6 +108,7 @@ class Recorder {
   Stream accel_{{}, recording::kAccelFormat.file, recording::kAccelFormat.header};
   Stream gnss_{{}, recording::kGnssFormat.file, recording::kGnssFormat.header};
   Stream weather_{{}, recording::kWeatherFormat.file, recording::kWeatherFormat.header};
+  std::unique_ptr<recording::FlacScratch> flac_scratch_;  // one for every sensor: one thread writes
   std::vector<std::unique_ptr<FlacStream>> flac_;
   std::array<FlacStream*, 256> flac_by_sensor_{};
   std::string folder_;  // full path of the open segment; empty when none
