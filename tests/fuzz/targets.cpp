@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 
 #include "roadload/firmware/config.hpp"
 #include "roadload/geo_files.hpp"
@@ -34,13 +35,18 @@ void require(bool ok, const char* what) {
 }
 
 // A scratch folder of this process: the loaders that take a path read the input from a file in it.
+// Removed when the process ends.
 const std::filesystem::path& scratch() {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("roadload-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
+  struct Dir {
+    std::filesystem::path path = std::filesystem::temp_directory_path() / ("roadload-fuzz-" + std::to_string(::getpid()));
+    Dir() { std::filesystem::create_directories(path); }
+    ~Dir() {
+      std::error_code ec;
+      std::filesystem::remove_all(path, ec);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
 }
 
 std::string as_file(const std::string& name, std::string_view bytes) {

@@ -24,6 +24,7 @@ end_background() {
       sleep 0.1
     done
     kill -KILL -- "-$g" 2>/dev/null || true
+    rm -f -- "${TMPDIR:-/tmp}/gpsfake-$g.sock"  # its control socket, left behind when it is killed
   done
   wait 2>/dev/null || true
 }

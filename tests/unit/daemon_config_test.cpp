@@ -7,6 +7,7 @@
 
 #include "roadload/firmware/command_line.hpp"
 #include "roadload/firmware/config.hpp"
+#include "scratch.hpp"
 
 namespace roadload::firmware {
 namespace {
@@ -17,7 +18,7 @@ std::string body(const DaemonConfig& c) {
 }
 
 std::string write_temp(const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("roadloadd-config-" + std::to_string(::getpid()) + ".toml");
+  const auto path = test::scratch_path("roadloadd-config", ".toml");
   std::ofstream(path) << text;
   return path.string();
 }

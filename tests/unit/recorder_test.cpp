@@ -10,6 +10,7 @@
 #include "roadload/firmware/recorder.hpp"
 #include "roadload/recording/flac_accel.hpp"
 #include "roadload/recording/reader.hpp"
+#include "scratch.hpp"
 
 namespace roadload::firmware {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string fresh_dir(const char* name) {
-  const auto dir = fs::temp_directory_path() / (std::string(name) + "-" + std::to_string(::getpid()));
+  const auto dir = test::scratch_path(name);
   fs::remove_all(dir);
   return dir.string();
 }

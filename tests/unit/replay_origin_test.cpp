@@ -7,13 +7,12 @@
 #include <fstream>
 
 #include "roadload/io/replay_origin.hpp"
+#include "scratch.hpp"
 
 namespace roadload::io {
 namespace {
 
-std::string temp_path(const char* name) {
-  return (std::filesystem::temp_directory_path() / (std::string(name) + std::to_string(::getpid()) + ".toml")).string();
-}
+std::string temp_path(const char* name) { return test::scratch_path(name, ".toml").string(); }
 
 TEST(ReplayOrigin, WrittenAndReadBackExactly) {
   const ReplayTiming t{capture_time_from_ns(1'413'817'200'123'456'789), capture_time_from_ns(987'654'321'012), 20};
