@@ -72,6 +72,7 @@ int cat(const CatOptions& o) {
     std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
   }
   auto emit = [&](std::string_view text) {
+    if (text.empty()) return;  // can.log's header is none: its view holds no pointer for fwrite
     if (file) {
       file->write(text);
     } else {
