@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <string_view>
 #include <system_error>
@@ -108,6 +109,10 @@ class SensorFile {
       s.x_mps2 = buffer[0][i] * f.step_mps2_;
       s.y_mps2 = buffer[1][i] * f.step_mps2_;
       s.z_mps2 = buffer[2][i] * f.step_mps2_;
+      if (std::max({std::abs(s.x_mps2), std::abs(s.y_mps2), std::abs(s.z_mps2)}) > kMaxAccelMps2) {
+        f.pending_.push_back(ParseError{f.path_, 0, "sample " + std::to_string(first + i), "acceleration beyond 2000 m/s^2"});
+        continue;
+      }
       f.block_.push_back(s);
     }
     f.expected_ = first + h.blocksize;
@@ -130,7 +135,7 @@ class SensorFile {
         if (r.ec == std::errc{} && r.ptr == value.data() + value.size() && id <= 255) f.sensor_ = static_cast<std::uint8_t>(id);
       } else if (key == "ROADLOAD_STEP_MPS2") {
         const auto r = std::from_chars(value.data(), value.data() + value.size(), f.step_mps2_);
-        if (r.ec != std::errc{} || r.ptr != value.data() + value.size()) f.step_mps2_ = 0;
+        if (r.ec != std::errc{} || r.ptr != value.data() + value.size() || !std::isfinite(f.step_mps2_)) f.step_mps2_ = 0;
       }
     }
   }

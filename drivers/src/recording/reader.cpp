@@ -126,9 +126,9 @@ FieldError to_accel(std::span<const std::string_view> row, AccelSample& s) {
   s.y_mps2 = f.f64(3);
   s.z_mps2 = f.f64(4);
   // 200 g: beyond any accelerometer on a truck (shock sensors included).
-  f.within(2, s.x_mps2, -2000, 2000, "acceleration");
-  f.within(3, s.y_mps2, -2000, 2000, "acceleration");
-  f.within(4, s.z_mps2, -2000, 2000, "acceleration");
+  f.within(2, s.x_mps2, -kMaxAccelMps2, kMaxAccelMps2, "acceleration");
+  f.within(3, s.y_mps2, -kMaxAccelMps2, kMaxAccelMps2, "acceleration");
+  f.within(4, s.z_mps2, -kMaxAccelMps2, kMaxAccelMps2, "acceleration");
   return f.error();
 }
 

@@ -23,6 +23,10 @@ namespace roadload::recording {
 
 using Record = std::variant<CanFrame, AccelSample, GnssFix, WeatherSample>;
 
+// An acceleration beyond this is no sensor's on a truck (the ADXL355 tops out at 8 g): a
+// recording's value outside it is malformed, whatever its layout.
+inline constexpr double kMaxAccelMps2 = 2000;
+
 // Bad input kept for the report: every error is counted, the first kMaxKept are kept whole.
 class ErrorLog {
  public:
