@@ -63,6 +63,14 @@ void CellEstimates::tick(double s_front_m, double s_cg_m, double speed_mps, Unus
   }
 }
 
+std::vector<std::size_t> CellEstimates::group_steps(const PavementGroups& groups, std::size_t group) const {
+  std::vector<std::size_t> steps;
+  for (std::size_t i = 0; i < cells_.size() && i < groups.cell_group.size(); ++i) {
+    if (groups.cell_group[i] == static_cast<int>(group)) steps.insert(steps.end(), state_[i].steps.begin(), state_[i].steps.end());
+  }
+  return steps;
+}
+
 int CellEstimates::cell_at(double s_m) const {
   for (std::size_t i = 0; i < cells_.size(); ++i) {
     if (s_m >= cells_[i].start_m && s_m < cells_[i].end_m) return static_cast<int>(i);

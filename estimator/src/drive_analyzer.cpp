@@ -265,32 +265,47 @@ CrrFilter::Vec DriveAnalyzer::state_at(std::size_t step) const {
   return step >= smoother_.size() ? filter_.core().x() : smoother_.x(step);
 }
 
-CrrMean DriveAnalyzer::crr_mean(std::span<const std::size_t> steps) const {
+DriveAnalyzer::Smoother::Sum DriveAnalyzer::crr_sum(std::span<const std::size_t> steps) {
+  Smoother::Sum sum;
+  sum.e(CrrState::crr) = 1.0;
   const double w = 1.0 / static_cast<double>(steps.size());
-  std::vector<Smoother::Weight> weights;
-  weights.reserve(steps.size());
+  sum.weights.reserve(steps.size());
+  for (const std::size_t step : steps) sum.weights.push_back({step, w});
+  return sum;
+}
+
+CrrMean DriveAnalyzer::crr_mean(std::span<const std::size_t> steps, double variance) const {
+  const double w = 1.0 / static_cast<double>(steps.size());
   CrrMean m;
-  for (const std::size_t step : steps) {
-    m.crr += w * state_at(step)(CrrState::crr);
-    weights.push_back({step, w});
-  }
-  CrrFilter::Vec e = CrrFilter::Vec::Zero();
-  e(CrrState::crr) = 1.0;
-  m.sigma = std::sqrt(std::max(0.0, smoother_.variance_of_sum(e, weights)));
+  for (const std::size_t step : steps) m.crr += w * state_at(step)(CrrState::crr);
+  m.sigma = std::sqrt(std::max(0.0, variance));
   return m;
 }
 
-void DriveAnalyzer::finish() {
+void DriveAnalyzer::finish(const PavementGroups& groups) {
   if (finished_) return;
   finished_ = true;
+  groups_ = groups;
+  // Every mean the results give is summed in the smoother's one backward pass: the trip's, each
+  // cell's, each pavement's.
+  std::vector<Smoother::Sum> sums{crr_sum(usable_steps_)};
+  const std::size_t n_cells = cells_.spans().size();
+  for (std::size_t i = 0; i < n_cells; ++i) sums.push_back(crr_sum(cells_.steps(i)));
+  std::vector<std::vector<std::size_t>> group_steps;
+  for (std::size_t g = 0; g < groups_.names.size(); ++g) {
+    group_steps.push_back(cells_.group_steps(groups_, g));
+    sums.push_back(crr_sum(group_steps.back()));
+  }
   smoother_.finish(filter_.core().x(), filter_.core().p());
-  smoother_.smooth();
+  const std::vector<double> variance = smoother_.smooth(sums);
+  for (std::size_t i = 0; i < n_cells; ++i) cell_means_.push_back(crr_mean(cells_.steps(i), variance[1 + i]));
+  for (std::size_t g = 0; g < group_steps.size(); ++g) group_means_.push_back(crr_mean(group_steps[g], variance[1 + n_cells + g]));
   fuel_.finish(config_.filter.truck.mass_kg, cells_.spans().size(), [this](std::size_t step) { return state_at(step); });
   trip_.fuel = fuel_.trip();
   // The trip's CRR is the smoothed CRR averaged over every usable tick (a distance average at
   // steady speed), its sigma that of the average.
   if (!usable_steps_.empty()) {
-    const CrrMean m = crr_mean(usable_steps_);
+    const CrrMean m = crr_mean(usable_steps_, variance.front());
     trip_.crr = m.crr;
     trip_.crr_sigma = m.sigma;
   } else {
@@ -323,7 +338,10 @@ CellLimits DriveAnalyzer::cell_limits() const {
 }
 
 std::vector<CellResult> DriveAnalyzer::cells() const {
-  std::vector<CellResult> out = cells_.results(cell_limits(), [this](std::span<const std::size_t> steps) { return crr_mean(steps); });
+  // Before finish() a kept history has no smoothed means yet: the filter's estimate stands in.
+  std::vector<CellResult> out = cells_.results(cell_limits(), [this](std::size_t i, std::span<const std::size_t>) {
+    return i < cell_means_.size() ? cell_means_[i] : CrrMean{filter_.crr(), filter_.crr_sigma()};
+  });
   if (!config_.keep_history) return out;
   const std::vector<FuelBreakdown>& fuel = fuel_.cells();
   for (std::size_t i = 0; i < out.size(); ++i) {
@@ -333,9 +351,12 @@ std::vector<CellResult> DriveAnalyzer::cells() const {
   return out;
 }
 
-std::vector<PavementResult> DriveAnalyzer::pavements(const PavementGroups& groups) const {
-  const std::vector<CellResult> crr = cells_.group_results(groups, cell_limits(),
-                                                           [this](std::span<const std::size_t> steps) { return crr_mean(steps); });
+std::vector<PavementResult> DriveAnalyzer::pavements() const {
+  const PavementGroups& groups = groups_;
+  const std::vector<CellResult> crr = cells_.group_results(
+      groups, cell_limits(), [this](std::size_t g, std::span<const std::size_t>) {
+        return g < group_means_.size() ? group_means_[g] : CrrMean{filter_.crr(), filter_.crr_sigma()};
+      });
   const std::vector<FuelBreakdown>& fuel = fuel_.cells();
   std::vector<PavementResult> out(crr.size());
   for (std::size_t g = 0; g < crr.size(); ++g) out[g].crr = crr[g];

@@ -33,7 +33,7 @@ TEST(PavementResults, OneEstimateOverAllTheTypesTicks) {
   drive(cells);
   std::vector<std::size_t> seen;
   // The "mean" records which steps it was given and returns their mean index as the CRR.
-  const auto mean = [&](std::span<const std::size_t> steps) {
+  const auto mean = [&](std::size_t, std::span<const std::size_t> steps) {
     seen.assign(steps.begin(), steps.end());
     const double m = std::accumulate(steps.begin(), steps.end(), 0.0) / static_cast<double>(steps.size());
     return CrrMean{m * 1e-5, 1e-4};
@@ -56,7 +56,8 @@ TEST(PavementResults, OneEstimateOverAllTheTypesTicks) {
 TEST(PavementResults, LiveSaysItNeedsTheSmoothedDrive) {
   CellEstimates cells({{"a", 0, 100}, {"b", 100, 200}, {"c", 200, 300}}, 0.0, false);
   drive(cells);
-  const auto out = cells.group_results(two_pavements(), limits(), [](std::span<const std::size_t>) { return CrrMean{}; });
+  const auto out = cells.group_results(two_pavements(), limits(),
+                                       [](std::size_t, std::span<const std::size_t>) { return CrrMean{}; });
   ASSERT_EQ(out.size(), 2u);
   EXPECT_FALSE(out[0].identified);
   EXPECT_NE(out[0].reason.find("smoothed"), std::string::npos) << out[0].reason;
@@ -64,7 +65,9 @@ TEST(PavementResults, LiveSaysItNeedsTheSmoothedDrive) {
 
 TEST(PavementResults, APavementNotDrivenSaysSo) {
   CellEstimates cells({{"a", 0, 100}, {"b", 100, 200}, {"c", 200, 300}}, 0.0, true);
-  const auto out = cells.group_results(two_pavements(), limits(), [](std::span<const std::size_t>) { return CrrMean{0.006, 1e-4}; });
+  const auto out = cells.group_results(two_pavements(), limits(), [](std::size_t, std::span<const std::size_t>) {
+    return CrrMean{0.006, 1e-4};
+  });
   ASSERT_EQ(out.size(), 2u);
   EXPECT_EQ(out[1].samples, 0u);
   EXPECT_EQ(out[1].reason, "not driven");

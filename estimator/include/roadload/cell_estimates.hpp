@@ -54,37 +54,36 @@ class CellEstimates {
   // estimate to the filter's now, or keeps its smoother step.
   void tick(double s_front_m, double s_cg_m, double speed_mps, Unusable why, CrrMean filter_now, std::size_t step);
 
-  // The cells' results; smoothed, each CRR is `mean` of its usable ticks' steps.
+  // The cells' results; smoothed, each CRR is `mean(i, steps)` of cell i's usable ticks' steps.
   template <typename Mean>
   std::vector<CellResult> results(const CellLimits& limits, Mean&& mean) const {
     std::vector<CellResult> out;
     for (std::size_t i = 0; i < cells_.size(); ++i) {
       const Cell& c = state_[i];
       std::optional<CrrMean> crr;
-      if (c.tally.samples > 0) crr = smoothed_ ? mean(std::span<const std::size_t>(c.steps)) : c.live;
+      if (c.tally.samples > 0) crr = smoothed_ ? mean(i, steps(i)) : c.live;
       out.push_back(cell_result(cells_[i], c.tally, crr, limits));
     }
     return out;
   }
 
   // Each pavement group's result over all its cells' usable ticks together (`groups.cell_group`
-  // gives each cell's group). Smoothed only: a live filter's estimate belongs to a place, not to a
-  // pavement spread along the route, so live every group says so.
+  // gives each cell's group), its CRR `mean(g, steps)`. Smoothed only: a live filter's estimate
+  // belongs to a place, not to a pavement spread along the route, so live every group says so.
   template <typename Mean>
   std::vector<CellResult> group_results(const PavementGroups& groups, const CellLimits& limits, Mean&& mean) const {
     std::vector<CellResult> out;
     for (std::size_t g = 0; g < groups.names.size(); ++g) {
       CellSpan span{groups.names[g], 0, 0};
       CellTally tally;
-      std::vector<std::size_t> steps;
       for (std::size_t i = 0; i < cells_.size() && i < groups.cell_group.size(); ++i) {
         if (groups.cell_group[i] != static_cast<int>(g)) continue;
         span.end_m += cells_[i].end_m - cells_[i].start_m;
         add(tally, state_[i].tally);
-        steps.insert(steps.end(), state_[i].steps.begin(), state_[i].steps.end());
       }
+      const std::vector<std::size_t> steps = group_steps(groups, g);
       std::optional<CrrMean> crr;
-      if (smoothed_ && !steps.empty()) crr = mean(std::span<const std::size_t>(steps));
+      if (smoothed_ && !steps.empty()) crr = mean(g, std::span<const std::size_t>(steps));
       out.push_back(cell_result(span, tally, crr, limits));
       if (!smoothed_ && tally.samples > 0) out.back().reason = "per pavement only from the smoothed drive (roadload analyze)";
     }
@@ -92,6 +91,9 @@ class CellEstimates {
   }
 
   const std::vector<CellSpan>& spans() const { return cells_; }
+  // The smoother steps of a cell's usable ticks (smoothed only), and of a pavement group's cells'.
+  std::span<const std::size_t> steps(std::size_t cell) const { return state_[cell].steps; }
+  std::vector<std::size_t> group_steps(const PavementGroups& groups, std::size_t group) const;
   // The cell at a place along the route; -1 off the cells.
   int cell_at(double s_m) const;
 

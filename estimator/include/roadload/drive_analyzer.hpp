@@ -86,13 +86,13 @@ class DriveAnalyzer {
     filter_.set_grade_error_correlation_m(grade.error_correlation_m());
     grade_ = std::move(grade);
   }
-  // Runs the smoother; call once after the last push.
-  void finish();
+  // Runs the smoother; call once after the last push. `groups` (of this drive's cells) are the
+  // pavements that pavements() reports.
+  void finish(const PavementGroups& groups = {});
 
   std::vector<CellResult> cells() const;
-  // Each pavement type's CRR and rolling fuel over its cells (`groups` of this drive's cells), once
-  // finished.
-  std::vector<PavementResult> pavements(const PavementGroups& groups) const;
+  // Each pavement type's CRR and rolling fuel over its cells, once finished.
+  std::vector<PavementResult> pavements() const;
   TripResult trip() const { return trip_; }
   LiveEstimate live() const { return live_; }
   const j1939::TpCounters& transport() const { return feed_.transport(); }
@@ -113,9 +113,11 @@ class DriveAnalyzer {
   double crr_jump_variance(double from_front_m, double to_front_m) const;
   // The smoothed state at a smoother step (the filter's own after the last prediction).
   CrrFilter::Vec state_at(std::size_t step) const;
-  // The mean smoothed CRR over ticks (their smoother steps) and its sigma: the shared parts (CdA,
-  // torque bias) and the correlation between neighbouring ticks both kept. Needs a step.
-  CrrMean crr_mean(std::span<const std::size_t> steps) const;
+  // The mean CRR over ticks (their smoother steps), as a sum whose variance the smoother gives: the
+  // shared parts (CdA, torque bias) and the correlation between neighbouring ticks both kept.
+  static Smoother::Sum crr_sum(std::span<const std::size_t> steps);
+  // Its mean over the smoothed states, and the sigma from that variance.
+  CrrMean crr_mean(std::span<const std::size_t> steps, double variance) const;
   CellLimits cell_limits() const;
   // The trip's counters and NIS statistics as far as the drive has gone.
   TripResult trip_so_far() const;
@@ -133,6 +135,8 @@ class DriveAnalyzer {
   Smoother smoother_;
   DriveFuel fuel_;
   std::vector<std::size_t> usable_steps_;  // offline: for the trip's mean
+  PavementGroups groups_;
+  std::vector<CrrMean> cell_means_, group_means_;  // smoothed, once finished
   RunningStats nis_, nis_batch_, nis_batch_means_;
   ContactForces* contact_ = nullptr;
   VibrationAnalysis* vibration_ = nullptr;

@@ -289,8 +289,8 @@ int analyze(const AnalyzeOptions& o) {
       say("analyze", "reading it again: " + again.error().to_string());
       reread = false;
     }
-    analyzer.finish();
-    return DriveAnalysis{analyzer.cells(), analyzer.trip(), analyzer.pavements(groups)};
+    analyzer.finish(groups);
+    return DriveAnalysis{analyzer.cells(), analyzer.trip(), analyzer.pavements()};
   };
   DriveAnalysis analysis = analyse_with_torque_scale(std::get<AnalyzerConfig>(cfg), run);
   if (!reread) return kExitNoInput;
