@@ -73,6 +73,23 @@ TEST(VibrationAnalysis, DamperPowerOfAKnownRelativeMotion) {
   EXPECT_NEAR(va.trip_power().tire_eq27_w, 8000.0 * v * v / 2, 0.01 * 8000.0 * v * v / 2);
 }
 
+// A cell keeps its powers' sums rather than its spectra: a cell holding the whole drive has the
+// trip's power, which comes from the spectra.
+TEST(VibrationAnalysis, ACellOverTheWholeDriveHasTheTripsPower) {
+  VibrationAnalysis va(front_axle_only(), sensors(), 1, std::vector<int>(1, 0), 1);
+  Drive d;
+  d.accel_amp = 1.0;
+  drive(va, d, 1e6);
+  const DynamicPower trip = va.trip_power(), cell = va.cell_power(0);
+  ASSERT_GT(trip.segments, 100.0);
+  EXPECT_NEAR(cell.segments, trip.segments, 1e-9 * trip.segments);
+  for (double DynamicPower::*f :
+       {&DynamicPower::damper_w, &DynamicPower::damper_accel_w, &DynamicPower::tire_w, &DynamicPower::tire_eq27_w}) {
+    EXPECT_GT(trip.*f, 0.0);
+    EXPECT_NEAR(cell.*f, trip.*f, 1e-9 * trip.*f);
+  }
+}
+
 TEST(VibrationAnalysis, WindowPowerRestartsWhenCleared) {
   VibrationAnalysis va(front_axle_only(), sensors(), 10, std::vector<int>(10, 0), 1);
   Drive d;

@@ -3,10 +3,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <numbers>
+#include <span>
 
 namespace roadload::spectra {
 namespace {
+
+constexpr std::array<double AxlePower::*, 4> kPowers = {&AxlePower::damper_w, &AxlePower::damper_accel_w, &AxlePower::tire_eq27_w,
+                                                        &AxlePower::tire_deflection_w};
 
 std::size_t slot_count(const std::vector<SuspensionAxle>& axles) {
   int n = 0;
@@ -40,7 +45,56 @@ SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::siz
   const std::size_t bins = bin_count(transform_.config());
   trip_.assign(axles_.size(), Sums(bins));
   window_.assign(axles_.size(), Sums(bins));
-  cell_.assign(cell_count * axles_.size(), Sums(bins));
+  cell_.assign(cell_count * axles_.size(), AxlePower{});
+  for (std::size_t a = 0; a < axles_.size(); ++a) coefficients_.push_back(power_coefficients(a));
+}
+
+// power() of sums holding one unit in one bin of one term, one segment in every sum: the
+// coefficients come from the one definition of the powers.
+std::vector<double> SuspensionSpectra::power_coefficients(std::size_t axle) const {
+  const std::size_t bins = bin_count(transform_.config());
+  std::vector<double> out(kPowers.size() * 6 * bins);
+  const std::vector<std::complex<double>> zero(bins);
+  std::vector<std::complex<double>> unit(bins);
+  for (std::size_t pair = 0; pair < 2; ++pair) {
+    for (std::size_t term = 0; term < 3; ++term) {
+      for (std::size_t k = 0; k < bins; ++k) {
+        unit[k] = 1.0;
+        Sums s(bins);
+        std::size_t i = 0;
+        for (Pair* p : {&s.accel, &s.velocity}) {
+          for (SpectralSum* sum : {&p->uu, &p->ss, &p->us}) {
+            const bool on = i++ == pair * 3 + term;
+            sum->add_scaled(on ? unit : zero, on ? unit : zero, 1.0);
+          }
+        }
+        const AxlePower p = power(s, axle);
+        for (std::size_t f = 0; f < kPowers.size(); ++f) out[((f * 2 + pair) * 3 + term) * bins + k] = p.*kPowers[f];
+        unit[k] = 0.0;
+      }
+    }
+  }
+  return out;
+}
+
+AxlePower SuspensionSpectra::segment_power(std::size_t axle) const {
+  const auto u = static_cast<std::size_t>(axles_[axle].axle_slot);
+  const std::array<std::span<const std::complex<double>>, 2> us = {slot_spectrum_[u], slot_velocity_[u]};
+  const std::array<std::span<const std::complex<double>>, 2> ss = {delayed_, delayed_velocity_};
+  const std::vector<double>& c = coefficients_[axle];
+  const std::size_t bins = delayed_.size();
+  AxlePower p;
+  p.segments = 1.0;
+  for (std::size_t pair = 0; pair < 2; ++pair) {
+    for (std::size_t k = 0; k < bins; ++k) {
+      const std::complex<double> x = us[pair][k], y = ss[pair][k];
+      const std::array<double, 3> terms = {std::norm(x), std::norm(y), (std::conj(x) * y).real()};
+      for (std::size_t f = 0; f < kPowers.size(); ++f) {
+        for (std::size_t t = 0; t < 3; ++t) p.*kPowers[f] += c[((f * 2 + pair) * 3 + t) * bins + k] * terms[t];
+      }
+    }
+  }
+  return p;
 }
 
 void SuspensionSpectra::update(const SensorGrid& grid, const PlacementHistory& history) {
@@ -78,21 +132,31 @@ void SuspensionSpectra::take(const SensorGrid& grid, const PlacementHistory& his
     };
     add(trip_[a], 1.0);
     add(window_[a], 1.0);
-    for (std::size_t i = 0; i < shares.count; ++i)
-      add(cell_[static_cast<std::size_t>(shares.share[i].cell) * axles_.size() + a], shares.share[i].weight);
+    const AxlePower segment = segment_power(a);
+    for (std::size_t i = 0; i < shares.count; ++i) {
+      AxlePower& cell = cell_[static_cast<std::size_t>(shares.share[i].cell) * axles_.size() + a];
+      const double w = shares.share[i].weight;
+      cell.segments += w;
+      for (double AxlePower::*field : kPowers) cell.*field += w * segment.*field;
+    }
     leaks_.add(a, shares);
   }
 }
 
+AxlePower SuspensionSpectra::cell_mean(std::size_t cell, std::size_t axle) const {
+  AxlePower p = cell_[cell * axles_.size() + axle];
+  if (p.segments <= 0) return AxlePower{};
+  for (double AxlePower::*field : kPowers) p.*field /= p.segments;
+  return p;
+}
+
 AxlePower SuspensionSpectra::cell_power(std::size_t cell, std::size_t axle) const {
-  const AxlePower own = power(cell_[cell * axles_.size() + axle], axle);
+  const AxlePower own = cell_mean(cell, axle);
   const CellLeak& k = leaks_.leak(cell, axle);
   std::array<AxlePower, CellLeak::kNeighbours> beside;
-  for (std::size_t j = 0; j < k.count; ++j)
-    beside[j] = power(cell_[static_cast<std::size_t>(k.neighbour[j]) * axles_.size() + axle], axle);
+  for (std::size_t j = 0; j < k.count; ++j) beside[j] = cell_mean(static_cast<std::size_t>(k.neighbour[j]), axle);
   AxlePower p = own;
-  for (double AxlePower::*field :
-       {&AxlePower::damper_w, &AxlePower::damper_accel_w, &AxlePower::tire_eq27_w, &AxlePower::tire_deflection_w}) {
+  for (double AxlePower::*field : kPowers) {
     p.*field = unblur(k, own.*field, own.segments, [&](std::size_t j) { return beside[j].*field; });
   }
   return p;
