@@ -134,13 +134,20 @@ void CrrFilter::step(double dt, const model::ForceInputs& in, double crr_jump_va
 
 void CrrFilter::predict_to(const model::ForceInputs& in) {
   if (!started_ || in.t <= t_) return;
+  // Equal sub-steps, as many as the interval holds max_step (rounded, at least one): a tick a few
+  // microseconds past max_step would otherwise add a sliver of a step, which costs a whole step's
+  // work and a smoother step's memory (a third of an hour's steps were such slivers).
+  const std::int64_t span = (in.t - t_).count(), max = std::max<std::int64_t>(1, config_.max_step.count());
+  const std::int64_t n = std::max<std::int64_t>(1, (span + max / 2) / max);
+  const std::int64_t whole = span / n, rest = span % n;
+  const CaptureTime from = t_;
   // A pavement change enters once over the interval, not once per sub-step.
   double jump = in.crr_jump_variance;
-  while (t_ < in.t) {
-    const Nanoseconds dt = std::min(config_.max_step, in.t - t_);
-    step(to_seconds(dt), in, jump);
+  for (std::int64_t i = 1; i <= n; ++i) {
+    const CaptureTime to = from + Nanoseconds{whole * i + rest * i / n};
+    step(to_seconds(to - t_), in, jump);
     jump = 0;
-    t_ += dt;
+    t_ = to;
   }
 }
 

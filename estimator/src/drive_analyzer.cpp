@@ -297,7 +297,7 @@ void DriveAnalyzer::finish(const PavementGroups& groups) {
     sums.push_back(crr_sum(group_steps.back()));
   }
   smoother_.finish(filter_.core().x(), filter_.core().p());
-  const std::vector<double> variance = smoother_.smooth(sums);
+  const std::vector<double> variance = smoother_.smooth(std::move(sums));
   for (std::size_t i = 0; i < n_cells; ++i) cell_means_.push_back(crr_mean(cells_.steps(i), variance[1 + i]));
   for (std::size_t g = 0; g < group_steps.size(); ++g) group_means_.push_back(crr_mean(group_steps[g], variance[1 + n_cells + g]));
   fuel_.finish(config_.filter.truck.mass_kg, cells_.spans().size(), [this](std::size_t step) { return state_at(step); });

@@ -108,7 +108,7 @@ TEST(RtsSmoother, ATwoStateTrackIsTheBatchSolution) {
   }
   smoother.finish(core.x(), core.p());
   RtsSmoother<kN>::Sum velocity_sum{V{0.0, 1.0}, {{4, 1.0}, {5, 1.0}, {20, -2.0}, {kK, 0.5}}};
-  const std::vector<double> variance = smoother.smooth(std::span(&velocity_sum, 1));
+  const std::vector<double> variance = smoother.smooth({velocity_sum});
   const Eigen::MatrixXd joint = info.inverse();
   const Eigen::VectorXd mean = joint * eta;
   for (int k = 0; k < kK; ++k) {

@@ -61,6 +61,10 @@ class SensorFile {
           errors.add(ParseError{path_, 0, field(), "cannot be decoded further"});
         }
         ended_ = true;
+        // A reader is held past its end (an analysis reports errors last): its decoder goes now.
+        if (dec_ != nullptr) FLAC__stream_decoder_delete(dec_);
+        dec_ = nullptr;
+        block_ = std::vector<AccelSample>();
         return false;
       }
     }

@@ -130,8 +130,17 @@ ParseError LineReader::overlong_error() const {
   return ParseError{path_, line_, "", "line longer than " + std::to_string(kMaxLine) + " bytes, skipped"};
 }
 
+// An analysis holds its readers past their end (their errors are reported last): at its end a
+// stream gives its buffers back.
+void LineReader::release() {
+  zstd_.reset();
+  buf_ = std::vector<char>();
+  begin_ = end_ = 0;
+  file_.reset();
+}
+
 std::optional<std::string_view> LineReader::next() {
-  if (error_) return std::nullopt;
+  if (error_ || buf_.empty()) return std::nullopt;
   overlong_ = false;
   for (;;) {
     const char* start = buf_.data() + begin_;
@@ -145,7 +154,10 @@ std::optional<std::string_view> LineReader::next() {
     }
     if (end_ - begin_ > kMaxLine) return skip_overlong();
     if (!refill()) {
-      if (error_ || begin_ == end_) return std::nullopt;
+      if (error_ || begin_ == end_) {
+        release();
+        return std::nullopt;
+      }
       // Last line without a newline.
       std::string_view last(buf_.data() + begin_, end_ - begin_);
       begin_ = end_;

@@ -100,7 +100,7 @@ class CrrFilter {
 
   // The torque-bias prior defaults to the config's; the caller may know the engine's better.
   void start(CaptureTime t, double speed_mps, std::optional<double> torque_bias_sigma_nm = std::nullopt);
-  // Advances to inputs.t with the inputs held over the interval (sub-stepped at max_step).
+  // Advances to inputs.t with the inputs held over the interval, in equal sub-steps of about max_step.
   void predict_to(const model::ForceInputs& inputs);
   // A speed measurement (wheel-based or GNSS) with its standard deviation.
   ekf::UpdateResult update_speed(CaptureTime t, double speed_mps, double sigma_mps);

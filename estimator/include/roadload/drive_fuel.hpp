@@ -3,6 +3,7 @@
 // every interval between filter ticks is kept, and once the smoother has run each interval's
 // resistances come from the smoothed CRR and CdA at its end.
 #include <cstddef>
+#include <deque>
 #include <vector>
 
 #include "roadload/crr_filter.hpp"
@@ -37,7 +38,7 @@ class DriveFuel {
  private:
   static void fill_resistances(Interval& i, double mass_kg, const CrrFilter::Vec& x);
 
-  std::vector<Interval> intervals_;
+  std::deque<Interval> intervals_;  // a drive's worth: grown in blocks, never copied as a vector would be
   FuelBreakdown trip_;
   std::vector<FuelBreakdown> cells_;
 };

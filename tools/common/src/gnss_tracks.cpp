@@ -60,6 +60,7 @@ std::optional<int> read_recorded_track(std::string_view command, const std::vect
   malformed += reader.value().errors().count();
   if (o.print_errors) tell_errors(command, path, reader.value().errors());
   if (!t.fixes.empty()) {
+    t.fixes.shrink_to_fit();  // kept through the analysis: not its growth's slack
     t.source = "gnss.csv";
   } else if (!bus.empty()) {
     t.fixes = std::move(bus);

@@ -2,16 +2,17 @@
 // Fixed-interval Rauch-Tung-Striebel smoother over the steps a KalmanCore took: offline, each
 // step's estimate then uses the data on both sides of it.
 //
-// Memory is what bounds an hour's analysis, so a step keeps only what the backward pass reads, and
-// that pass frees each step as it leaves it:
+// Memory is what bounds an hour's analysis, so a step keeps only what the backward pass reads:
 //  - the filtered covariance as its lower triangle (the filter keeps it exactly symmetric);
 //  - the Jacobian as its diagonal plus those rows that have more (a filter's Jacobian is mostly
 //    random walks and decays, with a few rows of dynamics);
 //  - no predicted covariance: it is computed again from the process noise's diagonal, as the
 //    filter computed it;
-//  - no smoothed covariance or gain after the pass: the variances the caller needs, of weighted
-//    sums of smoothed estimates, are accumulated during it (smooth()).
+//  - no smoothed covariance or gain: the variances the caller needs, of weighted sums of smoothed
+//    estimates, are accumulated during the pass (smooth()), and the smoothed state takes the
+//    filtered one's place.
 // A 9-state step is 656 bytes plus 72 per full Jacobian row, where keeping every matrix took 1,512.
+// The full rows are freed as the pass reads them.
 #include <algorithm>
 #include <array>
 #include <cassert>
@@ -68,21 +69,20 @@ class RtsSmoother {
     p_last_ = p_last;
   }
 
-  // Backward pass. After it, x(k) is the smoothed estimate at the start of step k, and the recorded
-  // steps are gone. Returns each sum's variance: the estimates of neighbouring steps share most of
+  // Backward pass. After it, x(k) is the smoothed estimate at the start of step k. Returns each
+  // sum's variance (the sums' weights are reordered in place): the estimates of neighbouring steps share most of
   // their data (for i < j their covariance is G_i G_i+1 ... G_j-1 P_j), so each sum carries
   // u_k = sum over its later steps j of w_j G_k ... G_j-1 P_j e back through the steps between
   // its first and last weight, rather than taking the steps as independent (too narrow) or as one
   // estimate (too wide).
-  std::vector<double> smooth(std::span<const Sum> sums = {}) {
+  std::vector<double> smooth(std::vector<Sum> sums = {}) {
     const std::size_t n = steps_.size();
     Accumulators acc(sums, n);
-    smoothed_.assign(n, Vec::Zero());
     Vec xs = x_last_;
     Mat ps = p_last_;
     acc.visit(n, ps);
     for (std::size_t k = n; k-- > 0;) {
-      const Step& s = steps_.back();
+      Step& s = steps_[k];
       const Mat p = unpack(s.p);
       const Mat f = jacobian(s);
       const Mat p_pred = predicted_covariance<N>(p, f, s.q_diagonal);
@@ -92,26 +92,24 @@ class RtsSmoother {
       xs = s.x + g * (xs - s.x_pred);
       ps = p + g * (ps - p_pred) * g.transpose();
       ps = 0.5 * (ps + ps.transpose());
-      smoothed_[k] = xs;
-      steps_.pop_back();
+      s.x = xs;
       acc.carry(g);
       acc.visit(k, ps);
     }
     return acc.variances();
   }
 
-  std::size_t size() const { return steps_.empty() ? smoothed_.size() : steps_.size(); }
-  const Vec& x(std::size_t k) const { return smoothed_[k]; }
+  std::size_t size() const { return steps_.size(); }
+  const Vec& x(std::size_t k) const { return steps_[k].x; }
   void clear() {
     steps_.clear();
     f_rows_.clear();
-    smoothed_.clear();
   }
 
  private:
   static constexpr int kPacked = N * (N + 1) / 2;
   struct Step {
-    Vec x;
+    Vec x;                          // filtered, then smoothed
     std::array<double, kPacked> p;  // lower triangle, row by row
     Vec f_diagonal;
     std::uint32_t f_rows = 0;  // rows of the Jacobian kept whole in f_rows_
@@ -122,19 +120,19 @@ class RtsSmoother {
   // One sum's backward accumulation: its weights by step, last first, same steps merged.
   struct Accumulator {
     const Sum* sum;
-    std::vector<Weight> weights;
+    std::span<const Weight> weights;
     std::size_t next = 0;
     Vec carried = Vec::Zero();  // w_k P_k e + u_k at the step last visited
     double variance = 0;
   };
   class Accumulators {
    public:
-    // Steps beyond `last` (the final estimate's) are not estimates: left out.
-    Accumulators(std::span<const Sum> sums, std::size_t last) : all_(sums.size()) {
+    Accumulators(std::vector<Sum>& sums, std::size_t last) : all_(sums.size()) {
       for (std::size_t i = 0; i < sums.size(); ++i) {
         Accumulator& a = all_[i];
         a.sum = &sums[i];
-        a.weights = merged(sums[i].weights, last);
+        merge(sums[i].weights, last);
+        a.weights = sums[i].weights;
         if (!a.weights.empty()) order_.push_back(i);
       }
       std::sort(order_.begin(), order_.end(),
@@ -174,22 +172,20 @@ class RtsSmoother {
     }
 
    private:
-    static std::vector<Weight> merged(std::span<const Weight> in, std::size_t last) {
-      std::vector<Weight> w;
-      for (const Weight& x : in) {
-        assert(x.step <= last);
-        if (x.step <= last) w.push_back(x);
-      }
+    // Last step first, one weight a step; steps beyond `last` are not estimates and are left out.
+    static void merge(std::vector<Weight>& w, std::size_t last) {
+      assert(std::all_of(w.begin(), w.end(), [&](const Weight& x) { return x.step <= last; }));
+      std::erase_if(w, [&](const Weight& x) { return x.step > last; });
       std::sort(w.begin(), w.end(), [](const Weight& a, const Weight& b) { return a.step > b.step; });
-      std::vector<Weight> out;
-      for (const Weight& x : w) {
-        if (!out.empty() && out.back().step == x.step) {
-          out.back().weight += x.weight;
+      std::size_t kept = 0;
+      for (std::size_t i = 0; i < w.size(); ++i) {
+        if (kept > 0 && w[kept - 1].step == w[i].step) {
+          w[kept - 1].weight += w[i].weight;
         } else {
-          out.push_back(x);
+          w[kept++] = w[i];
         }
       }
-      return out;
+      w.resize(kept);
     }
 
     std::vector<Accumulator> all_;
@@ -233,7 +229,6 @@ class RtsSmoother {
 
   std::deque<Step> steps_;
   std::deque<Row> f_rows_;
-  std::vector<Vec> smoothed_;
   Vec x_last_ = Vec::Zero();
   Mat p_last_ = Mat::Identity();
 };
