@@ -44,7 +44,7 @@ SuspensionSpectra::SuspensionSpectra(std::vector<SuspensionAxle> axles, std::siz
     response_[k] = grid.velocity_response_ratio(static_cast<double>(k) * bin_hz(transform_.config()));
   const std::size_t bins = bin_count(transform_.config());
   trip_.assign(axles_.size(), Sums(bins));
-  window_.assign(axles_.size(), Sums(bins));
+  window_.assign(axles_.size(), AxlePower{});
   cell_.assign(cell_count * axles_.size(), AxlePower{});
   for (std::size_t a = 0; a < axles_.size(); ++a) coefficients_.push_back(power_coefficients(a));
 }
@@ -131,30 +131,31 @@ void SuspensionSpectra::take(const SensorGrid& grid, const PlacementHistory& his
       sums.velocity.add(slot_velocity_[u], delayed_velocity_, w);
     };
     add(trip_[a], 1.0);
-    add(window_[a], 1.0);
     const AxlePower segment = segment_power(a);
+    accumulate(window_[a], segment, 1.0);
     for (std::size_t i = 0; i < shares.count; ++i) {
-      AxlePower& cell = cell_[static_cast<std::size_t>(shares.share[i].cell) * axles_.size() + a];
-      const double w = shares.share[i].weight;
-      cell.segments += w;
-      for (double AxlePower::*field : kPowers) cell.*field += w * segment.*field;
+      accumulate(cell_[static_cast<std::size_t>(shares.share[i].cell) * axles_.size() + a], segment, shares.share[i].weight);
     }
     leaks_.add(a, shares);
   }
 }
 
-AxlePower SuspensionSpectra::cell_mean(std::size_t cell, std::size_t axle) const {
-  AxlePower p = cell_[cell * axles_.size() + axle];
-  if (p.segments <= 0) return AxlePower{};
-  for (double AxlePower::*field : kPowers) p.*field /= p.segments;
-  return p;
+void SuspensionSpectra::accumulate(AxlePower& sum, const AxlePower& segment, double weight) {
+  sum.segments += weight;
+  for (double AxlePower::*field : kPowers) sum.*field += weight * segment.*field;
+}
+
+AxlePower SuspensionSpectra::mean(AxlePower sum) {
+  if (sum.segments <= 0) return AxlePower{};
+  for (double AxlePower::*field : kPowers) sum.*field /= sum.segments;
+  return sum;
 }
 
 AxlePower SuspensionSpectra::cell_power(std::size_t cell, std::size_t axle) const {
-  const AxlePower own = cell_mean(cell, axle);
+  const AxlePower own = mean(cell_[cell * axles_.size() + axle]);
   const CellLeak& k = leaks_.leak(cell, axle);
   std::array<AxlePower, CellLeak::kNeighbours> beside;
-  for (std::size_t j = 0; j < k.count; ++j) beside[j] = cell_mean(static_cast<std::size_t>(k.neighbour[j]), axle);
+  for (std::size_t j = 0; j < k.count; ++j) beside[j] = mean(cell_[static_cast<std::size_t>(k.neighbour[j]) * axles_.size() + axle]);
   AxlePower p = own;
   for (double AxlePower::*field : kPowers) {
     p.*field = unblur(k, own.*field, own.segments, [&](std::size_t j) { return beside[j].*field; });
@@ -162,15 +163,7 @@ AxlePower SuspensionSpectra::cell_power(std::size_t cell, std::size_t axle) cons
   return p;
 }
 
-void SuspensionSpectra::clear_window() {
-  for (Sums& s : window_) {
-    for (Pair* p : {&s.accel, &s.velocity}) {
-      p->uu.clear();
-      p->ss.clear();
-      p->us.clear();
-    }
-  }
-}
+void SuspensionSpectra::clear_window() { window_.assign(window_.size(), AxlePower{}); }
 
 void SuspensionSpectra::delay(std::span<const std::complex<double>> in, double tau_s, std::span<std::complex<double>> out) const {
   const double step = -2.0 * std::numbers::pi * bin_hz(transform_.config()) * tau_s;

@@ -13,10 +13,10 @@
 // contact forces do (contact_forces.hpp): a delay is a phase e^{-i w tau} on the frame's transform.
 // Segments are shared among cells by segment_weights.hpp; powers follow dynamic_power.hpp.
 //
-// The trip and the live window keep their spectra (the report draws the trip's). A cell keeps
-// only its four powers' weighted sums: each power is linear in the spectra's sums, so a segment's
-// power, added with the segment's weight in the cell, gives the cell's mean power exactly as its
-// mean spectra would, in 40 bytes instead of 12 kB (an hour's 2,000 cells x 6 axles took 25 MB).
+// The trip keeps its spectra (the report draws them). The live window and a cell keep only their
+// four powers' weighted sums: each power is linear in the spectra's sums, so a segment's power,
+// added with the segment's weight in the cell, gives the cell's mean power exactly as its mean
+// spectra would, in 40 bytes instead of 12 kB (an hour's 2,000 cells x 6 axles took 25 MB).
 //
 // Storage is sized at construction; update() never allocates. Readouts allocate.
 #include <complex>
@@ -85,7 +85,7 @@ class SuspensionSpectra {
   AxlePower cell_power(std::size_t cell, std::size_t axle) const;
   AxlePower trip_power(std::size_t axle) const { return power(trip_[axle], axle); }
   // Since the last clear_window(): the live status's time window.
-  AxlePower window_power(std::size_t axle) const { return power(window_[axle], axle); }
+  AxlePower window_power(std::size_t axle) const { return mean(window_[axle]); }
   void clear_window();
   std::vector<double> trip_density(std::size_t axle, AxleDensity which) const;
   const SuspensionCounters& counters() const { return counters_; }
@@ -109,10 +109,10 @@ class SuspensionSpectra {
   std::vector<double> power_coefficients(std::size_t axle) const;
   // One segment's power on an axle, from the transforms take() holds (segments = 1).
   AxlePower segment_power(std::size_t axle) const;
-  // A cell's mean power over its segments, before unblurring.
-  AxlePower cell_mean(std::size_t cell, std::size_t axle) const;
-  // Into `out` (one value per bin) through the scratch spectra below: no heap, so a live status
-  // can ask for the window's power.
+  // Powers summed by segment weight, and their mean over the segments.
+  static void accumulate(AxlePower& sum, const AxlePower& segment, double weight);
+  static AxlePower mean(AxlePower sum);
+  // Into `out` (one value per bin) through the scratch spectra below: no heap.
   void density(const Sums& s, std::size_t axle, AxleDensity which, std::span<double> out) const;
   AxlePower power(const Sums& s, std::size_t axle) const;
   void take(const SensorGrid& grid, const PlacementHistory& history, std::int64_t end);
@@ -122,8 +122,9 @@ class SuspensionSpectra {
   SuspensionConfig config_;
   SegmentTransform transform_;
   SegmentWeights weights_;
-  std::vector<Sums> trip_, window_;
-  std::vector<AxlePower> cell_;                    // [cell * axles + axle]: segments and powers, each summed by weight
+  std::vector<Sums> trip_;
+  // The live window's and each cell's [cell * axles + axle] segments and powers, summed by weight.
+  std::vector<AxlePower> window_, cell_;
   std::vector<std::vector<double>> coefficients_;  // per axle, power_coefficients()
   CellLeaks leaks_;
   std::vector<double> segment_;
