@@ -52,20 +52,15 @@ std::optional<StreamChoice> stream_named(std::string_view name) {
   return std::nullopt;
 }
 
-int failed(const ParseError& e, int status) {
-  say("cat", e.to_string());
-  return status;
-}
-
 int cat(const CatOptions& o) {
   const auto choice = stream_named(o.stream);
   if (!choice) return usage_error("cat", "STREAM must be can.log, accel.csv, gnss.csv or weather.csv, not '" + o.stream + "'");
   auto rec = recording::RecordingReader::open_drive(o.inputs, choice->bit);
-  if (!rec) return failed(rec.error(), exit_for(rec.error()));
+  if (!rec) return failed("cat", rec.error());
   std::optional<recording::OutputFile> file;
   if (!o.out.empty()) {
     auto f = recording::OutputFile::create(o.out);
-    if (!f) return failed(f.error(), kExitCantCreate);
+    if (!f) return failed("cat", f.error(), kExitCantCreate);
     file.emplace(std::move(f.value()));
   } else {
     static char buffer[1 << 16];
@@ -96,9 +91,9 @@ int cat(const CatOptions& o) {
     }
   }
   if (file) {
-    if (auto e = file->close()) return failed(*e, kExitCantCreate);
+    if (auto e = file->close()) return failed("cat", *e, kExitCantCreate);
   } else if (std::fflush(stdout) != 0) {
-    return failed(ParseError{"standard output", 0, "write", std::strerror(errno)}, kExitCantCreate);
+    return failed("cat", ParseError{"standard output", 0, "write", std::strerror(errno)}, kExitCantCreate);
   }
   for (const ParseError& e : rec.value().errors().kept()) say("cat", e.to_string());
   return rec.value().errors().count() > 0 ? kExitDataErr : kExitOk;

@@ -52,36 +52,31 @@ bool wanted(const Options& o, const recording::SensorInfo& s) {
   return false;
 }
 
-int fail_data(const ParseError& e) {
-  std::fprintf(stderr, "roadload psd: %s\n", e.to_string().c_str());
-  return exit_for(e);
-}
-
 // Feeds every row of `path` to the channels; the first malformed row ends it with its error.
 int feed(const std::string& path, std::span<const std::string_view> columns, std::vector<Channel>& channels) {
   auto csv = recording::CsvReader::open(path, columns);
-  if (!csv) return fail_data(csv.error());
+  if (!csv) return failed("psd", csv.error());
   std::span<const std::string_view> row;
   for (;;) {
     const auto status = csv.value().next(row);
     if (status == recording::CsvReader::Status::end) {
-      if (csv.value().error()) return fail_data(*csv.value().error());
+      if (csv.value().error()) return failed("psd", *csv.value().error());
       return kExitOk;
     }
-    if (status == recording::CsvReader::Status::bad_row) return fail_data(*csv.value().error());
+    if (status == recording::CsvReader::Status::bad_row) return failed("psd", *csv.value().error());
     if (columns.size() == 1) {
       const auto x = recording::parse_f64(row[0]);
-      if (!x) return fail_data(csv.value().field_error(0, "not a number"));
+      if (!x) return failed("psd", csv.value().field_error(0, "not a number"));
       channels[0].psd->push(*x);
       ++channels[0].samples;
       continue;
     }
     const auto sensor = recording::parse_i64(row[1]);
-    if (!sensor) return fail_data(csv.value().field_error(1, "not an integer"));
+    if (!sensor) return failed("psd", csv.value().field_error(1, "not an integer"));
     for (Channel& c : channels) {
       if (c.sensor != *sensor) continue;
       const auto x = recording::parse_f64(row[2 + c.axis]);
-      if (!x) return fail_data(csv.value().field_error(2 + c.axis, "not a number"));
+      if (!x) return failed("psd", csv.value().field_error(2 + c.axis, "not a number"));
       c.psd->push(*x);
       ++c.samples;
     }
@@ -146,7 +141,7 @@ int psd(const Options& o) {
     rc = feed(input, cols, channels);
   } else {
     auto reader = recording::RecordingReader::open(input);
-    if (!reader) return fail_data(reader.error());
+    if (!reader) return failed("psd", reader.error());
     for (const auto& s : reader.value().metadata().sensors) {
       if (!wanted(o, s)) continue;
       const double fs = o.fs_hz.value_or(s.rate_hz);
@@ -161,7 +156,7 @@ int psd(const Options& o) {
       if (c.fs_hz != channels[0].fs_hz) return usage_error("psd", "sensors at different rates: give --fs or one --sensor");
     // A drive's segments continue one another; accel.csv or the sensors' FLAC files alike.
     auto drive = recording::RecordingReader::open_drive(o.inputs, recording::kAccelStream);
-    if (!drive) return fail_data(drive.error());
+    if (!drive) return failed("psd", drive.error());
     while (const recording::Record* r = drive.value().next()) {
       const auto& s = std::get<AccelSample>(*r);
       const std::array<double, 3> xyz{s.x_mps2, s.y_mps2, s.z_mps2};
@@ -171,7 +166,7 @@ int psd(const Options& o) {
         ++c.samples;
       }
     }
-    if (drive.value().errors().count() > 0) return fail_data(drive.value().errors().kept().front());
+    if (drive.value().errors().count() > 0) return failed("psd", drive.value().errors().kept().front());
   }
   if (rc != kExitOk) return rc;
   for (const Channel& c : channels) {

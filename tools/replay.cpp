@@ -109,11 +109,6 @@ void add_options(CLI::App& cmd, ReplayOptions& o) {
   cmd.add_flag("-q,--quiet", o.quiet, "no progress on standard error");
 }
 
-int fail(const ParseError& e, int status) {
-  std::fprintf(stderr, "roadload replay: %s\n", e.to_string().c_str());
-  return status;
-}
-
 // The frames onto the bus in batches, at the recorded pace times the rate, faults injected, each
 // batch also written to the --sent log.
 class Replay {
@@ -184,7 +179,7 @@ class Replay {
     injector_.emplace(o_.faults, f.t);
     if (o_.origin.empty()) return std::nullopt;
     const io::ReplayTiming timing{f.t, capture_time_from_ns(start_ns_), o_.rate};
-    if (auto e = io::write_replay_origin(o_.origin, {timing, o_.faults})) return fail(*e, kExitCantCreate);
+    if (auto e = io::write_replay_origin(o_.origin, {timing, o_.faults})) return failed("replay", *e, kExitCantCreate);
     return std::nullopt;
   }
 
@@ -216,13 +211,13 @@ class Replay {
 
 int replay(const ReplayOptions& o) {
   auto reader = recording::RecordingReader::open_drive(o.inputs, recording::kCanStream);
-  if (!reader) return fail(reader.error(), kExitNoInput);
+  if (!reader) return failed("replay", reader.error(), kExitNoInput);
   auto sender = can::SocketCanSender::open(o.iface);
-  if (!sender) return fail(sender.error(), kExitCantCreate);
+  if (!sender) return failed("replay", sender.error(), kExitCantCreate);
   std::optional<recording::OutputFile> sent_file;
   if (!o.sent_log.empty()) {
     auto f = recording::OutputFile::create(o.sent_log);
-    if (!f) return fail(f.error(), kExitCantCreate);
+    if (!f) return failed("replay", f.error(), kExitCantCreate);
     sent_file.emplace(std::move(f.value()));
   }
   Replay replay(o, *sender.value(), sent_file ? &*sent_file : nullptr);
@@ -237,7 +232,7 @@ int replay(const ReplayOptions& o) {
   replay.finish();
   replay.print_summary();
   if (sent_file) {
-    if (auto e = sent_file->close()) return fail(*e, kExitCantCreate);
+    if (auto e = sent_file->close()) return failed("replay", *e, kExitCantCreate);
   }
   if (!sender.value()->error().empty()) return kExitCantCreate;
   const auto& errors = reader.value().errors();

@@ -78,15 +78,10 @@ void add_options(CLI::App& cmd, SimulateOptions& o) {
   cmd.add_flag("-q,--quiet", o.quiet, "no progress on standard error");
 }
 
-int fail(const ParseError& e, int status) {
-  std::fprintf(stderr, "roadload simulate: %s\n", e.to_string().c_str());
-  return status;
-}
-
 // The scenario as the options change it.
 std::variant<sim::Scenario, int> scenario_of(const SimulateOptions& o) {
   auto scenario = sim::load_scenario(o.scenario, data_dir());
-  if (!scenario) return fail(scenario.error(), exit_for(scenario.error()));
+  if (!scenario) return failed("simulate", scenario.error());
   if (!o.vehicle.empty()) {
     auto v = load_vehicle("simulate", o.vehicle);
     if (const int* rc = std::get_if<int>(&v)) return *rc;
@@ -129,22 +124,22 @@ int simulate(const SimulateOptions& o) {
   if (const int* rc = std::get_if<int>(&scenario)) return *rc;
   const sim::Scenario& sc = std::get<sim::Scenario>(scenario);
   j1939::Database db;
-  if (auto err = load_dbc_file(db, core_dbc_path())) return fail(*err, kExitNoInput);
+  if (auto err = load_dbc_file(db, core_dbc_path())) return failed("simulate", *err, kExitNoInput);
   sim::Simulation simulation(sc, o.seed, db);
   auto writer = recording::RecordingWriter::create(o.out, simulation.metadata());
-  if (!writer) return fail(writer.error(), kExitNoInput);
+  if (!writer) return failed("simulate", writer.error(), kExitNoInput);
   if (o.accel_format == "flac") {
     const std::vector<double> steps = simulation.accel_steps_mps2();
     for (const auto& sensor : simulation.metadata().sensors) {
       if (sensor.kind != "accelerometer") continue;
       const auto id = static_cast<std::uint8_t>(sensor.id);
-      if (auto err = writer.value().accel_as_flac(id, sensor.rate_hz, steps.at(id))) return fail(*err, kExitNoInput);
+      if (auto err = writer.value().accel_as_flac(id, sensor.rate_hz, steps.at(id))) return failed("simulate", *err, kExitNoInput);
     }
   }
   std::optional<sim::TruthRecorder> truth;
   if (!o.truth_dir.empty()) {
     truth.emplace(simulation.route(), simulation.plant().truck());
-    if (auto err = open_truth(o.truth_dir, *truth)) return fail(*err, kExitNoInput);
+    if (auto err = open_truth(o.truth_dir, *truth)) return failed("simulate", *err, kExitNoInput);
   }
   sim::RecordingSink sink(writer.value());
   Progress progress("simulate", o.quiet);
@@ -152,7 +147,7 @@ int simulate(const SimulateOptions& o) {
   progress.finish();
   std::optional<ParseError> err = writer.value().close();
   if (!err && truth) err = truth->finish(simulation.truth_toml());
-  if (err) return fail(*err, kExitDataErr);
+  if (err) return failed("simulate", *err, kExitDataErr);
   print_summary(simulation, sc.name, o.seed, sum, progress.wall_s());
   return kExitOk;
 }

@@ -18,13 +18,15 @@ end_background() {
   local g p
   for p in "${background[@]}"; do kill -TERM "$p" 2>/dev/null || true; done
   for g in "${fake_groups[@]}"; do
-    kill -TERM -- "-$g" 2>/dev/null || continue
-    for _ in $(seq 20); do
-      kill -0 -- "-$g" 2>/dev/null || break
-      sleep 0.1
-    done
-    kill -KILL -- "-$g" 2>/dev/null || true
-    rm -f -- "${TMPDIR:-/tmp}/gpsfake-$g.sock"  # its control socket, left behind when it is killed
+    if kill -TERM -- "-$g" 2>/dev/null; then
+      for _ in $(seq 20); do
+        kill -0 -- "-$g" 2>/dev/null || break
+        sleep 0.1
+      done
+      kill -KILL -- "-$g" 2>/dev/null || true
+    fi
+    # Its control socket: left behind when it is killed, and when it exits on its own.
+    rm -f -- "${TMPDIR:-/tmp}/gpsfake-$g.sock"
   done
   wait 2>/dev/null || true
 }

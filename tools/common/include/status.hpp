@@ -25,6 +25,10 @@ inline int exit_for(const ParseError& e) { return e.line > 0 ? kExitDataErr : kE
 // this thread's MessageCapture while one lives.
 void say(std::string_view command, std::string_view text);
 
+// Says the error as say() does; returns `status`, or the status exit_for() gives the error.
+int failed(std::string_view command, const ParseError& e, int status);
+inline int failed(std::string_view command, const ParseError& e) { return failed(command, e, exit_for(e)); }
+
 // Prints "roadload COMMAND: message (see --help)" as say() does; returns kExitUsage. For what
 // the options cannot say alone ("--aero and --torque-scale are separate calibrations"); CLI11
 // reports the rest the same way.

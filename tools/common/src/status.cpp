@@ -22,6 +22,11 @@ void say(std::string_view command, std::string_view text) {
                static_cast<int>(text.size()), text.data());
 }
 
+int failed(std::string_view command, const ParseError& e, int status) {
+  say(command, e.to_string());
+  return status;
+}
+
 int usage_error(std::string_view command, const std::string& message) {
   say(command, message + " (see --help)");
   return kExitUsage;
