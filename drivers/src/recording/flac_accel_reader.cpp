@@ -6,10 +6,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <string_view>
 #include <system_error>
 
-#include "roadload/merge.hpp"
 #include "roadload/recording/flac_accel.hpp"
 
 namespace fs = std::filesystem;
@@ -166,18 +166,22 @@ class SensorFile {
 class AccelFlacStream final : public Stream {
  public:
   AccelFlacStream(std::unique_ptr<Stream> text, std::vector<std::unique_ptr<SensorFile>> files)
-      : text_(std::move(text)), files_(std::move(files)), heads_(files_.size() + 1), live_(files_.size() + 1, false) {}
+      : text_(std::move(text)), files_(std::move(files)), heads_(files_.size() + 1), stamps_(files_.size() + 1, kEnded) {}
 
   bool next(Record& out, ErrorLog& errors) override {
     if (!primed_) {
-      for (std::size_t i = 0; i < heads_.size(); ++i) live_[i] = pull(i, heads_[i], errors);
+      for (std::size_t i = 0; i < heads_.size(); ++i) pull(i, errors);
       primed_ = true;
     }
-    const auto best = oldest_head(
-        heads_.size(), [this](std::size_t i) { return live_[i]; }, [this](std::size_t i) { return heads_[i].t; });
-    if (!best) return false;
-    const AccelSample s = heads_[*best];
-    live_[*best] = pull(*best, heads_[*best], errors);
+    // The oldest head, the first of equal ones: a plain minimum over the stamps, a stream that has
+    // ended holding kEnded (a branch per stream on whether it lives cost more than the merge).
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < stamps_.size(); ++i) {
+      if (stamps_[i] < stamps_[best]) best = i;
+    }
+    if (stamps_[best] == kEnded) return false;
+    const AccelSample s = heads_[best];
+    pull(best, errors);
     count(s.t);
     out = s;
     return true;
@@ -185,17 +189,24 @@ class AccelFlacStream final : public Stream {
   const char* name() const override { return kAccelFile; }
 
  private:
-  bool pull(std::size_t i, AccelSample& out, ErrorLog& errors) {
-    if (i > 0) return files_[i - 1]->next(out, errors);
-    if (!text_ || !text_->next(record_, errors)) return false;
-    out = std::get<AccelSample>(record_);
-    return true;
+  static constexpr std::int64_t kEnded = std::numeric_limits<std::int64_t>::max();
+
+  void pull(std::size_t i, ErrorLog& errors) {
+    AccelSample& out = heads_[i];
+    bool got = false;
+    if (i > 0) {
+      got = files_[i - 1]->next(out, errors);
+    } else if (text_ && text_->next(record_, errors)) {
+      out = std::get<AccelSample>(record_);
+      got = true;
+    }
+    stamps_[i] = got ? to_ns(out.t) : kEnded;
   }
 
   std::unique_ptr<Stream> text_;
   std::vector<std::unique_ptr<SensorFile>> files_;
-  std::vector<AccelSample> heads_;  // [0] accel.csv's, then each file's
-  std::vector<bool> live_;
+  std::vector<AccelSample> heads_;    // [0] accel.csv's, then each file's
+  std::vector<std::int64_t> stamps_;  // the heads' stamps
   Record record_;
   bool primed_ = false;
 };
