@@ -58,6 +58,15 @@ std::optional<RouteGeometry> RouteGeometry::build(std::span<const GeoPoint> poin
     }
     g.blocks_.push_back(b);
   }
+  for (std::size_t first = 0; first < g.blocks_.size(); first += kBlock) {
+    const std::size_t last = std::min(first + kBlock, g.blocks_.size());
+    Block k{g.blocks_[(first + last) / 2].center_ecef_m, 0.0, 0.0};
+    for (std::size_t b = first; b < last; ++b) {
+      k.reach_m = std::max(k.reach_m, distance_m(g.blocks_[b].center_ecef_m, k.center_ecef_m) + g.blocks_[b].reach_m);
+      k.longest_m = std::max(k.longest_m, g.blocks_[b].longest_m);
+    }
+    g.groups_.push_back(k);
+  }
   return g;
 }
 
@@ -87,8 +96,7 @@ double RouteGeometry::offset_bound_m(std::size_t i, const std::array<double, 3>&
   return in_plane_at_least_m(distance_m(q, start_ecef_m_[i])) - plane_length_m_[i] - 1e-3;
 }
 
-double RouteGeometry::block_bound_m(std::size_t b, const std::array<double, 3>& q) const {
-  const Block& k = blocks_[b];
+double RouteGeometry::bound_m(const Block& k, const std::array<double, 3>& q) {
   // Every start lies within reach of the centre: its chord is at least this one's less the reach.
   const double nearest_m = distance_m(q, k.center_ecef_m) - k.reach_m;
   if (nearest_m <= 0 || nearest_m + 2 * k.reach_m > kMonotonicM) return 0.0;
@@ -102,32 +110,38 @@ RouteGeometry::Projection RouteGeometry::project(double lat_deg, double lon_deg)
   // segments whose bound is within it can be nearer. The result is the one every segment's
   // projection would give: the smallest offset, the first segment of equal ones.
   const std::size_t last = planes_.size() - 1;
-  // Block b holds the segments [1 + b kBlock, its end): those between the route's ends.
+  // Block b holds the segments [1 + b kBlock, its end): those between the route's ends; group g
+  // the blocks [g kBlock, its end).
   const auto end_of = [&](std::size_t b) { return std::min(1 + (b + 1) * kBlock, last); };
+  const auto blocks_end = [&](std::size_t g) { return std::min((g + 1) * kBlock, blocks_.size()); };
+  // The first of [from, to) whose bound is least.
+  const auto nearest = [&](std::size_t from, std::size_t to, auto&& bound) {
+    std::size_t best = from;
+    double best_bound = bound(from);
+    for (std::size_t i = from + 1; i < to; ++i) {
+      const double b = bound(i);
+      if (b < best_bound) best = i, best_bound = b;
+    }
+    return best;
+  };
   const Projection first_end = onto(0, lat_deg, lon_deg), last_end = onto(last, lat_deg, lon_deg);
   double within_m = std::min(first_end.offset_m, last_end.offset_m);
-  std::size_t block = 0;
-  double block_bound = blocks_.empty() ? 0.0 : block_bound_m(0, q);
-  for (std::size_t b = 1; b < blocks_.size(); ++b) {
-    const double bound = block_bound_m(b, q);
-    if (bound < block_bound) block = b, block_bound = bound;
-  }
   if (!blocks_.empty()) {
-    std::size_t guess = 1 + block * kBlock;
-    double guess_bound = offset_bound_m(guess, q);
-    for (std::size_t i = guess + 1; i < end_of(block); ++i) {
-      const double bound = offset_bound_m(i, q);
-      if (bound < guess_bound) guess = i, guess_bound = bound;
-    }
+    const std::size_t g = nearest(0, groups_.size(), [&](std::size_t i) { return bound_m(groups_[i], q); });
+    const std::size_t b = nearest(g * kBlock, blocks_end(g), [&](std::size_t i) { return bound_m(blocks_[i], q); });
+    const std::size_t guess = nearest(1 + b * kBlock, end_of(b), [&](std::size_t i) { return offset_bound_m(i, q); });
     within_m = std::min(within_m, onto(guess, lat_deg, lon_deg).offset_m);
   }
   Projection best = first_end;
-  for (std::size_t b = 0; b < blocks_.size(); ++b) {
-    if (block_bound_m(b, q) > within_m) continue;
-    for (std::size_t i = 1 + b * kBlock; i < end_of(b); ++i) {
-      if (offset_bound_m(i, q) > within_m) continue;
-      const Projection p = onto(i, lat_deg, lon_deg);
-      if (p.offset_m < best.offset_m) best = p;
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    if (bound_m(groups_[g], q) > within_m) continue;
+    for (std::size_t b = g * kBlock; b < blocks_end(g); ++b) {
+      if (bound_m(blocks_[b], q) > within_m) continue;
+      for (std::size_t i = 1 + b * kBlock; i < end_of(b); ++i) {
+        if (offset_bound_m(i, q) > within_m) continue;
+        const Projection p = onto(i, lat_deg, lon_deg);
+        if (p.offset_m < best.offset_m) best = p;
+      }
     }
   }
   if (last_end.offset_m < best.offset_m) best = last_end;

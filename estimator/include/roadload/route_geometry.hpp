@@ -36,17 +36,18 @@ class RouteGeometry {
   // that a fix is projected exactly onto the few segments near it, not onto every one of a long
   // route's. Zero for the end segments, which reach beyond their ends.
   double offset_bound_m(std::size_t i, const std::array<double, 3>& q) const;
-  // The same for every segment of block b at once.
-  double block_bound_m(std::size_t b, const std::array<double, 3>& q) const;
 
-  // The segments between the ends, in runs of kBlock: a point within `reach_m` of each start, and
-  // the longest of them, bound the whole run from one distance.
+  // The segments between the ends, in runs of kBlock, and the blocks in groups of kBlock: a point
+  // within `reach_m` of each start, and the longest of them, bound a whole run from one distance,
+  // so that a fix on a route of any length looks at few groups' and blocks' bounds.
   static constexpr std::size_t kBlock = 32;
   struct Block {
     std::array<double, 3> center_ecef_m;
     double reach_m, longest_m;
   };
-  std::vector<Block> blocks_;
+  // offset_bound_m for every segment of a block or group at once.
+  static double bound_m(const Block& k, const std::array<double, 3>& q);
+  std::vector<Block> blocks_, groups_;
 
   // Each segment in the tangent plane at its start: its end there, and the plane's origin.
   struct Plane {
