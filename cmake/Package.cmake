@@ -19,7 +19,8 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # The maintainer scripts call systemd-sysusers, systemd-tmpfiles and deb-systemd-helper.
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "systemd, init-system-helpers")
+# libpq5: loaded when a PostgreSQL database is opened, so dpkg-shlibdeps does not see it.
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "systemd, init-system-helpers, libpq5")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "gpsd, can-utils, logrotate")
 # flac -d and zstdcat read the recordings' accelerometer and other streams without roadload.
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "flac, zstd")

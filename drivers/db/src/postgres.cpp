@@ -1,10 +1,9 @@
 // PostgreSQL through libpq's C interface: parameters go as text with the statement (no SQL is
 // ever assembled from values), and numbers come back by their column's type.
-#include <libpq-fe.h>
-
 #include <cstdio>
 
 #include "backends.hpp"
+#include "libpq.hpp"
 
 namespace roadload::db {
 namespace {
@@ -36,23 +35,23 @@ std::string as_text(const Value& v) {
 
 class Postgres final : public Database {
  public:
-  explicit Postgres(const std::string& url) : name_(redacted(url)) {
-    conn_ = PQconnectdb(url.c_str());
-    if (PQstatus(conn_) != CONNECTION_OK) {
-      const std::string why = PQerrorMessage(conn_);
-      PQfinish(conn_);
+  explicit Postgres(const std::string& url) : pq_(libpq()), name_(redacted(url)) {
+    conn_ = pq_.connectdb(url.c_str());
+    if (pq_.status(conn_) != CONNECTION_OK) {
+      const std::string why = pq_.error_message(conn_);
+      pq_.finish(conn_);
       throw DatabaseError(name_ + ": cannot connect: " + why);
     }
     // "already exists, skipping" notices of an idempotent schema are not news.
-    PQsetNoticeProcessor(
+    pq_.set_notice_processor(
         conn_, [](void*, const char*) {}, nullptr);
   }
-  ~Postgres() override { PQfinish(conn_); }
+  ~Postgres() override { pq_.finish(conn_); }
 
   Dialect dialect() const override { return Dialect::postgres; }
   const std::string& name() const override { return name_; }
 
-  void script(std::string_view sql) override { check(PQexec(conn_, std::string(sql).c_str()), sql); }
+  void script(std::string_view sql) override { check(pq_.exec(conn_, std::string(sql).c_str()), sql); }
 
   std::vector<Row> query(std::string_view sql, const std::vector<Value>& params) override {
     std::vector<std::string> texts(params.size());
@@ -62,10 +61,10 @@ class Postgres final : public Database {
       texts[i] = as_text(params[i]);
       values[i] = texts[i].c_str();
     }
-    PGresult* r = PQexecParams(conn_, numbered(sql).c_str(), static_cast<int>(params.size()), nullptr, values.data(), nullptr,
-                               nullptr, 0);
+    PGresult* r = pq_.exec_params(conn_, numbered(sql).c_str(), static_cast<int>(params.size()), nullptr, values.data(), nullptr,
+                                  nullptr, 0);
     const auto rows = read(r, sql);
-    PQclear(r);
+    pq_.clear(r);
     return rows;
   }
 
@@ -75,34 +74,34 @@ class Postgres final : public Database {
 
  private:
   void check(PGresult* r, std::string_view sql) {
-    const auto status = PQresultStatus(r);
+    const auto status = pq_.result_status(r);
     if (status == PGRES_COMMAND_OK || status == PGRES_TUPLES_OK) {
-      PQclear(r);
+      pq_.clear(r);
       return;
     }
-    const std::string why = PQresultErrorMessage(r);
-    PQclear(r);
+    const std::string why = pq_.result_error_message(r);
+    pq_.clear(r);
     throw DatabaseError(name_ + ": " + why + " in: " + std::string(sql.substr(0, sql.find('\n', 1))));
   }
 
   std::vector<Row> read(PGresult* r, std::string_view sql) {
-    const auto status = PQresultStatus(r);
+    const auto status = pq_.result_status(r);
     if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) {
-      const std::string why = PQresultErrorMessage(r);
-      PQclear(r);
+      const std::string why = pq_.result_error_message(r);
+      pq_.clear(r);
       throw DatabaseError(name_ + ": " + why + " in: " + std::string(sql.substr(0, sql.find('\n', 1))));
     }
-    std::vector<Row> rows(static_cast<std::size_t>(PQntuples(r)));
-    for (int i = 0; i < PQntuples(r); ++i) {
-      for (int c = 0; c < PQnfields(r); ++c) rows[i].push_back(field(r, i, c));
+    std::vector<Row> rows(static_cast<std::size_t>(pq_.ntuples(r)));
+    for (int i = 0; i < pq_.ntuples(r); ++i) {
+      for (int c = 0; c < pq_.nfields(r); ++c) rows[i].push_back(field(r, i, c));
     }
     return rows;
   }
 
-  static Value field(PGresult* r, int row, int column) {
-    if (PQgetisnull(r, row, column)) return std::monostate{};
-    const std::string s = PQgetvalue(r, row, column);
-    switch (PQftype(r, column)) {
+  Value field(PGresult* r, int row, int column) const {
+    if (pq_.getisnull(r, row, column)) return std::monostate{};
+    const std::string s = pq_.getvalue(r, row, column);
+    switch (pq_.ftype(r, column)) {
       case kInt2:
       case kInt4:
       case kInt8: return static_cast<std::int64_t>(std::stoll(s));
@@ -113,6 +112,7 @@ class Postgres final : public Database {
     }
   }
 
+  const Libpq& pq_;
   std::string name_;
   PGconn* conn_ = nullptr;
 };
