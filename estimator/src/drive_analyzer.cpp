@@ -338,9 +338,10 @@ CellLimits DriveAnalyzer::cell_limits() const {
 }
 
 std::vector<CellResult> DriveAnalyzer::cells() const {
-  // Before finish() a kept history has no smoothed means yet: the filter's estimate stands in.
+  // Before finish() a kept history has no smoothed means: no CRR rather than one that is not the
+  // cell's (the filter's now is the whole drive's so far).
   std::vector<CellResult> out = cells_.results(cell_limits(), [this](std::size_t i, std::span<const std::size_t>) {
-    return i < cell_means_.size() ? cell_means_[i] : CrrMean{filter_.crr(), filter_.crr_sigma()};
+    return i < cell_means_.size() ? std::optional<CrrMean>(cell_means_[i]) : std::nullopt;
   });
   if (!config_.keep_history) return out;
   const std::vector<FuelBreakdown>& fuel = fuel_.cells();
@@ -355,7 +356,7 @@ std::vector<PavementResult> DriveAnalyzer::pavements() const {
   const PavementGroups& groups = groups_;
   const std::vector<CellResult> crr = cells_.group_results(
       groups, cell_limits(), [this](std::size_t g, std::span<const std::size_t>) {
-        return g < group_means_.size() ? group_means_[g] : CrrMean{filter_.crr(), filter_.crr_sigma()};
+        return g < group_means_.size() ? std::optional<CrrMean>(group_means_[g]) : std::nullopt;
       });
   const std::vector<FuelBreakdown>& fuel = fuel_.cells();
   std::vector<PavementResult> out(crr.size());

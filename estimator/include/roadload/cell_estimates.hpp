@@ -54,14 +54,15 @@ class CellEstimates {
   // estimate to the filter's now, or keeps its smoother step.
   void tick(double s_front_m, double s_cg_m, double speed_mps, Unusable why, CrrMean filter_now, std::size_t step);
 
-  // The cells' results; smoothed, each CRR is `mean(i, steps)` of cell i's usable ticks' steps.
+  // The cells' results; smoothed, each CRR is `mean(i, steps)` of cell i's usable ticks' steps (a
+  // CrrMean, or an optional one: none leaves the cell without a CRR).
   template <typename Mean>
   std::vector<CellResult> results(const CellLimits& limits, Mean&& mean) const {
     std::vector<CellResult> out;
     for (std::size_t i = 0; i < cells_.size(); ++i) {
       const Cell& c = state_[i];
       std::optional<CrrMean> crr;
-      if (c.tally.samples > 0) crr = smoothed_ ? mean(i, steps(i)) : c.live;
+      if (c.tally.samples > 0) crr = smoothed_ ? std::optional<CrrMean>(mean(i, steps(i))) : c.live;
       out.push_back(cell_result(cells_[i], c.tally, crr, limits));
     }
     return out;

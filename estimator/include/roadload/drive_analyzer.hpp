@@ -90,6 +90,7 @@ class DriveAnalyzer {
   // pavements that pavements() reports.
   void finish(const PavementGroups& groups = {});
 
+  // Live (no history kept), each cell's estimate so far; offline, the smoothed ones once finished.
   std::vector<CellResult> cells() const;
   // Each pavement type's CRR and rolling fuel over its cells, once finished.
   std::vector<PavementResult> pavements() const;
