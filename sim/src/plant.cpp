@@ -183,6 +183,8 @@ void TruckPlant::start(double x_m, double speed_mps, const Environment& env) {
   std::array<double, kMaxAxles> z{};
   for (std::size_t i = 0; i < truck_.axles.size(); ++i) z[i] = road_height(i, x_m);
   vertical_.reset(z);
+  road_z_m_ = z;
+  road_z_x_m_ = x_m;
   for (std::size_t i = 0; i < truck_.axles.size(); ++i) state_.axles[i] = vertical_.outputs(i);
   // Preload the controller with the steady force so the run starts at cruise, not in a transient.
   const double cg = truck_.cg_position_m();

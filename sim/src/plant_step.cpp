@@ -178,12 +178,14 @@ void TruckPlant::step(double dt_s, const Environment& env) {
 
 // Vertical motion over the same step, road heights under each axle at both ends.
 void TruckPlant::step_vertical(double dt_s, double x0, double x1) {
-  std::array<double, kMaxAxles> z0{}, z1{};
+  std::array<double, kMaxAxles> z0 = road_z_m_, z1{};
   for (std::size_t i = 0; i < truck_.axles.size(); ++i) {
-    z0[i] = road_height(i, x0);
+    if (x0 != road_z_x_m_) z0[i] = road_height(i, x0);
     z1[i] = road_height(i, x1);
   }
   vertical_.step(dt_s, z0, z1);
+  road_z_m_ = z1;
+  road_z_x_m_ = x1;
 }
 
 void TruckPlant::finish_step(double dt_s, const Motion& m, const Resisting& r, double x1, double fuel_j) {

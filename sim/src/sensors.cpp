@@ -17,22 +17,15 @@ void gauss_markov(double& x, double sigma, double tau_s, double dt_s, Rng& rng) 
   x = a * x + sigma * std::sqrt(1.0 - a * a) * rng.normal();
 }
 
-}  // namespace
-
-Kinematics lerp(const Kinematics& a, const Kinematics& b, double t_s) {
+// Where t_s lies between two physics steps, as a weight on the later one.
+double lerp_weight(const Kinematics& a, const Kinematics& b, double t_s) {
   const double span = b.t_s - a.t_s;
-  const double w = span > 0 ? std::clamp((t_s - a.t_s) / span, 0.0, 1.0) : 1.0;
-  Kinematics k;
-  k.t_s = t_s;
-  k.accel_long_mps2 = a.accel_long_mps2 + w * (b.accel_long_mps2 - a.accel_long_mps2);
-  k.gravity_along_mps2 = a.gravity_along_mps2 + w * (b.gravity_along_mps2 - a.gravity_along_mps2);
-  k.gravity_normal_mps2 = a.gravity_normal_mps2 + w * (b.gravity_normal_mps2 - a.gravity_normal_mps2);
-  for (std::size_t i = 0; i < kMaxAxles; ++i) {
-    k.sprung_mps2[i] = a.sprung_mps2[i] + w * (b.sprung_mps2[i] - a.sprung_mps2[i]);
-    k.unsprung_mps2[i] = a.unsprung_mps2[i] + w * (b.unsprung_mps2[i] - a.unsprung_mps2[i]);
-  }
-  return k;
+  return span > 0 ? std::clamp((t_s - a.t_s) / span, 0.0, 1.0) : 1.0;
 }
+
+double lerp(double a, double b, double w) { return a + w * (b - a); }
+
+}  // namespace
 
 std::vector<AccelMount> accel_mounts(const TruckParams& truck, std::size_t count) {
   std::vector<AccelMount> all;
@@ -72,10 +65,14 @@ double Accelerometer::reading(double true_mps2, std::size_t axis, double cross_m
   return std::round(v / lsb_) * lsb_;
 }
 
-AccelSample Accelerometer::sample(const Kinematics& k, double stamp_s) {
-  const double vertical = mount_.unsprung ? k.unsprung_mps2[mount_.axle] : k.sprung_mps2[mount_.axle];
-  const double x = k.accel_long_mps2 + k.gravity_along_mps2;
-  const double z = vertical + k.gravity_normal_mps2;
+AccelSample Accelerometer::sample(const Kinematics& before, const Kinematics& now, double stamp_s) {
+  // Only the fields this part senses: a sample interpolates 4 of the 19, and there are millions.
+  const double w = lerp_weight(before, now, next_true_s_);
+  const auto& b_vertical = mount_.unsprung ? before.unsprung_mps2 : before.sprung_mps2;
+  const auto& n_vertical = mount_.unsprung ? now.unsprung_mps2 : now.sprung_mps2;
+  const double vertical = lerp(b_vertical[mount_.axle], n_vertical[mount_.axle], w);
+  const double x = lerp(before.accel_long_mps2, now.accel_long_mps2, w) + lerp(before.gravity_along_mps2, now.gravity_along_mps2, w);
+  const double z = vertical + lerp(before.gravity_normal_mps2, now.gravity_normal_mps2, w);
   AccelSample s;
   s.t = capture_time_from_ns(std::llround(stamp_s * 1e9));
   s.sensor = id_;

@@ -186,7 +186,7 @@ struct Simulation::Parts {
       }
       if (next == nullptr) break;
       const double t = next->next_true_s();
-      sink.accel(next->sample(lerp(before, now, t), accel_stamp(t)));
+      sink.accel(next->sample(before, now, accel_stamp(t)));
       ++sum.accel_samples;
     }
   }

@@ -49,8 +49,8 @@ Forces forces(const AxleParams& p, const Vec& x, double road_z_m, double road_v_
   return {susp, friction, std::max(tire, -static_load_n(p))};
 }
 
-Vec rates(const AxleParams& p, const Vec& x, double road_z_m, double road_v_mps) {
-  const Forces f = forces(p, x, road_z_m, road_v_mps);
+// The state's rates under the forces `f` that forces() gave for the same state and road.
+Vec rates(const AxleParams& p, const Vec& x, const Forces& f, double road_z_m, double road_v_mps) {
   const double rel_v = x[1] - x[3];
   const double tire_rate = road_v_mps - x[3];
   // Whatever the tire force carries beyond its spring is dissipated: c_t v^2 in contact, and
@@ -64,6 +64,10 @@ Vec rates(const AxleParams& p, const Vec& x, double road_z_m, double road_v_mps)
           p.c_susp_nspm * rel_v * rel_v,
           f.friction_n * rel_v,
           tire_loss_n * tire_rate};
+}
+
+Vec rates(const AxleParams& p, const Vec& x, double road_z_m, double road_v_mps) {
+  return rates(p, x, forces(p, x, road_z_m, road_v_mps), road_z_m, road_v_mps);
 }
 
 Vec axpy(const Vec& x, double a, const Vec& k) {
@@ -114,8 +118,9 @@ void VerticalModel::step(double dt_s, std::span<const double> road_z_start_m, st
     e.friction_j += y[6];
     e.tire_j += y[7];
 
-    const Vec r = rates(p, y, road_z_end_m[i], v);
-    out_[i] = {.tire_force_n = static_load_n(p) + forces(p, y, road_z_end_m[i], v).tire_n,
+    const Forces f = forces(p, y, road_z_end_m[i], v);
+    const Vec r = rates(p, y, f, road_z_end_m[i], v);
+    out_[i] = {.tire_force_n = static_load_n(p) + f.tire_n,
                .sprung_accel_mps2 = r[1],
                .unsprung_accel_mps2 = r[3],
                .sprung_z_m = y[0],

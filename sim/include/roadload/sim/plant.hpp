@@ -3,6 +3,7 @@
 // per axle on the road profile, and a cruise control driving it. Every force is kept in an energy
 // ledger so that fuel energy in equals the work of every force plus every loss.
 #include <array>
+#include <limits>
 
 #include "roadload/sim/air.hpp"
 #include "roadload/sim/effects.hpp"
@@ -134,6 +135,10 @@ class TruckPlant {
   double draft_reduction_ = 0;
   double mass_kg_ = 0;
   double wheel_inertia_mass_kg_ = 0;  // sum of J/r^2 of every wheel end
+  // Road heights under the axles at the end of the last step, front axle at road_z_x_m_: the
+  // next step starts there.
+  std::array<double, kMaxAxles> road_z_m_{};
+  double road_z_x_m_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace roadload::sim

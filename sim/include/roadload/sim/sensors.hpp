@@ -23,7 +23,6 @@ struct Kinematics {
   std::array<double, kMaxAxles> sprung_mps2{};
   std::array<double, kMaxAxles> unsprung_mps2{};
 };
-Kinematics lerp(const Kinematics& a, const Kinematics& b, double t_s);
 
 struct AccelMount {
   std::string name;      // as the report labels them: TLF1 ...
@@ -41,8 +40,9 @@ class Accelerometer {
   Accelerometer(std::uint8_t id, AccelMount mount, double rate_hz, Rng rng);
   // True time of the next sample: the part's own oscillator sets the spacing.
   double next_true_s() const { return next_true_s_; }
-  // Samples at next_true_s() and advances; `stamp_s` is the capture stamp the logger gives it.
-  AccelSample sample(const Kinematics& k, double stamp_s);
+  // Samples at next_true_s(), between the physics steps `before` and `now`, and advances;
+  // `stamp_s` is the capture stamp the logger gives it.
+  AccelSample sample(const Kinematics& before, const Kinematics& now, double stamp_s);
   const AccelMount& mount() const { return mount_; }
   double rate_hz() const { return rate_hz_; }
   // Every reading is a whole number of this (the 20-bit output's step over the range).
