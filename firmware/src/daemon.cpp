@@ -17,6 +17,9 @@ namespace {
 // more than 50 ms); the rings hold seconds and a status line is 100 ms apart.
 constexpr Nanoseconds kIdleSleep{50'000'000};
 constexpr std::size_t kWriteBatch = 4096;
+// How often the accelerometers are read: 12 sample sets at 4 kHz, under the kernel's 16 queued
+// data-ready edges per line and the part's 32-set FIFO.
+constexpr Nanoseconds kAccelReadPeriod{3'000'000};
 constexpr Nanoseconds kPowerWindow{5'000'000'000};
 // How long a GNSS fix or a weather sample waits for CAN to catch up with it (its ring holds 25 s).
 constexpr Nanoseconds kMaxPlaceWait{10'000'000'000};
@@ -85,7 +88,15 @@ void Daemon::start() {
   // The CAN buses always feed the estimator thread (the bus watch); the sensors only the analyzer.
   const bool feed = analyzer_.has_value();
   for (auto& c : sources_.can) c->start(stop_sources_, true, clock_);
-  for (auto& c : sources_.accel) c->start(stop_sources_, feed, clock_);
+  std::vector<AccelChannel*> devices;
+  for (auto& c : sources_.accel) {
+    if (c->is_replay()) {
+      c->start(stop_sources_, feed, clock_);
+    } else {
+      devices.push_back(c.get());
+    }
+  }
+  if (!devices.empty()) accel_reader_.start(std::move(devices), kAccelReadPeriod, stop_sources_, feed, clock_);
   if (sources_.gnss) sources_.gnss->start(stop_sources_, feed, clock_);
   if (sources_.weather) sources_.weather->start(stop_sources_, feed, clock_);
   writer_ = std::thread([this] { write_loop(); });
@@ -96,6 +107,7 @@ void Daemon::stop() {
   if (!running_) return;
   running_ = false;
   stop_sources_.store(true);
+  accel_reader_.join();
   sources_.for_each([](auto& c) { c.join(); });
   // The workers see the flag only once the sources are quiet, and then drain what is left.
   stop_workers_.store(true);

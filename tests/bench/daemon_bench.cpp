@@ -88,7 +88,8 @@ class AccelGenerator final : public io::Source<AccelSample> {
     for (std::size_t i = 0; i < table_.size(); ++i) table_[i] = 0.8 * std::sin(2 * M_PI * static_cast<double>(i) / 400.0);
   }
   std::size_t read(std::span<AccelSample> out, Nanoseconds timeout) override {
-    // A FIFO read every 6 ms: 24 of the part's 32 sample sets at 4 kHz.
+    // A FIFO read: the sets the part took since the last. roadloadd reads its parts in turn
+    // without waiting; a reader that waits gets a read every 6 ms (24 of the FIFO's 32 sets).
     clock_.sleep_until(clock_.now() + Nanoseconds{6'000'000}, timeout);
     const CaptureTime now = clock_.now();
     std::size_t n = 0;

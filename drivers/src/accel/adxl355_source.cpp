@@ -38,7 +38,6 @@ Adxl355Source::Adxl355Source(std::unique_ptr<SpiBus> owned_bus, std::unique_ptr<
       stride_(std::max<std::int64_t>(
           1, std::llround(kClockWindowS * config.part.odr_hz / static_cast<double>(clock::SampleClock::kMaxEdges)))) {
   std::snprintf(name_, sizeof name_, "adxl355-%u", unsigned{config.sensor});
-  status_.stamps = StampSource::kernel;
 }
 
 Parsed<std::unique_ptr<Adxl355Source>> Adxl355Source::open(SpiBus& bus, DataReadyLine& line, const Adxl355SourceConfig& config) {
@@ -77,8 +76,11 @@ std::size_t Adxl355Source::read(std::span<AccelSample> out, Nanoseconds timeout)
   // The kernel keeps the oldest edges and drops new ones while its queue is full: the edges
   // drained are a true run, but the next one may not follow the newest of them.
   if (edges >= DataReadyLine::kKernelQueue) begin_resync(true, false);
-  // Down, or no edge for several periods: the bus failed, or the part stopped (power cycle, reset).
-  const bool silent = edges == 0 && static_cast<double>(timeout.count()) > 4 * period_ns_;
+  // Down, or no edge for several periods since the last edge or check (a reader that polls without
+  // waiting must notice too): the bus failed, or the part stopped (power cycle, reset).
+  const std::int64_t now_ns = line_.now_ns();
+  const bool silent = edges == 0 && static_cast<double>(now_ns - quiet_since_ns_) > 4 * period_ns_;
+  if (edges > 0 || silent) quiet_since_ns_ = now_ns;
   if ((status_.state == io::SourceState::down || silent) && !recover()) return hand_out(out);
   if (edges == 0) return hand_out(out);
 

@@ -22,7 +22,10 @@ const char* to_string(SourceState s) {
 CaptureTime MonotonicClock::now() const { return CaptureTime{read_clock(CLOCK_MONOTONIC)}; }
 
 void MonotonicClock::sleep_until(CaptureTime t, Nanoseconds limit) {
-  const timespec ts = to_timespec(std::min(t, now() + limit).time_since_epoch());
+  const CaptureTime now_t = now();
+  // A deadline already past still puts the thread through the scheduler in clock_nanosleep.
+  if (t <= now_t || limit <= Nanoseconds{0}) return;
+  const timespec ts = to_timespec(std::min(t, now_t + limit).time_since_epoch());
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
   }
 }

@@ -1,7 +1,8 @@
 #pragma once
-// One source and its thread: it reads batches from the device (or a replay) and pushes each item
-// into two rings, one drained by the writer and one by the estimator, so a slow disk never stalls
-// the estimator and neither stalls acquisition. What either ring refuses is counted. The status is
+// One source, read on a thread of its own or in turn with others on a shared one (SharedReader): it
+// reads batches from the device (or a replay) and pushes each item into two rings, one drained by
+// the writer and one by the estimator, so a slow disk never stalls the estimator and neither
+// stalls acquisition. What either ring refuses is counted. The status is
 // published under a mutex a few times a second for the status thread; the data path takes no lock.
 #include <array>
 #include <atomic>
@@ -30,18 +31,53 @@ class Channel {
   Channel(const Channel&) = delete;
   Channel& operator=(const Channel&) = delete;
 
-  // Without an estimator its ring stays empty rather than filling up and counting drops.
+  // Reads on a thread of its own until `stop` or the end of a replay. Without an estimator its ring
+  // stays empty rather than filling up and counting drops.
   void start(const std::atomic<bool>& stop, bool feed_estimator, const io::WaitClock& clock) {
+    begin(feed_estimator, clock);
+    thread_ = std::thread([this, &stop, &clock] {
+      while (!stop.load(std::memory_order_relaxed) && read_once(stop, clock, kReadTimeout)) {
+      }
+      finish(stop, clock);
+    });
+  }
+  void join() {
+    if (thread_.joinable()) thread_.join();
+  }
+
+  // For a thread that reads several channels in turn (SharedReader): begin(), then read_once()
+  // until it returns false or the thread stops, then finish(), all on that thread.
+  void begin(bool feed_estimator, const io::WaitClock& clock) {
     feed_estimator_ = feed_estimator;
     replay_ = is_replay();
     // Nothing is delivered before the first read: a replay's items stamped before start() are
     // still to come, and a live device's socket may hold frames stamped before it.
     delivered_through_ns_.store(to_ns(CaptureTime{}), std::memory_order_relaxed);
     heard_ns_.store(to_ns(clock.now()), std::memory_order_relaxed);
-    thread_ = std::thread([this, &stop, &clock] { run(stop, clock); });
   }
-  void join() {
-    if (thread_.joinable()) thread_.join();
+  // One read, waiting at most `timeout` for the device; false once the source has ended.
+  bool read_once(const std::atomic<bool>& stop, const io::WaitClock& clock, Nanoseconds timeout) {
+    const CaptureTime asked = clock.now();
+    const std::size_t n = source_->read(batch_, timeout);
+    pass_on(n, stop, clock);
+    // A read that was not cut short by the batch's size returned everything stamped before it
+    // began; a full batch only what it holds.
+    CaptureTime through = n > 0 ? batch_[n - 1].t : asked;
+    if (n < kBatch && asked > through) through = asked;
+    delivered_through_ns_.store(to_ns(through), std::memory_order_release);
+    heard_ns_.store(to_ns(clock.now()), std::memory_order_release);
+    return source_->status().state != io::SourceState::ended;
+  }
+  // On the way out, what the device already holds (frames queued in the socket) is still taken.
+  void finish(const std::atomic<bool>& stop, const io::WaitClock& clock) {
+    for (int i = 0; i < kDrainReads && source_->status().state != io::SourceState::ended; ++i) {
+      const std::size_t n = source_->read(batch_, Nanoseconds{0});
+      if (n == 0) break;
+      pass_on(n, stop, clock);
+    }
+    publish();
+    delivered_through_ns_.store(to_ns(CaptureTime::max()), std::memory_order_release);
+    finished_.store(true, std::memory_order_release);
   }
 
   SpscRing<T, RingCapacity>& to_writer() { return to_writer_; }
@@ -82,31 +118,6 @@ class Channel {
   static constexpr Nanoseconds kReadTimeout{100'000'000};
   static constexpr int kDrainReads = 1024;
 
-  void run(const std::atomic<bool>& stop, const io::WaitClock& clock) {
-    std::array<T, kBatch> batch{};
-    while (!stop.load(std::memory_order_relaxed)) {
-      const CaptureTime asked = clock.now();
-      const std::size_t n = source_->read(batch, kReadTimeout);
-      pass_on(batch, n, stop, clock);
-      // A read that was not cut short by the batch's size returned everything stamped before it
-      // began; a full batch only what it holds.
-      CaptureTime through = n > 0 ? batch[n - 1].t : asked;
-      if (n < kBatch && asked > through) through = asked;
-      delivered_through_ns_.store(to_ns(through), std::memory_order_release);
-      heard_ns_.store(to_ns(clock.now()), std::memory_order_release);
-      if (source_->status().state == io::SourceState::ended) break;
-    }
-    // On the way out, what the device already holds (frames queued in the socket) is still taken.
-    for (int i = 0; i < kDrainReads && source_->status().state != io::SourceState::ended; ++i) {
-      const std::size_t n = source_->read(batch, Nanoseconds{0});
-      if (n == 0) break;
-      pass_on(batch, n, stop, clock);
-    }
-    publish();
-    delivered_through_ns_.store(to_ns(CaptureTime::max()), std::memory_order_release);
-    finished_.store(true, std::memory_order_release);
-  }
-
   // A device cannot wait, so a full ring drops and counts; a replay can, so it waits for room. A
   // replay waiting on the consumer is not a hung source: it stays heard from.
   void push(SpscRing<T, RingCapacity>& ring, const T& item, const std::atomic<bool>& stop, const io::WaitClock& clock) {
@@ -127,12 +138,12 @@ class Channel {
   // A replay's stream is in time order, so each item handed on delivers everything stamped before
   // it: a replay that waits for room mid-batch then holds the others back only to what it has
   // handed on, and the oldest item of its full ring is always within their reach.
-  void pass_on(const std::array<T, kBatch>& batch, std::size_t n, const std::atomic<bool>& stop, const io::WaitClock& clock) {
+  void pass_on(std::size_t n, const std::atomic<bool>& stop, const io::WaitClock& clock) {
     for (std::size_t i = 0; i < n; ++i) {
-      push(to_writer_, batch[i], stop, clock);
-      if (feed_estimator_) push(to_estimator_, batch[i], stop, clock);
-      if (replay_) delivered_through_ns_.store(to_ns(batch[i].t), std::memory_order_release);
-      if constexpr (std::is_same_v<T, CanFrame>) bits_seen_ += can_frame_bits(batch[i]);
+      push(to_writer_, batch_[i], stop, clock);
+      if (feed_estimator_) push(to_estimator_, batch_[i], stop, clock);
+      if (replay_) delivered_through_ns_.store(to_ns(batch_[i].t), std::memory_order_release);
+      if constexpr (std::is_same_v<T, CanFrame>) bits_seen_ += can_frame_bits(batch_[i]);
     }
     bits_.store(bits_seen_, std::memory_order_relaxed);
     publish();
@@ -144,6 +155,7 @@ class Channel {
   }
 
   std::unique_ptr<io::Source<T>> source_;
+  std::array<T, kBatch> batch_{};
   SourceKind kind_;
   std::string name_;
   SpscRing<T, RingCapacity> to_writer_;

@@ -13,6 +13,7 @@
 #include "roadload/drive_analyzer.hpp"
 #include "roadload/firmware/channel.hpp"
 #include "roadload/firmware/recorder.hpp"
+#include "roadload/firmware/shared_reader.hpp"
 #include "roadload/firmware/status_report.hpp"
 #include "roadload/io/replay_clock.hpp"
 #include "roadload/j1939/database.hpp"
@@ -127,6 +128,8 @@ class Daemon {
   double dynamic_power_w_ = -1;  // last window's, under mutex_
   std::atomic<bool> stop_sources_{false}, stop_workers_{false}, rotate_{false};
   std::thread writer_, estimator_;
+  // The accelerometers that are devices, not a replay: one thread reads them all.
+  SharedReader<AccelChannel> accel_reader_;
   CaptureTime started_{};
   // Shared with the status thread.
   std::mutex mutex_;
