@@ -1,7 +1,7 @@
 // roadloadd's load on a gateway: the daemon's threads, rings, recorder and live estimator fed, in
 // real time, a fully loaded 500 kbit/s J1939 bus (3,817 frames/s: the simulated MnROAD drive's
 // own messages, the rest filled with proprietary frames) and eight three-axis accelerometers at
-// 4 kHz. Prints the CPU used as a fraction of one core (goal: under 5 %) and the resident memory
+// 4 kHz. Prints the CPU used as a fraction of one core (goal: under 2 %) and the resident memory
 // (goal: under 32 MiB), beside reference runs that record without estimating, in plain text and
 // in zstd frames with the accelerometers as text (the default before FLAC), and with them as FLAC
 // counts (roadloadd's default): each layout's own cost, side by side.

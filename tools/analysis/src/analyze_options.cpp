@@ -39,8 +39,9 @@ void add_inputs(CLI::App& cmd, AnalyzeOptions& o) {
          "write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval; fuel\n"
          "breakdown per cell in litres; damper_power_w,tire_power_w,...),\n"
          "DIR/pavements.csv (the same per pavement type, with the rolling\n"
-         "resistance's L/100 km), DIR/trip.json (with the provenance), and the PSDs: DIR/psd.csv (trip) and DIR/psd-<group>.csv\n"
-         "(freq_hz, one column per accelerometer, (m/s^2)^2/Hz),\n"
+         "resistance's L/100 km), DIR/trip.json (with the provenance), and\n"
+         "the PSDs: DIR/psd.csv (trip) and DIR/psd-<group>.csv (freq_hz, one\n"
+         "column per accelerometer, (m/s^2)^2/Hz),\n"
          "DIR/psd-spatial-<group>.csv (cycles_per_m, per cycle/m)")
       ->type_name("DIR")
       ->required();
