@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <type_traits>
 
+#include "roadload/firmware/thread_name.hpp"
 #include "roadload/io/posix_time.hpp"
 #include "roadload/merge.hpp"
 #include "roadload/results/results_files.hpp"
@@ -96,11 +97,17 @@ void Daemon::start() {
       devices.push_back(c.get());
     }
   }
-  if (!devices.empty()) accel_reader_.start(std::move(devices), kAccelReadPeriod, stop_sources_, feed, clock_);
+  if (!devices.empty()) accel_reader_.start("accel", std::move(devices), kAccelReadPeriod, stop_sources_, feed, clock_);
   if (sources_.gnss) sources_.gnss->start(stop_sources_, feed, clock_);
   if (sources_.weather) sources_.weather->start(stop_sources_, feed, clock_);
-  writer_ = std::thread([this] { write_loop(); });
-  estimator_ = std::thread([this] { estimate_loop(); });
+  writer_ = std::thread([this] {
+    name_this_thread("writer");
+    write_loop();
+  });
+  estimator_ = std::thread([this] {
+    name_this_thread("estimator");
+    estimate_loop();
+  });
 }
 
 void Daemon::stop() {

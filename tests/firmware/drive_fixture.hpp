@@ -41,7 +41,10 @@ inline constexpr double kPace = 5;
 // source per sensor, as the daemon has one per part.
 inline Pace start_pace(const SimulatedDrive& d) { return {std::chrono::steady_clock::now(), d.sink.frames.front().t, kPace}; }
 
-inline DaemonSources memory_sources(const SimulatedDrive& d, const Pace& pace, const std::atomic<bool>& gate, double gate_fraction) {
+// The accelerometers as replays (their own threads, waiting for room) or, with kernel stamps, as
+// devices (read in turn by one thread, dropping what a full ring refuses).
+inline DaemonSources memory_sources(const SimulatedDrive& d, const Pace& pace, const std::atomic<bool>& gate, double gate_fraction,
+                                    StampSource accel_stamps = StampSource::recording) {
   auto at = [&](std::size_t n) { return static_cast<std::size_t>(static_cast<double>(n) * gate_fraction); };
   DaemonSources s;
   s.can.push_back(std::make_unique<CanChannel>(
@@ -51,9 +54,9 @@ inline DaemonSources memory_sources(const SimulatedDrive& d, const Pace& pace, c
   for (const AccelSample& a : d.sink.accels) per_sensor[a.sensor].push_back(a);
   for (auto& [id, samples] : per_sensor) {
     const std::size_t gate_at = at(samples.size());
-    s.accel.push_back(
-        std::make_unique<AccelChannel>(std::make_unique<MemorySource<AccelSample>>(std::move(samples), gate, gate_at, "accel", pace),
-                                       SourceKind::accelerometer, "accel" + std::to_string(id)));
+    s.accel.push_back(std::make_unique<AccelChannel>(
+        std::make_unique<MemorySource<AccelSample>>(std::move(samples), gate, gate_at, "accel", pace, accel_stamps),
+        SourceKind::accelerometer, "accel" + std::to_string(id)));
   }
   s.gnss = std::make_unique<GnssChannel>(
       std::make_unique<MemorySource<GnssFix>>(d.sink.fixes, gate, at(d.sink.fixes.size()), "gnss", pace), SourceKind::gnss, "gnss");

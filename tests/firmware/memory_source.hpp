@@ -30,14 +30,16 @@ struct Pace {
 template <typename T>
 class MemorySource final : public io::Source<T> {
  public:
-  // Items after index `gate_at` wait until `gate` is open.
-  MemorySource(std::vector<T> items, const std::atomic<bool>& gate, std::size_t gate_at, const char* name, Pace pace)
+  // Items after index `gate_at` wait until `gate` is open. With kernel stamps it stands for a
+  // device, which the daemon does not wait for, rather than a replay.
+  MemorySource(std::vector<T> items, const std::atomic<bool>& gate, std::size_t gate_at, const char* name, Pace pace,
+               StampSource stamps = StampSource::recording)
       : items_(std::move(items)), gate_(gate), gate_at_(gate_at), name_(name), pace_(pace) {
     status_.state = io::SourceState::up;
-    status_.stamps = StampSource::recording;
+    status_.stamps = stamps;
   }
 
-  std::size_t read(std::span<T> out, Nanoseconds) override {
+  std::size_t read(std::span<T> out, Nanoseconds timeout) override {
     if (next_ == items_.size()) {
       status_.state = io::SourceState::ended;
       return 0;
@@ -47,8 +49,8 @@ class MemorySource final : public io::Source<T> {
     std::size_t n = take(out, limit);
     // Nothing due: wait a little, as a device's read would. A backlog is handed out at once, so a
     // thread the scheduler kept waiting catches up instead of falling a sleep further behind.
-    if (n == 0) {
-      std::this_thread::sleep_for(std::chrono::microseconds(500));
+    if (n == 0 && timeout > Nanoseconds{0}) {
+      std::this_thread::sleep_for(std::min<Nanoseconds>(timeout, std::chrono::microseconds(500)));
       n = take(out, limit);
     }
     status_.items += n;

@@ -34,15 +34,14 @@ void add_inputs(CLI::App& cmd, AnalyzeOptions& o) {
                  "250 m, grade from that one pass with its error: wide intervals), and\n"
                  "without GNSS nothing is placed")
       ->type_name("R");
-  cmd.add_option(
-         "-o,--out", o.out,
-         "write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval; fuel\n"
-         "breakdown per cell in litres; damper_power_w,tire_power_w,...),\n"
-         "DIR/pavements.csv (the same per pavement type, with the rolling\n"
-         "resistance's L/100 km), DIR/trip.json (with the provenance), and\n"
-         "the PSDs: DIR/psd.csv (trip) and DIR/psd-<group>.csv (freq_hz, one\n"
-         "column per accelerometer, (m/s^2)^2/Hz),\n"
-         "DIR/psd-spatial-<group>.csv (cycles_per_m, per cycle/m)")
+  cmd.add_option("-o,--out", o.out,
+                 "write DIR/cells.csv (cell,crr,crr_lo,crr_hi,... 90 % interval; fuel\n"
+                 "breakdown per cell in litres; damper_power_w,tire_power_w,...),\n"
+                 "DIR/pavements.csv (the same per pavement type, with the rolling\n"
+                 "resistance's L/100 km), DIR/trip.json (with the provenance), and\n"
+                 "the PSDs: DIR/psd.csv (trip) and DIR/psd-<group>.csv (freq_hz, one\n"
+                 "column per accelerometer, (m/s^2)^2/Hz),\n"
+                 "DIR/psd-spatial-<group>.csv (cycles_per_m, per cycle/m)")
       ->type_name("DIR")
       ->required();
   cmd.add_option("--truth", o.truth_dir,

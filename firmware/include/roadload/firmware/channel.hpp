@@ -14,6 +14,7 @@
 
 #include "roadload/firmware/spsc_ring.hpp"
 #include "roadload/firmware/status_report.hpp"
+#include "roadload/firmware/thread_name.hpp"
 #include "roadload/io/replay_clock.hpp"
 #include "roadload/io/source.hpp"
 
@@ -36,6 +37,7 @@ class Channel {
   void start(const std::atomic<bool>& stop, bool feed_estimator, const io::WaitClock& clock) {
     begin(feed_estimator, clock);
     thread_ = std::thread([this, &stop, &clock] {
+      name_this_thread(name_);
       while (!stop.load(std::memory_order_relaxed) && read_once(stop, clock, kReadTimeout)) {
       }
       finish(stop, clock);

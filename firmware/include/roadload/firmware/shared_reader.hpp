@@ -4,10 +4,12 @@
 // anyway (bench_daemon: 4.7 % of a core against 2.6 % for the same samples from one thread). A
 // round waits for no device, so one that stops answering costs the others nothing.
 #include <atomic>
+#include <string_view>
 #include <thread>
 #include <vector>
 
 #include "roadload/firmware/channel.hpp"
+#include "roadload/firmware/thread_name.hpp"
 
 namespace roadload::firmware {
 
@@ -21,12 +23,16 @@ class SharedReader {
   SharedReader& operator=(const SharedReader&) = delete;
 
   // The channels must outlive join(); `period` bounds how long a device's data waits in it.
-  void start(std::vector<Member*> channels, Nanoseconds period, const std::atomic<bool>& stop, bool feed_estimator,
-             io::WaitClock& clock) {
+  // `role` names the thread (name_this_thread).
+  void start(std::string_view role, std::vector<Member*> channels, Nanoseconds period, const std::atomic<bool>& stop,
+             bool feed_estimator, io::WaitClock& clock) {
     members_ = std::move(channels);
     live_.assign(members_.size(), true);
     for (Member* c : members_) c->begin(feed_estimator, clock);
-    thread_ = std::thread([this, period, &stop, &clock] { run(period, stop, clock); });
+    thread_ = std::thread([this, role, period, &stop, &clock] {
+      name_this_thread(role);
+      run(period, stop, clock);
+    });
   }
   void join() {
     if (thread_.joinable()) thread_.join();
