@@ -191,13 +191,7 @@ TEST(DaemonMerge, AHungSourceHoldsTheOthersBackOnlyForTheWait) {
   EXPECT_TRUE(during.started);
   EXPECT_GT(during.s_front_m, 40.0);
 
-  std::size_t rows = 0;
-  for (const auto& segment : std::filesystem::directory_iterator(dir)) {
-    auto reader = recording::RecordingReader::open(segment.path().string(), recording::kAccelStream);
-    ASSERT_TRUE(reader.ok()) << reader.error().to_string();
-    while (const recording::Record* rec = reader.value().next()) rows += std::holds_alternative<AccelSample>(*rec) ? 1 : 0;
-  }
-  EXPECT_EQ(rows, drive.sink.accels.size());
+  EXPECT_EQ(recorded_accel_rows(dir), drive.sink.accels.size());
   std::filesystem::remove_all(dir);
 }
 

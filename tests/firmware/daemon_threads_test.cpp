@@ -7,7 +7,6 @@
 #include <string>
 
 #include "drive_fixture.hpp"
-#include "roadload/recording/reader.hpp"
 
 namespace roadload::firmware::test {
 namespace {
@@ -52,13 +51,7 @@ TEST(DaemonThreads, NamedByRoleWithOneThreadReadingEveryAccelerometerInFull) {
     if (s.kind == SourceKind::accelerometer) samples += s.status.items;
   }
   EXPECT_EQ(samples, drive.sink.accels.size());
-  std::size_t rows = 0;
-  for (const auto& segment : std::filesystem::directory_iterator(dir)) {
-    auto reader = recording::RecordingReader::open(segment.path().string(), recording::kAccelStream);
-    ASSERT_TRUE(reader.ok()) << reader.error().to_string();
-    while (const recording::Record* rec = reader.value().next()) rows += std::holds_alternative<AccelSample>(*rec) ? 1 : 0;
-  }
-  EXPECT_EQ(rows, drive.sink.accels.size());
+  EXPECT_EQ(recorded_accel_rows(dir), drive.sink.accels.size());
   std::filesystem::remove_all(dir);
 }
 

@@ -8,10 +8,14 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <variant>
+
+#include <gtest/gtest.h>
 
 #include "daemon_setup.hpp"
 #include "memory_source.hpp"
 #include "roadload/firmware/daemon.hpp"
+#include "roadload/recording/reader.hpp"
 #include "sim_fixture.hpp"
 
 namespace roadload::firmware::test {
@@ -75,6 +79,21 @@ inline DaemonSetup daemon_setup(const SimulatedDrive& d, const std::string& data
 
 inline void wait_for(Daemon& daemon) {
   for (int i = 0; i < 6000 && !daemon.replays_finished(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+}
+
+// Accelerometer rows in the segments of the recording under `dir`; a segment that does not read
+// fails the test.
+inline std::size_t recorded_accel_rows(const std::string& dir) {
+  std::size_t rows = 0;
+  for (const auto& segment : std::filesystem::directory_iterator(dir)) {
+    auto reader = recording::RecordingReader::open(segment.path().string(), recording::kAccelStream);
+    if (!reader.ok()) {
+      ADD_FAILURE() << reader.error().to_string();
+      continue;
+    }
+    while (const recording::Record* rec = reader.value().next()) rows += std::holds_alternative<AccelSample>(*rec) ? 1 : 0;
+  }
+  return rows;
 }
 
 inline std::string temp_dir(const std::string& name) {
