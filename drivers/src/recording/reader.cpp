@@ -328,18 +328,23 @@ const InterfaceTable& RecordingReader::interfaces() const {
 const Record* RecordingReader::next() {
   // One stream (a can.log, a folder of one) is already in its order: no heads to compare.
   if (streams_.size() == 1) return streams_[0]->next(current_, errors_) ? &current_ : nullptr;
+  auto advance = [this](std::size_t i) {
+    stamps_[i] = streams_[i]->next(heads_[i], errors_) ? stamp_of(heads_[i]) : CaptureTime::max();
+  };
   if (!primed_) {
     heads_.resize(streams_.size());
-    live_.resize(streams_.size());
-    for (std::size_t i = 0; i < streams_.size(); ++i) live_[i] = streams_[i]->next(heads_[i], errors_);
+    stamps_.resize(streams_.size());
+    for (std::size_t i = 0; i < streams_.size(); ++i) advance(i);
     primed_ = true;
+  } else if (has_taken_) {
+    advance(taken_);
   }
   const auto best = oldest_head(
-      streams_.size(), [this](std::size_t i) { return live_[i]; }, [this](std::size_t i) { return stamp_of(heads_[i]); });
-  if (!best) return nullptr;
-  current_ = heads_[*best];
-  live_[*best] = streams_[*best]->next(heads_[*best], errors_);
-  return &current_;
+      stamps_.size(), [this](std::size_t i) { return stamps_[i] != CaptureTime::max(); },
+      [this](std::size_t i) { return stamps_[i]; });
+  has_taken_ = best.has_value();
+  taken_ = best.value_or(0);
+  return has_taken_ ? &heads_[taken_] : nullptr;
 }
 
 }  // namespace roadload::recording

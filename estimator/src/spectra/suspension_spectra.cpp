@@ -123,8 +123,7 @@ void SuspensionSpectra::take(const SensorGrid& grid, const PlacementHistory& his
     const auto u = static_cast<std::size_t>(ax.axle_slot), f = static_cast<std::size_t>(ax.frame_slot);
     const double tau = (ax.frame_ahead_m > 0 && shares.speed_mps >= config_.min_delay_speed_mps) ? ax.frame_ahead_m / shares.speed_mps
                                                                                                  : 0.0;
-    delay(slot_spectrum_[f], tau, delayed_);
-    delay(slot_velocity_[f], tau, delayed_velocity_);
+    delay(slot_spectrum_[f], slot_velocity_[f], tau, delayed_, delayed_velocity_);
     ++counters_.axle_segments;
     const auto add = [&](Sums& sums, double w) {
       sums.accel.add(slot_spectrum_[u], delayed_, w);
@@ -165,9 +164,15 @@ AxlePower SuspensionSpectra::cell_power(std::size_t cell, std::size_t axle) cons
 
 void SuspensionSpectra::clear_window() { window_.assign(window_.size(), AxlePower{}); }
 
-void SuspensionSpectra::delay(std::span<const std::complex<double>> in, double tau_s, std::span<std::complex<double>> out) const {
+void SuspensionSpectra::delay(std::span<const std::complex<double>> accel, std::span<const std::complex<double>> velocity,
+                              double tau_s, std::span<std::complex<double>> accel_out,
+                              std::span<std::complex<double>> velocity_out) const {
   const double step = -2.0 * std::numbers::pi * bin_hz(transform_.config()) * tau_s;
-  for (std::size_t k = 0; k < in.size(); ++k) out[k] = in[k] * std::polar(1.0, step * static_cast<double>(k));
+  for (std::size_t k = 0; k < accel.size(); ++k) {
+    const std::complex<double> phase = std::polar(1.0, step * static_cast<double>(k));
+    accel_out[k] = accel[k] * phase;
+    velocity_out[k] = velocity[k] * phase;
+  }
 }
 
 void SuspensionSpectra::density(const Sums& sums, std::size_t axle, AxleDensity which, std::span<double> out) const {

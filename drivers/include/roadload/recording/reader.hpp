@@ -146,10 +146,15 @@ class RecordingReader {
   bool has_meta_ = false;
   std::vector<std::unique_ptr<Stream>> streams_;
   std::vector<Record> heads_;
-  std::vector<bool> live_;
+  // Each head's stamp, an ended stream's the end of time: the merge is a plain minimum.
+  std::vector<CaptureTime> stamps_;
   Record current_;
   ErrorLog errors_;
   bool primed_ = false;
+  // The stream whose head next() returned last: it moves on at the next call, so the record is
+  // handed out where it lies rather than copied.
+  std::size_t taken_ = 0;
+  bool has_taken_ = false;
 };
 
 }  // namespace roadload::recording

@@ -116,7 +116,9 @@ class SuspensionSpectra {
   void density(const Sums& s, std::size_t axle, AxleDensity which, std::span<double> out) const;
   AxlePower power(const Sums& s, std::size_t axle) const;
   void take(const SensorGrid& grid, const PlacementHistory& history, std::int64_t end);
-  void delay(std::span<const std::complex<double>> in, double tau_s, std::span<std::complex<double>> out) const;
+  // The frame's acceleration and velocity transforms delayed by tau_s: one phase per bin for both.
+  void delay(std::span<const std::complex<double>> accel, std::span<const std::complex<double>> velocity, double tau_s,
+             std::span<std::complex<double>> accel_out, std::span<std::complex<double>> velocity_out) const;
 
   std::vector<SuspensionAxle> axles_;
   SuspensionConfig config_;
