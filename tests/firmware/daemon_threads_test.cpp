@@ -2,6 +2,8 @@
 // the accelerometers however many there are, which loses none of their samples.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <fstream>
 #include <map>
 #include <string>
@@ -31,8 +33,9 @@ TEST(DaemonThreads, NamedByRoleWithOneThreadReadingEveryAccelerometerInFull) {
   Daemon daemon(daemon_setup(drive, dir), memory_sources(drive, pace, gate, 1.0, StampSource::kernel), clock);
   daemon.start();
   // Each thread names itself once it runs.
+  const std::array<const char*, 6> roles = {"rl-accel", "rl-can0", "rl-gnss", "rl-weather", "rl-writer", "rl-estimator"};
   std::map<std::string, int> names;
-  for (int i = 0; i < 100 && !names.contains("rl-estimator"); ++i) {
+  for (int i = 0; i < 100 && !std::all_of(roles.begin(), roles.end(), [&](const char* r) { return names.contains(r); }); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     names = thread_names();
   }
@@ -40,7 +43,7 @@ TEST(DaemonThreads, NamedByRoleWithOneThreadReadingEveryAccelerometerInFull) {
   // The accelerometers are devices, not replays: their last samples come due with the drive's end.
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   daemon.stop();
-  for (const char* role : {"rl-accel", "rl-can0", "rl-gnss", "rl-weather", "rl-writer", "rl-estimator"}) {
+  for (const char* role : roles) {
     EXPECT_EQ(names.contains(role) ? names.at(role) : 0, 1) << role;
   }
   const StatusReport r = daemon.report();

@@ -291,6 +291,18 @@ TEST(Adxl355Driver, AReaderThatNeverWaitsLosesNothingAndFindsAPowerCycledPart) {
   EXPECT_EQ(compare(rig, 0).wrong_values, 0u);
 }
 
+TEST(Adxl355Driver, APartThatIsGoneIsCheckedTenTimesASecondHoweverOftenItIsPolled) {
+  Rig rig(fast_part());
+  ASSERT_TRUE(rig.source) << rig.error->to_string();
+  rig.poll(100 * kMs, 3 * kMs);
+  rig.model.power_cycle();            // no more edges
+  rig.model.fail_transfers(100'000);  // and no answer on the bus
+  rig.poll(1'000 * kMs, 3 * kMs);
+  EXPECT_EQ(rig.source->status().state, io::SourceState::down);
+  EXPECT_GE(rig.source->status().errors, 9u);
+  EXPECT_LE(rig.source->status().errors, 11u) << "each check of a part that is gone counts an error";
+}
+
 TEST(Adxl355Driver, NoHeapAllocationPerReadAfterTheFirst) {
   Rig rig(fast_part());
   ASSERT_TRUE(rig.source) << rig.error->to_string();

@@ -76,13 +76,7 @@ std::size_t Adxl355Source::read(std::span<AccelSample> out, Nanoseconds timeout)
   // The kernel keeps the oldest edges and drops new ones while its queue is full: the edges
   // drained are a true run, but the next one may not follow the newest of them.
   if (edges >= DataReadyLine::kKernelQueue) begin_resync(true, false);
-  // Down, or no edge for several periods since the last edge or check (a reader that polls without
-  // waiting must notice too): the bus failed, or the part stopped (power cycle, reset).
-  const std::int64_t now_ns = line_.now_ns();
-  const bool silent = edges == 0 && static_cast<double>(now_ns - quiet_since_ns_) > 4 * period_ns_;
-  if (edges > 0 || silent) quiet_since_ns_ = now_ns;
-  if ((status_.state == io::SourceState::down || silent) && !recover()) return hand_out(out);
-  if (edges == 0) return hand_out(out);
+  if (!healthy(edges) || edges == 0) return hand_out(out);
 
   compact();
   if (resync_ && kQueue - q_end_ < burst_.size()) {
@@ -330,31 +324,6 @@ Adxl355::Fault Adxl355Source::start_measuring() {
   have_candidate_ = false;
   next_edge_ = next_sample_;
   return f;
-}
-
-bool Adxl355Source::recover() {
-  const bool was_down = status_.state == io::SourceState::down;
-  const Adxl355::Fault f = part_.check();
-  if (f == Adxl355::Fault::spi) {
-    go_down("SPI transfer failed");
-    return false;
-  }
-  if (f != Adxl355::Fault::none) {
-    // The part answers but lost its settings: start it again, on a new grid.
-    if (part_.prepare() != Adxl355::Fault::none || start_measuring() != Adxl355::Fault::none) {
-      go_down("the part does not start");
-      return false;
-    }
-  }
-  if (was_down || f != Adxl355::Fault::none) ++status_.restarts;
-  if (was_down) status_.state = io::SourceState::up;
-  return true;
-}
-
-void Adxl355Source::go_down(const char* why) {
-  ++status_.errors;
-  status_.state = io::SourceState::down;
-  std::snprintf(status_.detail, sizeof status_.detail, "adxl355 down: %s", why);
 }
 
 std::size_t Adxl355Source::hand_out(std::span<AccelSample> out) {

@@ -90,6 +90,7 @@ class Adxl355Source final : public io::Source<AccelSample> {
   void extrapolate_held();
   void resolve();
   Adxl355::Fault start_measuring();
+  bool healthy(int edges);
   bool recover();
   void go_down(const char* why);
   std::size_t hand_out(std::span<AccelSample> out);
@@ -112,7 +113,8 @@ class Adxl355Source final : public io::Source<AccelSample> {
   std::size_t q_begin_ = 0, q_timed_ = 0, q_end_ = 0;                         // [begin, timed) ready, [timed, end) held
   unsigned fifo_samples_ = 0;                                                 // in the FIFO at the last read
   std::int64_t full_read_ns_ = std::numeric_limits<std::int64_t>::min() / 2;  // last read of a full FIFO
-  std::int64_t quiet_since_ns_ = 0;  // the last edge seen, or the last check for a silent part (one at the first read)
+  std::int64_t last_edge_ns_ = 0;                                             // when a read last found an edge
+  std::int64_t checked_ns_ = std::numeric_limits<std::int64_t>::min() / 2;    // the last check of a part down or silent
 
   // The part's grid: sample n was taken at anchor_t_ + (n - anchor_index_) * period_ns_.
   bool have_anchor_ = false;
