@@ -18,9 +18,9 @@ namespace {
 // more than 50 ms); the rings hold seconds and a status line is 100 ms apart.
 constexpr Nanoseconds kIdleSleep{50'000'000};
 constexpr std::size_t kWriteBatch = 4096;
-// How often the accelerometers are read: 12 sample sets at 4 kHz, under the kernel's 16 queued
-// data-ready edges per line and the part's 32-set FIFO.
-constexpr Nanoseconds kAccelReadPeriod{3'000'000};
+// How often the accelerometers are read: 8 sample sets at 4 kHz, 2 ms short of the kernel's 16
+// queued data-ready edges (beyond them a part resyncs its clock) for a round the scheduler delays.
+constexpr Nanoseconds kAccelReadPeriod{2'000'000};
 constexpr Nanoseconds kPowerWindow{5'000'000'000};
 // How long a GNSS fix or a weather sample waits for CAN to catch up with it (its ring holds 25 s).
 constexpr Nanoseconds kMaxPlaceWait{10'000'000'000};
