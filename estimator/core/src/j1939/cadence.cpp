@@ -37,9 +37,14 @@ bool bursty(Pgn pgn) { return pgn == kPgnTpCm || pgn == kPgnTpDt || pgn == kPgnE
 }  // namespace
 
 CadenceMonitor::Slot* CadenceMonitor::slot(std::uint8_t iface, std::uint32_t key) {
-  const std::size_t start = (key * 2654435761u + iface) % kSlots;
+  // Fibonacci hashing takes the product's top bits: its low bits depend only on the key's low
+  // bits, the source address, which a truck's few ECUs share across dozens of messages.
+  static_assert(std::has_single_bit(kSlots));
+  constexpr int kSlotBits = std::countr_zero(kSlots);
+  const std::uint32_t h = (key ^ (std::uint32_t{iface} << 29)) * 2654435761u;
+  const std::size_t start = h >> (32 - kSlotBits);
   for (std::size_t i = 0; i < kSlots; ++i) {
-    Slot& s = slots_[(start + i) % kSlots];
+    Slot& s = slots_[(start + i) & (kSlots - 1)];
     if (!s.used) {
       s.used = true;
       s.iface = iface;
