@@ -25,9 +25,12 @@ struct Cell {
 
 // A filter whose innovations are smaller than it predicts (mean NIS below 1) is cautious, not
 // wrong: its estimate stands, its sigma is too wide, and the model fits the cells' spread itself.
+// A reason names its side of the band; one stored by an older roadload gives only the mean, rounded.
 bool overdispersed(const std::string& part) {
   const std::string nis = "the filter is not consistent with this drive: mean NIS ";
   if (part.rfind(nis, 0) != 0) return false;
+  if (part.find(" (below it") != std::string::npos) return true;
+  if (part.find(" (above it") != std::string::npos) return false;
   return std::strtod(part.c_str() + nis.size(), nullptr) < 1.0;
 }
 
