@@ -2,8 +2,9 @@
 // One source, read on a thread of its own or in turn with others on a shared one (SharedReader): it
 // reads batches from the device (or a replay) and pushes each item into two rings, one drained by
 // the writer and one by the estimator, so a slow disk never stalls the estimator and neither
-// stalls acquisition. What either ring refuses is counted. The status is
-// published under a mutex a few times a second for the status thread; the data path takes no lock.
+// stalls acquisition. What either ring refuses is counted. The status is published under a mutex
+// after each read for the status thread; the items themselves pass through the rings, which take no
+// lock.
 #include <array>
 #include <atomic>
 #include <chrono>

@@ -1,7 +1,7 @@
 #pragma once
 // Devices read in turn by one thread, each once a round and without waiting: eight accelerometers
 // on threads of their own woke a gateway 1,333 times a second for FIFO reads of a few hundred bytes
-// (bench_daemon: 4.7 % of a core; 3.5-3.7 % read this way). The price: a read that blocks (a hung
+// (docs/roadloadd.md has the CPU it saves). The price: a read that blocks (a hung
 // SPI transfer, a part being started again) holds up every part's round, and a round late by more
 // than the slack under the kernel's data-ready queue makes a part resync its clock.
 #include <atomic>
