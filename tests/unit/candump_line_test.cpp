@@ -1,6 +1,11 @@
 // candump -L lines: every frame kind real logs contain, and the exact text canplayer replays.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
+#include <random>
+#include <string>
+
 #include "roadload/recording/candump.hpp"
 
 namespace roadload::recording {
@@ -83,6 +88,64 @@ TEST(CandumpLine, FormatRoundTripsEveryKind) {
     ASSERT_FALSE(p.error) << line;
     EXPECT_EQ(format(p.frame), line);
   }
+}
+
+// Lines shaped as candump -L writes them take a short path; a nanosecond stamp sends the same
+// frame through the general one. Both must read every frame alike.
+TEST(CandumpLine, TheShortAndTheGeneralPathReadTheSameFrames) {
+  std::mt19937_64 rng(2026);
+  for (int k = 0; k < 2000; ++k) {
+    CanFrame f;
+    f.kind = CanFrameKind::extended;
+    f.id = static_cast<std::uint32_t>(rng()) & 0x1FFFFFFFu;
+    f.len = static_cast<std::uint8_t>(rng() % 9);
+    for (std::size_t i = 0; i < f.len; ++i) f.data[i] = static_cast<std::uint8_t>(rng());
+    f.t = capture_time_from_ns(static_cast<std::int64_t>(rng() % 9'000'000'000'000'000u) / 1000 * 1000);
+    std::string line = format(f);
+    if (k % 2 == 1) std::transform(line.begin(), line.end(), line.begin(), [](char c) { return static_cast<char>(std::tolower(c)); });
+    std::string nanos = line;
+    nanos.insert(nanos.find(')'), "000");
+    const ParsedLine a = parse(line), b = parse(nanos);
+    ASSERT_FALSE(a.error) << line;
+    ASSERT_FALSE(b.error) << nanos;
+    EXPECT_EQ(to_ns(a.frame.t), to_ns(f.t)) << line;
+    EXPECT_EQ(to_ns(a.frame.t), to_ns(b.frame.t)) << line;
+    EXPECT_EQ(a.frame.id, b.frame.id) << line;
+    EXPECT_EQ(a.frame.kind, b.frame.kind) << line;
+    EXPECT_EQ(a.frame.iface, b.frame.iface) << line;
+    EXPECT_EQ(a.frame.id29, b.frame.id29) << line;
+    EXPECT_EQ(a.frame.fd_flags, b.frame.fd_flags) << line;
+    ASSERT_EQ(a.frame.len, f.len) << line;
+    ASSERT_EQ(b.frame.len, f.len) << line;
+    for (std::size_t i = 0; i < f.len; ++i) EXPECT_EQ(a.frame.data[i], b.frame.data[i]) << line;
+  }
+}
+
+// Every byte value at every place of a frame line: what is read as a frame must be that frame
+// (it formats back to the line, letters' case aside); anything else is an error or ignored.
+TEST(CandumpLine, NoAlteredLineIsReadAsAnotherFrame) {
+  const std::string good = "(1635188455.029900) can0 0CF00400#607D844A1400F084";
+  auto upper = [](std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](char c) { return static_cast<char>(std::toupper(c)); });
+    return s;
+  };
+  std::size_t frames = 0;
+  for (std::size_t at = 0; at < good.size(); ++at) {
+    for (int c = 0; c < 256; ++c) {
+      std::string line = good;
+      line[at] = static_cast<char>(c);
+      InterfaceTable ifaces;
+      ifaces.intern("can0");
+      CanFrame f;
+      LineResult result;
+      if (parse_candump_line(line, ifaces, f, result) || result != LineResult::frame) continue;
+      ++frames;
+      char buf[kMaxLineChars];
+      const std::size_t n = format_candump_line(f, ifaces.name(f.iface), buf);
+      EXPECT_EQ(upper(std::string(buf, n)), upper(line)) << "byte " << c << " at " << at;
+    }
+  }
+  EXPECT_GT(frames, good.size() * 10);  // the digits, hex letters and the interface's letters
 }
 
 struct BadLine {

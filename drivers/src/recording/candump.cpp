@@ -1,6 +1,8 @@
 #include "roadload/recording/candump.hpp"
 
+#include <bit>
 #include <cstdio>
+#include <cstring>
 
 namespace roadload::recording {
 namespace {
@@ -76,6 +78,98 @@ std::optional<LineError> parse_bytes(std::string_view s, std::size_t max, CanFra
   return std::nullopt;
 }
 
+// Eight ASCII digits, first in the lowest byte, tested and summed without a branch per digit.
+bool eight_digits(std::uint64_t v) {
+  return ((v & 0xF0F0F0F0F0F0F0F0u) | (((v + 0x0606060606060606u) & 0xF0F0F0F0F0F0F0F0u) >> 4)) == 0x3333333333333333u;
+}
+
+std::uint64_t eight_digits_value(std::uint64_t v) {
+  v = ((v & 0x0F0F0F0F0F0F0F0Fu) * 2561) >> 8;
+  v = ((v & 0x00FF00FF00FF00FFu) * 6553601) >> 16;
+  return ((v & 0x0000FFFF0000FFFFu) * 42949672960001u) >> 32;
+}
+
+// Eight characters with the first in the lowest byte, whatever the machine's byte order.
+std::uint64_t load8(const char* p) {
+  std::uint64_t v;
+  std::memcpy(&v, p, sizeof v);
+  if constexpr (std::endian::native == std::endian::big) v = __builtin_bswap64(v);
+  return v;
+}
+
+struct Hex8 {
+  std::uint32_t bytes;  // in the order written, the first in the lowest byte
+  bool ok;
+};
+
+// Eight ASCII hex digits (either case), first in the lowest byte, to four bytes; not ok if any is
+// not a hex digit. Each byte is range-tested in its own 7 bits, so no carry crosses into its
+// neighbour.
+Hex8 eight_hex(std::uint64_t x) {
+  constexpr std::uint64_t kOnes = 0x0101010101010101u, kHigh = 0x8080808080808080u;
+  const std::uint64_t x7 = x & ~kHigh;
+  auto in_range = [&](std::uint64_t b, unsigned lo, unsigned hi) {
+    return (b + (0x80 - lo) * kOnes) & ~(b + (0x7F - hi) * kOnes) & kHigh;
+  };
+  const std::uint64_t ok = in_range(x7, '0', '9') | in_range(x7 | 0x20 * kOnes, 'a', 'f');
+  std::uint64_t v = (x & 0x0F * kOnes) + ((x >> 6) & kOnes) * 9;
+  v = ((v & 0x0F000F000F000F00u) >> 8) | ((v & 0x000F000F000F000Fu) << 4);
+  v = (v & 0x000000FF000000FFu) | ((v & 0x00FF000000FF0000u) >> 8);
+  v = (v & 0xFFFFu) | ((v >> 16) & 0xFFFF0000u);
+  return {static_cast<std::uint32_t>(v), (x & kHigh) == 0 && ok == kHigh};
+}
+
+// The line as candump -L and roadloadd write nearly every line of a J1939 log:
+// "(SSSSSSSSSS.UUUUUU) <the interface of the line before> IIIIIIII#<0-8 bytes>". Returns false
+// for anything else, which the general parser then reads or refuses with its reason, so both give
+// the same frame or the same error. The line comes as pointer and size: as a string_view it was
+// spilled and reloaded whole, a store-forwarding stall that took a quarter of a decode's time.
+bool parse_common(const char* s, std::size_t size, const InterfaceTable& ifaces, CanFrame& out) {
+  constexpr std::size_t kStamp = 20;  // "(SSSSSSSSSS.UUUUUU) "
+  const std::string_view iface = ifaces.last();
+  const std::size_t id_at = kStamp + iface.size() + 1;
+  if (iface.empty() || size < id_at + 9 || s[0] != '(' || s[11] != '.' || s[18] != ')' || s[19] != ' ') return false;
+  const std::uint64_t sec8 = load8(s + 1);
+  // The six fraction digits behind two '0's make eight.
+  const std::uint64_t frac8 = (load8(s + 12) << 16) | 0x3030u;
+  // The seconds' last two digits behind six '0's.
+  const std::uint64_t last2 = (load8(s + 3) & 0xFFFF000000000000u) | 0x0000303030303030u;
+  if (!eight_digits(sec8) || !eight_digits(frac8) || !eight_digits(last2)) return false;
+  const std::uint64_t sec = eight_digits_value(sec8) * 100 + eight_digits_value(last2);
+  if (sec > 9'000'000'000u) return false;
+  if (std::memcmp(s + kStamp, iface.data(), iface.size()) != 0 || s[id_at - 1] != ' ' || s[id_at + 8] != '#') return false;
+  const Hex8 id_hex = eight_hex(load8(s + id_at));
+  const std::uint32_t b = id_hex.bytes;
+  const std::uint32_t id = (b & 0xFFu) << 24 | (b & 0xFF00u) << 8 | (b >> 8 & 0xFF00u) | b >> 24;
+  const std::size_t data_at = id_at + 9, digits = size - data_at;
+  if (!id_hex.ok || (id & ~kEffMask) != 0 || digits > 16 || digits % 2 != 0) return false;
+  if (digits == 16) {  // J1939 sends eight bytes in nearly every frame
+    const Hex8 first = eight_hex(load8(s + data_at)), second = eight_hex(load8(s + data_at + 8));
+    if (!first.ok || !second.ok) return false;
+    for (std::size_t i = 0; i < 4; ++i) {
+      out.data[i] = static_cast<std::uint8_t>(first.bytes >> (8 * i));
+      out.data[4 + i] = static_cast<std::uint8_t>(second.bytes >> (8 * i));
+    }
+  } else {
+    std::int8_t bad = 0;
+    for (std::size_t i = 0; i < digits; i += 2) {
+      const std::int8_t hi = kHexTable[static_cast<unsigned char>(s[data_at + i])];
+      const std::int8_t lo = kHexTable[static_cast<unsigned char>(s[data_at + i + 1])];
+      bad |= hi | lo;
+      out.data[i / 2] = static_cast<std::uint8_t>(hi << 4 | (lo & 0xF));
+    }
+    if (bad < 0) return false;
+  }
+  out.t = capture_time_from_ns(static_cast<std::int64_t>(sec * 1'000'000'000 + eight_digits_value(frac8) * 1000));
+  out.iface = ifaces.last_index();
+  out.kind = CanFrameKind::extended;
+  out.id = id;
+  out.id29 = false;
+  out.fd_flags = 0;
+  out.len = static_cast<std::uint8_t>(digits / 2);
+  return true;
+}
+
 }  // namespace
 
 std::optional<std::uint8_t> InterfaceTable::find(std::string_view name) {
@@ -93,6 +187,7 @@ std::optional<std::uint8_t> InterfaceTable::intern(std::string_view name) {
   if (const auto i = find(name)) return i;
   if (count_ == kMax) return std::nullopt;
   names_[count_] = std::string(name);
+  last_ = static_cast<std::uint8_t>(count_);
   return static_cast<std::uint8_t>(count_++);
 }
 
@@ -101,6 +196,10 @@ std::string_view InterfaceTable::name(std::uint8_t index) const {
 }
 
 std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTable& ifaces, CanFrame& out, LineResult& result) {
+  if (parse_common(line.data(), line.size(), ifaces, out)) {
+    result = LineResult::frame;
+    return std::nullopt;
+  }
   result = LineResult::ignored;
   // Blank lines and comments are passed over; any other line is a frame or an error, so that a
   // file of something else is refused rather than read as a drive without frames.

@@ -20,6 +20,9 @@ class InterfaceTable {
   std::optional<std::uint8_t> find(std::string_view name);
   std::string_view name(std::uint8_t index) const;
   std::size_t size() const { return count_; }
+  // The interface found or added last ("" while the table is empty), and its index.
+  std::string_view last() const { return count_ > 0 ? std::string_view(names_[last_]) : std::string_view(); }
+  std::uint8_t last_index() const { return last_; }
 
  private:
   std::array<std::string, kMax> names_;

@@ -69,18 +69,18 @@ void CadenceMonitor::learn(Slot& s, double dt_s) {
 // as the same frame again at once between two ordinary intervals. A late frame followed by a burst
 // (a stalled sender catching up) matches neither.
 void CadenceMonitor::judge(Slot& s, double dt_s, bool same) {
-  const double r = dt_s / s.period_s, previous = s.last_dt_s / s.period_s;
+  const double r = dt_s / s.period_s;
   const auto ordinary = [](double periods) { return periods >= kOnTimePeriods && periods < kGapPeriods; };
   if (ordinary(r)) {
     if (s.pending == Pending::gap) ++counters_.gaps;
     if (s.pending == Pending::repeat) ++counters_.repeats;
   }
   s.pending = Pending::none;
-  if (ordinary(previous) && same && r < kRepeatPeriods) {
-    s.pending = Pending::repeat;
-  } else if (ordinary(previous) && r >= kGapPeriods && std::abs(r - std::round(r)) < kWholePeriods) {
-    s.pending = Pending::gap;
-  }
+  // The previous interval is looked at only for a frame that may be a repeat or follow a loss,
+  // so an ordinary frame costs one division, not two.
+  const bool maybe_repeat = same && r < kRepeatPeriods;
+  const bool maybe_gap = r >= kGapPeriods && std::abs(r - std::round(r)) < kWholePeriods;
+  if ((maybe_repeat || maybe_gap) && ordinary(s.last_dt_s / s.period_s)) s.pending = maybe_repeat ? Pending::repeat : Pending::gap;
   if (ordinary(r)) {
     s.period_s += kPeriodGain * (dt_s - s.period_s);
     s.off_period = 0;
@@ -115,7 +115,8 @@ void CadenceMonitor::push(const CanFrame& frame) {
   s->seen = true;
   s->last = frame.t;
   s->len = len;
-  std::copy(frame.data.begin(), frame.data.begin() + len, s->data.begin());
+  // All eight bytes in one move: `len` says how many of them count.
+  std::memcpy(s->data.data(), frame.data.data(), s->data.size());
   if (frame.t < paused_until_) {
     ++counters_.too_fast;
     s->pending = Pending::none;
