@@ -97,7 +97,9 @@ void print_case(std::size_t i, const gap::CaseOutcome& o) {
   if (o.visible) std::snprintf(shrink, sizeof shrink, "%.2f", o.shrink);
   std::printf("%4zu  %-48s %-44s %8.1f %7s %s\n", i + 1, gap::describe_effects(o.truth.effects).c_str(),
               gap::named_effects(o).c_str(), d.singles.empty() ? 0.0 : d.singles.front().gain, shrink,
-              o.named_right ? "" : "  <- wrong");
+              o.named_right   ? ""
+              : o.rival_right ? "  <- wrong (hidden among its rivals)"
+                              : "  <- wrong");
   // The truck: each parameter's truth and fit in its prior sigmas, off the model's value.
   std::string truck;
   for (std::size_t j = 0; j < o.nominal_truth.size(); ++j) {
@@ -166,6 +168,8 @@ void print_score(const gap::BenchScore& score, std::size_t libraries) {
   for (const auto& [road, n] : score.by_road) std::printf(" %s %zu/%zu", road.c_str(), n.first, n.second);
   std::printf("\ntop-1 %zu/%zu; shrink over %zu visible effect cases; false alarms %zu/%zu null runs; %zu model libraries\n",
               score.right, score.cases, score.visible, score.alarms, score.nulls, libraries);
+  std::printf("wrong names %zu, of which %zu had the hidden effect among the rivals the answer lists as not told apart\n",
+              score.wrong_names, score.rival_right);
   std::printf("goals: top1 >= 0.90, shrink >= 0.70, false_alarm <= 0.05\n");
   std::printf("cases=%zu top1=%.3f shrink=%.3f false_alarm=%.3f\n", score.cases, score.top1(), score.shrink(), score.false_alarm());
 }

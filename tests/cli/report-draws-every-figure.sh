@@ -23,7 +23,8 @@ cat >"$work/res/gap.json" <<'JSON'
  "residual_raw": 9.6, "residual_before": 7.8, "residual_after": 0.9, "held_out_features": 120,
  "channels": [{"channel": "torque_nm", "features": 15, "raw": 15.2, "before": 12.1, "after": 1.1},
               {"channel": "fuel_lph", "features": 15, "raw": 7.1, "before": 6.0, "after": 0.8}],
- "candidates": [{"name": "brake-drag", "gain": 4100.2, "magnitude": 118.2}], "runs": ["run rec30: model mnroad-mainline-30mph"]}
+ "candidates": [{"name": "brake-drag", "gain": 4100.2, "magnitude": 118.2}], "runs": ["run rec30: model mnroad-mainline-30mph"],
+ "rivals": [{"name": "tire-warmup", "gain": 4050.7}, {"name": "wet-road", "gain": 4011.0}]}
 JSON
 cat >"$work/res/gap-tables.json" <<'JSON'
 {"rows": [{"pavement": "Mainline bituminous (Table 6.5)", "report_w": 442, "before_w": 300, "after_w": 300},
@@ -72,6 +73,8 @@ want = [p["pavement"] for p in pavements]
 assert [r[0] for r in rows] == want and len(want) >= 2, f"answer rows {rows} against pavements.csv {want}"
 PY
 grep -q "brake-drag = 118.2 N" "$work/report.html" || fail "the gap section does not name the effect"
+grep -q "<td>not told apart from</td><td>tire-warmup, wet-road " "$work/report.html" ||
+  fail "the gap section does not list the rivals the drives cannot tell from the effect"
 # Not grep -q: it would stop reading, and under pipefail sed's broken pipe would fail the check.
 sed -n '/id="gap"/,$p' "$work/report.html" | grep "<td>CdA</td><td>6.2 m2</td><td>5.81</td>" >/dev/null ||
   fail "the gap section does not show the model's truck against this one"

@@ -72,6 +72,30 @@ TEST(GapDiagnosis, NamesTheEffectThatMadeTheResidualWithItsMagnitudeInsideTheInt
   EXPECT_GT(d.chosen->gain, 1000.0);
 }
 
+// Two effects whose signatures differ by less than noise can tell: the one named lists the other
+// as a rival; effects whose fits fall short by more than noise alone gives are not listed.
+TEST(GapDiagnosis, ListsTheRivalsTheDrivesCannotTellApart) {
+  Synthetic s(6);
+  Candidate twin = s.problem.candidates[3];
+  twin.name = "twin";
+  twin.a += 0.02 * s.problem.candidates[1].a;
+  s.problem.candidates[5] = twin;
+  s.problem.z = s.problem.candidates[3].response(1.7);
+  s.add_noise();
+  Diagnosis d = diagnose(s.problem);
+  ASSERT_TRUE(d.chosen);
+  const std::string named = s.chosen_name(d);
+  ASSERT_TRUE(named == "effect-3" || named == "twin") << named;
+  ASSERT_EQ(d.rivals.size(), 1u);
+  EXPECT_EQ(s.problem.candidates[d.rivals[0].effects[0]].name, named == "twin" ? "effect-3" : "twin");
+  // A rival must be one that could be named on its own: a twin that fits noise as well as this
+  // gap could not.
+  s.problem.candidates[d.rivals[0].effects[0]].null_gain = 10.0 * d.chosen->gain;
+  d = diagnose(s.problem);
+  ASSERT_TRUE(d.chosen);
+  EXPECT_TRUE(d.rivals.empty());
+}
+
 TEST(GapDiagnosis, NamesNothingInPureNoise) {
   Synthetic s(6);
   for (int draw = 0; draw < 50; ++draw) {

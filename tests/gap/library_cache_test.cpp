@@ -8,6 +8,7 @@
 
 #include "roadload/gap/library_cache.hpp"
 #include "roadload/gap/resimulate.hpp"
+#include "roadload/gap/unseen.hpp"
 
 namespace roadload::gap {
 namespace {
@@ -31,7 +32,8 @@ class GapLibraryCache : public ::testing::Test {
     }
     lib_.baseline = Eigen::Vector3d(1.0 / 3.0, -2e-300, std::nan(""));
     lib_.sigma = Eigen::Vector3d(0.1, 1e300, 7.0);
-    for (const auto& e : sim::effect_catalog()) {
+    for (const sim::Effect effect : fitted_effects()) {
+      const sim::EffectInfo& e = sim::effect_info(effect);
       lib_.responses.push_back({e.id, 0.0, e.max, e.min, lib_.baseline * 1.5, lib_.baseline * 0.5});
       lib_.null_gain.push_back(static_cast<double>(lib_.null_gain.size()) + 0.25);
     }
@@ -86,6 +88,18 @@ TEST_F(GapLibraryCache, ReadsBackEveryNumberExactlyUnderTheRunsOwnLabel) {
   EXPECT_EQ(b.null_chi2_mean, 431.7);
   EXPECT_EQ(b.null_chi2_count, 8u);
   EXPECT_TRUE(library_serves(b, resimulations({other})));
+}
+
+// A library of a program that still fitted an effect no feature sees is another program's.
+TEST_F(GapLibraryCache, RefusesResponsesToAnEffectNoFeatureSees) {
+  ASSERT_NE(unseen_by_features(sim::Effect::can_accel_offset), nullptr);
+  for (const sim::Effect e : fitted_effects()) EXPECT_EQ(unseen_by_features(e), nullptr);
+  EXPECT_EQ(fitted_effects().size() + 4, sim::effect_catalog().size());
+  lib_.responses.insert(lib_.responses.begin(), {sim::Effect::wind_gusts, 0.0, 1.0, 2.0, lib_.baseline, lib_.baseline});
+  lib_.null_gain.push_back(1.0);
+  auto back = decode_library(encode_library(lib_, "f"), "x.lib", "f", {run_});
+  ASSERT_FALSE(back);
+  EXPECT_EQ(back.error().field, "response");
 }
 
 TEST_F(GapLibraryCache, TheStoredDriveDecidesWhomItServes) {

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "roadload/gap/nominal.hpp"
+#include "roadload/gap/unseen.hpp"
 
 namespace roadload::gap {
 namespace {
@@ -45,19 +46,13 @@ std::vector<sim::Effect> observable_effects() {
 }
 
 const char* unobservable(sim::Effect e) {
+  if (const char* why = unseen_by_features(e)) return why;
   switch (e) {
-    case sim::Effect::can_accel_offset:
-      return "no feature compares accelerometer and CAN timing: a stamp offset only shifts where vibration is binned";
     case sim::Effect::mass_error:
       return "the nominal calibration's mass stands for it: a wrong declared mass is another truck's mass, scored in the "
              "nominal rows";
     case sim::Effect::air_density_error:
       return "the nominal calibration's CdA stands for it: air a constant share denser drags as a larger CdA does";
-    case sim::Effect::wind_gusts:
-    case sim::Effect::drafting:
-    case sim::Effect::fan_engagement:
-      return "random episodes: the library's realisation does not match the drive's cell by cell, and no feature "
-             "summarises the episodes independently of when they happen";
     default: return nullptr;
   }
 }
@@ -144,9 +139,14 @@ CaseOutcome run_case(const BenchCase& c, const std::vector<BenchDay>& days, std:
     o.named_right = !chosen;
     return o;
   }
+  auto hidden = [&](std::size_t candidate) {
+    return std::any_of(c.effects.begin(), c.effects.end(),
+                       [&](const auto& e) { return e.first == lib->responses[candidate].effect; });
+  };
   if (chosen) {
-    const sim::Effect named = lib->responses[chosen->effects[0]].effect;
-    o.named_right = std::any_of(c.effects.begin(), c.effects.end(), [&](const auto& e) { return e.first == named; });
+    o.named_right = hidden(chosen->effects[0]);
+    const auto& rivals = o.result.diagnosis.rivals;
+    o.rival_right = !o.named_right && std::any_of(rivals.begin(), rivals.end(), [&](const Fit& f) { return hidden(f.effects[0]); });
   }
   // The residual the effect causes: the held-out chi-square beyond what drives with nothing
   // missing score.
@@ -177,6 +177,10 @@ void BenchScore::add(const CaseOutcome& o) {
   if (o.truth.effects.empty()) {
     ++nulls;
     alarms += o.false_alarm ? 1 : 0;
+  }
+  if (!o.truth.effects.empty() && o.result.diagnosis.chosen && !o.named_right) {
+    ++wrong_names;
+    rival_right += o.rival_right ? 1 : 0;
   }
   if (o.visible) {
     ++visible;

@@ -261,6 +261,30 @@ NominalFit fit_nominal(const Problem& p, const std::vector<std::size_t>& set, co
   return out;
 }
 
+double rival_margin(const Candidate& named, const Candidate& other, const DecisionRule& rule) {
+  return std::max({rule.null_gain, named.null_gain, other.null_gain});
+}
+
+namespace {
+
+// The single fits that would be named on their own (beyond the rule's gain and twice their own
+// noise) and came within rival_margin() of the first chosen effect's own; the chosen effects and
+// those a nominal parameter stands for left out.
+std::vector<Fit> rivals(const Problem& p, const Diagnosis& d, const DecisionRule& rule) {
+  const std::vector<std::size_t>& chosen = d.chosen->effects;
+  const auto first = std::find_if(d.singles.begin(), d.singles.end(), [&](const Fit& f) { return f.effects[0] == chosen[0]; });
+  std::vector<Fit> out;
+  for (const Fit& f : d.singles) {
+    const Candidate& c = p.candidates[f.effects[0]];
+    if (std::find(chosen.begin(), chosen.end(), f.effects[0]) != chosen.end() || !c.stood_for_by.empty()) continue;
+    const bool nameable = f.gain >= std::max(rule.null_gain, rule.null_factor * c.null_gain);
+    if (nameable && f.gain >= first->gain - rival_margin(p.candidates[chosen[0]], c, rule)) out.push_back(f);
+  }
+  return out;
+}
+
+}  // namespace
+
 Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
   Diagnosis d;
   for (Eigen::Index r = 0; r < p.z.size(); ++r) {
@@ -310,6 +334,7 @@ Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
     }
     d.chosen = pair;
   }
+  d.rivals = rivals(p, d, rule);
   // The nominal truck as fitted beside the chosen effects; its held-out figures stay those of the
   // nominal calibration alone.
   const NominalFit joint = fit_nominal(p, d.chosen->effects, d.chosen->magnitude_half0);

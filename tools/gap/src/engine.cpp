@@ -12,6 +12,7 @@
 
 #include "noise_floor.hpp"
 #include "resimulated.hpp"
+#include "roadload/gap/unseen.hpp"
 #include "roadload/numbers.hpp"
 
 namespace roadload::gap {
@@ -133,7 +134,8 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
       tasks.push_back({resimulation(runs[r].model, drive.features.conditions, drive.meta), kBaselineSeed, &lib.layouts[r]});
     }
   }
-  for (const sim::EffectInfo& info : sim::effect_catalog()) {
+  for (const sim::Effect effect : fitted_effects()) {
+    const sim::EffectInfo& info = sim::effect_info(effect);
     const double base = lib.scenarios.front().effects.magnitude(info.id);
     const Span sp = span_of(info, base);
     lib.responses.push_back({info.id, base, sp.m1, sp.m2, {}, {}});
@@ -149,7 +151,7 @@ ModelLibrary build_library(const std::vector<RealRun>& runs, const j1939::Databa
     }
   }
   say(options, "library: " + std::to_string(tasks.size()) +
-                   " simulations (baseline, the noise drives' re-simulations, 2 per effect, 1 per nominal parameter)");
+                   " simulations (baseline, the noise drives' re-simulations, 2 per fitted effect, 1 per nominal parameter)");
   const std::vector<RecordedRun> sims = simulate_all(tasks, db, options.jobs, options.progress);
   auto group = [&](std::size_t g) { return group_values(sims, g, n_runs); };
   const std::span<const RecordedRun> base = std::span(sims).first(n_runs);
@@ -219,6 +221,12 @@ bool library_serves(const ModelLibrary& lib, const std::vector<sim::Scenario>& r
 
 namespace {
 void held_out(GapResult& g, const Eigen::VectorXd& calibrated_z, const Eigen::VectorXd& after_z);
+
+// A name withheld takes its rivals with it: they were rivals of that name.
+void unname(Diagnosis& d) {
+  d.chosen.reset();
+  d.rivals.clear();
+}
 }  // namespace
 
 GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options) {
@@ -262,7 +270,7 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
     if (run.caveat.empty()) continue;
     g.withheld += (g.withheld.empty() ? "" : "; ") + run.label + ": " + run.caveat;
   }
-  if (!g.withheld.empty()) g.diagnosis.chosen.reset();
+  if (!g.withheld.empty()) unname(g.diagnosis);
 
   g.null_chi2_mean = lib.null_chi2_mean;
   g.null_chi2_sd = lib.null_chi2_sd;
@@ -291,7 +299,7 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
     std::snprintf(why, sizeof why, "re-simulated with %s, the held-out chi-square does not fall (%.0f before, %.0f after)",
                   p.candidates[g.diagnosis.chosen->effects[0]].name.c_str(), g.chi2_before, g.chi2_after);
     g.withheld = why;
-    g.diagnosis.chosen.reset();
+    unname(g.diagnosis);
     g.after = g.calibrated;
     held_out(g, (real - g.calibrated).cwiseQuotient(lib.sigma), (real - g.after).cwiseQuotient(lib.sigma));
   }

@@ -6,6 +6,7 @@
 
 #include "roadload/gap/library_cache.hpp"
 #include "roadload/gap/resimulate.hpp"
+#include "roadload/gap/unseen.hpp"
 
 namespace roadload::gap {
 namespace {
@@ -143,11 +144,11 @@ void read_responses(Records& in, ModelLibrary& lib) {
     r.f2 = in.vector("f2", n);
     lib.responses.push_back(std::move(r));
   }
-  // Every effect the program knows, in its catalog's order, or the library is another program's.
-  const auto catalog = sim::effect_catalog();
-  if (lib.responses.size() != catalog.size()) throw Bad{"response", "the library lacks effects of this program"};
-  for (std::size_t e = 0; e < catalog.size(); ++e) {
-    if (lib.responses[e].effect != catalog[e].id) throw Bad{"response", "effects out of the catalog's order"};
+  // Every effect this program fits, in its catalog's order, or the library is another program's.
+  const std::vector<sim::Effect> fitted = fitted_effects();
+  if (lib.responses.size() != fitted.size()) throw Bad{"response", "not the effects this program fits"};
+  for (std::size_t e = 0; e < fitted.size(); ++e) {
+    if (lib.responses[e].effect != fitted[e]) throw Bad{"response", "effects out of the catalog's order"};
   }
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "roadload/gap/unseen.hpp"
 #include "roadload/recording/writer.hpp"
 #include "roadload/results/json.hpp"
 
@@ -91,6 +92,9 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
     std::fprintf(out, "  best pair: %s + %s, gain %.1f\n", g.problem.candidates[f.effects[0]].name.c_str(),
                  g.problem.candidates[f.effects[1]].name.c_str(), f.gain);
   }
+  for (const auto& e : sim::effect_catalog()) {
+    if (const char* why = unseen_by_features(e.id)) std::fprintf(out, "  not fitted: %s: %s\n", e.name.data(), why);
+  }
   if (!g.withheld.empty()) {
     std::fprintf(out, "\neffect: none named: %s\n", g.withheld.c_str());
   } else if (!d.chosen) {
@@ -102,6 +106,14 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
       const Candidate& c = g.problem.candidates[f.effects[i]];
       std::fprintf(out, "  %s = %.4g %s, 90 %% interval [%.4g, %.4g] (model had %.4g)\n", c.name.c_str(), f.magnitude[i],
                    c.unit.c_str(), f.lo[i], f.hi[i], c.base);
+    }
+    if (!d.rivals.empty()) {
+      std::fprintf(out, "  not told apart from (gain within what noise alone gives of %s's):",
+                   g.problem.candidates[f.effects[0]].name.c_str());
+      for (std::size_t i = 0; i < d.rivals.size(); ++i) {
+        std::fprintf(out, "%s %s %.1f", i ? "," : "", g.problem.candidates[d.rivals[i].effects[0]].name.c_str(), d.rivals[i].gain);
+      }
+      std::fprintf(out, "\n");
     }
   }
   std::fprintf(out,
@@ -166,6 +178,20 @@ std::string result_json(const GapResult& g, const std::vector<std::string>& run_
     j << (i ? "," : "") << "\n    {\"name\": " << results::json_quote(g.problem.candidates[f.effects[0]].name)
       << ", \"gain\": " << json_number(f.gain) << ", \"noise_gain\": " << json_number(g.problem.candidates[f.effects[0]].null_gain)
       << ", \"magnitude\": " << json_number(f.magnitude[0]) << ", \"plausibility\": " << json_number(f.plausibility) << "}";
+  }
+  j << "\n  ],\n  \"rivals\": [";
+  for (std::size_t i = 0; d.chosen && i < d.rivals.size(); ++i) {
+    j << (i ? "," : "") << "\n    {\"name\": " << results::json_quote(g.problem.candidates[d.rivals[i].effects[0]].name)
+      << ", \"gain\": " << json_number(d.rivals[i].gain) << "}";
+  }
+  j << "\n  ],\n  \"not_fitted\": [";
+  bool first = true;
+  for (const auto& e : sim::effect_catalog()) {
+    const char* why = unseen_by_features(e.id);
+    if (why == nullptr) continue;
+    j << (first ? "" : ",") << "\n    {\"name\": " << results::json_quote(std::string(e.name))
+      << ", \"why\": " << results::json_quote(why) << "}";
+    first = false;
   }
   j << "\n  ],\n  \"withheld\": " << (g.withheld.empty() ? std::string("null") : results::json_quote(g.withheld));
   j << ",\n  \"unmatched\": [";

@@ -41,6 +41,11 @@ std::string diagnosis(const JsonValue& g) {
                                     format_number(number(e, "hi"), 3)});
     }
   }
+  if (const JsonValue* rivals = g.find("rivals"); rivals != nullptr && !effect.empty() && !rivals->items().empty()) {
+    std::string names;
+    for (const JsonValue& r : rivals->items()) names += (names.empty() ? "" : ", ") + text(r.find("name"));
+    rows.push_back({"not told apart from", names + " (held-out gains within what noise alone gives)"});
+  }
   rows.push_back({"held-out residual (RMS z) as modelled", format_number(number(g, "residual_raw"), 3)});
   rows.push_back({"with the truck fitted", format_number(number(g, "residual_before"), 3)});
   rows.push_back({"and the effect added", format_number(number(g, "residual_after"), 3)});

@@ -55,6 +55,7 @@ struct CaseOutcome {
   std::string road;
   GapResult result;
   bool named_right = false;  // null: nothing named; otherwise the first named effect was on
+  bool rival_right = false;  // named wrongly, but a hidden effect is among the rivals it could not tell apart
   bool false_alarm = false;  // null run with an effect named
   bool visible = false;      // the effect raised the held-out chi-square 4 sd above the noise drives'
   double shrink = 0;         // share of that excess chi-square the named effect removed
@@ -74,6 +75,7 @@ std::string describe_effects(const std::vector<std::pair<sim::Effect, double>>& 
 // null runs, and the confusion of hidden against first named effects.
 struct BenchScore {
   std::size_t cases = 0, right = 0, nulls = 0, alarms = 0, visible = 0;
+  std::size_t wrong_names = 0, rival_right = 0;  // effects named wrongly, and of them CaseOutcome::rival_right
   double shrink_sum = 0;
   // Rows: the hidden effect, the first of a pair marked (+1); columns: the first named.
   std::map<std::string, std::map<std::string, int>> confusion;

@@ -99,13 +99,21 @@ struct Diagnosis {
   NominalFit nominal;        // the model's truck fitted to this one, before any effect
   std::vector<Fit> singles;  // every candidate, best first
   std::optional<Fit> best_pair;
-  std::optional<Fit> chosen;     // none: no candidate explains the gap significantly
+  std::optional<Fit> chosen;  // none: no candidate explains the gap significantly
+  // Single fits of other candidates that would be named on their own and came within
+  // rival_margin() of the first chosen effect's: the drives cannot tell them from it. Best first.
+  std::vector<Fit> rivals;
   std::vector<WhereItem> where;  // most significant first
   std::size_t features = 0;
   double chi2 = 0;  // of the residual before any effect
 };
 
 Diagnosis diagnose(const Problem& p, const DecisionRule& rule = {});
+
+// How close another candidate's gain must come to the named one's for the drives not to tell
+// them apart: as much as noise alone gives either (its Candidate::null_gain), and at least the
+// gain the rule takes as evidence at all.
+double rival_margin(const Candidate& named, const Candidate& other, const DecisionRule& rule);
 
 // One set of candidates fitted (with the nominal parameters beside them) and scored as diagnose
 // scores it.
