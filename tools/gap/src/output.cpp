@@ -1,7 +1,10 @@
 #include "roadload/gap/output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "roadload/gap/unseen.hpp"
 #include "roadload/recording/writer.hpp"
@@ -60,6 +63,23 @@ std::string json_number(double v) {
   return o.str();
 }
 
+namespace {
+
+// One line per reason, the effects it keeps out named before it.
+void print_not_fitted(std::FILE* out) {
+  std::vector<std::pair<const char*, std::string>> reasons;
+  for (const auto& e : sim::effect_catalog()) {
+    const char* why = unseen_by_features(e.id);
+    if (why == nullptr) continue;
+    auto it = std::find_if(reasons.begin(), reasons.end(), [&](const auto& r) { return r.first == why; });
+    if (it == reasons.end()) it = reasons.insert(reasons.end(), {why, std::string()});
+    it->second += (it->second.empty() ? "" : ", ") + std::string(e.name);
+  }
+  for (const auto& [why, names] : reasons) std::fprintf(out, "  not fitted: %s: %s\n", names.c_str(), why);
+}
+
+}  // namespace
+
 void print_result(std::FILE* out, const GapResult& g, const std::vector<std::string>& run_lines) {
   const Diagnosis& d = g.diagnosis;
   for (const auto& line : run_lines) std::fprintf(out, "%s\n", line.c_str());
@@ -92,9 +112,7 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
     std::fprintf(out, "  best pair: %s + %s, gain %.1f\n", g.problem.candidates[f.effects[0]].name.c_str(),
                  g.problem.candidates[f.effects[1]].name.c_str(), f.gain);
   }
-  for (const auto& e : sim::effect_catalog()) {
-    if (const char* why = unseen_by_features(e.id)) std::fprintf(out, "  not fitted: %s: %s\n", e.name.data(), why);
-  }
+  print_not_fitted(out);
   if (!g.withheld.empty()) {
     std::fprintf(out, "\neffect: none named: %s\n", g.withheld.c_str());
   } else if (!d.chosen) {
