@@ -35,6 +35,13 @@ assert 0.03 < g["magnitude"] < 0.05, f"torque-bias fitted as {g['magnitude']}"
 assert g["interval"][0] < 0.04 < g["interval"][1] or abs(g["magnitude"] - 0.04) < 0.003, g["interval"]
 assert g["where"] and g["where"][0]["channel"] == "torque_nm", g["where"][:2]
 assert g["residual_after"] < 0.5 * g["residual_before"] < 0.5 * g["residual_raw"], (g["residual_raw"], g["residual_before"], g["residual_after"])
+# What no feature sees is left out and said so, never fitted; a rival is a fitted candidate.
+unseen = {e["name"] for e in g["not_fitted"]}
+assert unseen == {"wind-gusts", "can-accel-offset", "fan-engagement", "drafting"}, unseen
+assert all(e["why"] for e in g["not_fitted"]), g["not_fitted"]
+fitted = {c["name"] for c in g["candidates"]}
+assert not fitted & unseen and fitted | unseen == set(names), (fitted, unseen)
+assert all(r["name"] in fitted and r["name"] != g["effect"] for r in g["rivals"]), g["rivals"]
 PY
 head -1 "$work/f.csv" | grep -qx "run,channel,where,half,real,model,sigma,z,calibrated,after" || fail "features CSV header"
 expect_csv "$work/f.csv"
