@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -71,7 +72,7 @@ void print_not_fitted(std::FILE* out) {
   for (const auto& e : sim::effect_catalog()) {
     const char* why = unseen_by_features(e.id);
     if (why == nullptr) continue;
-    auto it = std::find_if(reasons.begin(), reasons.end(), [&](const auto& r) { return r.first == why; });
+    auto it = std::find_if(reasons.begin(), reasons.end(), [&](const auto& r) { return std::string_view(r.first) == why; });
     if (it == reasons.end()) it = reasons.insert(reasons.end(), {why, std::string()});
     it->second += (it->second.empty() ? "" : ", ") + std::string(e.name);
   }
