@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace roadload {
 namespace {
@@ -32,12 +33,13 @@ std::vector<std::string> drive_failures(const TripResult& trip, const Identifica
   } else if (trip.filter.updates > 0 && std::abs(trip.mean_nis - 1.0) > band) {
     // Either side withholds the number; the reader is told which failure it is (the fleet's
     // network model takes a cautious filter's estimate as evidence, not a missed model's).
-    const char* side =
-        trip.mean_nis < 1.0
-            ? " (below it: the speed strayed less than the filter allowed, so its interval is wider than the data warrant)"
-            : " (above it: the speed strayed more than the model allows, so its estimate may be wrong)";
-    out.push_back(format("the filter is not consistent with this drive: mean NIS %.2f outside 1 +- %.2f", trip.mean_nis, band) +
-                  side);
+    const bool below = trip.mean_nis < 1.0;
+    std::string why(kNisInconsistent);
+    why += format("%.2f outside 1 +- %.2f", trip.mean_nis, band);
+    why += below ? kNisBelowBand : kNisAboveBand;
+    why += below ? ": the speed strayed less than the filter allowed, so its interval is wider than the data warrant)"
+                 : ": the speed strayed more than the model allows, so its estimate may be wrong)";
+    out.push_back(std::move(why));
   }
   if (trip.fuel.time_s > 0) {
     const double share = trip.fuel.wheel_j > 0 ? std::abs(trip.fuel.unexplained_j()) / trip.fuel.wheel_j : INFINITY;

@@ -5,6 +5,7 @@
 // when it fails and every failure is reported, not only the first.
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "roadload/drive_results.hpp"
@@ -36,6 +37,13 @@ struct IdentificationLimits {
   // 0.003-0.012. A CRR outside 0.002-0.02 is the model's error, not the road's.
   double min_crr = 0.002, max_crr = 0.02;
 };
+
+// How the filter's consistency failure begins, and how its reason names the side of the band it
+// fell on: a results database reads a stored reason back by these (a cautious filter's estimate,
+// below the band, is still evidence; one above it is not).
+inline constexpr std::string_view kNisInconsistent = "the filter is not consistent with this drive: mean NIS ";
+inline constexpr std::string_view kNisBelowBand = " (below it";
+inline constexpr std::string_view kNisAboveBand = " (above it";
 
 // The drive's own checks, each failure as a sentence naming the figure and its bound: the filter's
 // consistency, its outliers, the fuel's closure and the GNSS track against the route. Empty when

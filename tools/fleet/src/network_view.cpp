@@ -6,6 +6,7 @@
 #include "roadload/db/database.hpp"
 #include "roadload/fleet/network.hpp"
 #include "roadload/fleet/schema.hpp"
+#include "roadload/identification.hpp"
 #include "roadload/numbers.hpp"
 
 namespace roadload::fleet {
@@ -27,11 +28,10 @@ struct Cell {
 // wrong: its estimate stands, its sigma is too wide, and the model fits the cells' spread itself.
 // A reason names its side of the band; one stored by an older roadload gives only the mean, rounded.
 bool overdispersed(const std::string& part) {
-  const std::string nis = "the filter is not consistent with this drive: mean NIS ";
-  if (part.rfind(nis, 0) != 0) return false;
-  if (part.find(" (below it") != std::string::npos) return true;
-  if (part.find(" (above it") != std::string::npos) return false;
-  return std::strtod(part.c_str() + nis.size(), nullptr) < 1.0;
+  if (!part.starts_with(kNisInconsistent)) return false;
+  if (part.find(kNisBelowBand) != std::string::npos) return true;
+  if (part.find(kNisAboveBand) != std::string::npos) return false;
+  return std::strtod(part.c_str() + kNisInconsistent.size(), nullptr) < 1.0;
 }
 
 // Why a cell is not evidence of its section's CRR, or empty when it is. A cell withheld only for
