@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "roadload/firmware/thread_name.hpp"
+#include "roadload/firmware/worker_pacing.hpp"
 #include "roadload/io/posix_time.hpp"
 #include "roadload/merge.hpp"
 #include "roadload/results/results_files.hpp"
@@ -13,11 +14,6 @@ namespace roadload::firmware {
 
 namespace {
 
-// The writer and the estimator wake this often when their rings hold less than a batch. Each
-// wake-up costs a gateway more than the items it takes (bench_daemon: 10 ms cost 1.2 % of a core
-// more than 50 ms); the rings hold seconds and a status line is 100 ms apart.
-constexpr Nanoseconds kIdleSleep{50'000'000};
-constexpr std::size_t kWriteBatch = 4096;
 // How often the accelerometers are read: 8 sample sets at 4 kHz, 2 ms short of the kernel's 16
 // queued data-ready edges (beyond them a part resyncs its clock) for a round the scheduler delays.
 constexpr Nanoseconds kAccelReadPeriod{2'000'000};
@@ -37,20 +33,6 @@ std::size_t drain(Ring& ring, std::size_t max, Fn&& fn) {
 }
 
 std::int64_t utc_now_ns() { return io::read_clock(CLOCK_REALTIME).count(); }
-
-// A source that lags while it reads (a starved thread catching up, a replay slower than asked)
-// holds the others back only while the devices' rings have room: once one is half full the horizon
-// is lifted, and the lagging source's items go out of order rather than a device's being dropped.
-// A replay's full ring lifts nothing: it waits for room, and nothing is lost by waiting.
-template <typename RingOf>
-bool any_half_full(DaemonSources& sources, RingOf ring_of) {
-  bool full = false;
-  sources.for_each([&](auto& c) {
-    const auto& ring = ring_of(c);
-    full = full || (!c.waits_for_room() && ring.size() >= ring.capacity() / 2);
-  });
-  return full;
-}
 
 }  // namespace
 
@@ -212,7 +194,11 @@ void Daemon::write_loop() {
     if (stopping && wrote == 0) break;
     // What has come is written; the rest waits a moment to come in a batch. Taken as it trickles
     // in, a frame or two a round, the rounds' clock readings and locks cost more than the writing.
-    if (wrote < kWriteBatch && !stopping) clock_.sleep_until(now + kIdleSleep, kIdleSleep);
+    if (wrote < kWriteBatch && !stopping) {
+      const Nanoseconds pause = idle_sleep(
+          sources_, [](auto& c) -> auto& { return c.to_writer(); });
+      clock_.sleep_until(now + pause, pause);
+    }
   }
   if (recorder_) {
     recorder_->end_segment();
@@ -296,7 +282,11 @@ void Daemon::estimate_loop() {
       j1939_.tp_anomalies = tp.orphan_packets + tp.timed_out + tp.superseded + tp.bad_sequence + tp.malformed + tp.no_free_session;
     }
     if (stopping && n == 0) break;
-    if (n < kWriteBatch && !stopping) clock_.sleep_until(now + kIdleSleep, kIdleSleep);
+    if (n < kWriteBatch && !stopping) {
+      const Nanoseconds pause = idle_sleep(
+          sources_, [](auto& c) -> auto& { return c.to_estimator(); });
+      clock_.sleep_until(now + pause, pause);
+    }
   }
 }
 

@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "roadload/recording/candump.hpp"
 
@@ -92,6 +95,24 @@ TEST(CandumpLine, FormatRoundTripsEveryKind) {
 
 // Lines shaped as candump -L writes them take a short path; a nanosecond stamp sends the same
 // frame through the general one. Both must read every frame alike.
+// The stamp is written by hand; printf's "(%010lld.%06lld)" is the reference, edges included.
+TEST(CandumpLine, StampsAreWrittenAsPrintfWritesThem) {
+  std::mt19937_64 rng(7);
+  std::vector<std::int64_t> stamps = {
+      0, 999, 1'000, 999'999'999, 1'000'000'000, 9'999'999'999'999'999, std::numeric_limits<std::int64_t>::max()};
+  for (int k = 0; k < 2000; ++k) stamps.push_back(static_cast<std::int64_t>(rng() >> (1 + k % 40)));
+  for (const std::int64_t ns : stamps) {
+    CanFrame f;
+    f.kind = CanFrameKind::standard;
+    f.id = 0x123;
+    f.t = capture_time_from_ns(ns);
+    char want[kMaxLineChars];
+    std::snprintf(want, sizeof want, "(%010lld.%06lld) can0 123#", static_cast<long long>(ns / 1'000'000'000),
+                  static_cast<long long>(ns % 1'000'000'000 / 1000));
+    EXPECT_EQ(format(f), want) << ns;
+  }
+}
+
 TEST(CandumpLine, TheShortAndTheGeneralPathReadTheSameFrames) {
   std::mt19937_64 rng(2026);
   for (int k = 0; k < 2000; ++k) {

@@ -61,7 +61,10 @@ class Channel {
   }
   // One read, waiting at most `timeout` for the device; false once the source has ended.
   bool read_once(const std::atomic<bool>& stop, const io::WaitClock& clock, Nanoseconds timeout) {
+    // One clock reading a read: under User-Mode Linux each is a system call, and a bus read in
+    // full batches makes thousands of reads a second.
     const CaptureTime asked = clock.now();
+    heard_ns_.store(to_ns(asked), std::memory_order_release);
     const std::size_t n = source_->read(batch_, timeout);
     pass_on(n, stop, clock);
     // A read that was not cut short by the batch's size returned everything stamped before it
@@ -69,7 +72,6 @@ class Channel {
     CaptureTime through = n > 0 ? batch_[n - 1].t : asked;
     if (n < kBatch && asked > through) through = asked;
     delivered_through_ns_.store(to_ns(through), std::memory_order_release);
-    heard_ns_.store(to_ns(clock.now()), std::memory_order_release);
     if (asked - published_at_ >= kPublishPeriod) {
       publish();
       published_at_ = asked;
@@ -117,12 +119,12 @@ class Channel {
   // device read late, holds this back, and the estimator waits for it rather than take its items
   // out of order. After the end of a replay, the end of time.
   CaptureTime delivered_through() const { return capture_time_from_ns(delivered_through_ns_.load(std::memory_order_acquire)); }
-  // When its last read returned (start() counts as one): a thread that has not come back from a
-  // read for long is hung or starved, however old or new the stamps it delivered.
+  // When its last read began (start() counts as one): a read waits at most its timeout (100 ms), so
+  // a thread not heard from for long is hung or starved, however old or new the stamps it delivered.
   CaptureTime heard_at() const { return capture_time_from_ns(heard_ns_.load(std::memory_order_acquire)); }
 
  private:
-  static constexpr std::size_t kBatch = 256;
+  static constexpr std::size_t kBatch = 1024;  // a CAN source's recvmmsg fills one in one call
   static constexpr Nanoseconds kReadTimeout{100'000'000};
   // A lock and a copy of the status after every read cost more than the reads of a device read
   // every 2 ms; status lines are at least 100 ms apart.
