@@ -5,9 +5,9 @@
 # until roadloadd, stopped as the sender ends, has taken what its socket still holds, written it
 # and exited. Prints simulated seconds per wall second for each run and their median, the hour of
 # driving projected from it against the goal (1,000 times real time: an hour in 3.6 s), and whether
-# every run's recording equals the input frame for frame. ROADLOAD_BENCH_REPLAY_SECONDS sets the
-# drive (default one hour, which the goal is judged on; CI runs five minutes),
-# ROADLOAD_BENCH_REPLAY_RUNS the runs (default 3).
+# every run's recording equals the input frame for frame, beside the sender alone on the bus (no
+# daemon) as the baseline. ROADLOAD_BENCH_REPLAY_SECONDS sets the drive (default one hour, which
+# the goal is judged on; CI runs five minutes), ROADLOAD_BENCH_REPLAY_RUNS the runs (default 3).
 # usage: tests/bench/replay_rtf.sh BUILD_DIR
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -18,6 +18,10 @@ if [[ ${1:-} == --kernel-part ]]; then
   # Room in the socket's queue for what the sender gets ahead of the daemon (UML: one CPU for both).
   sysctl -qw net.core.rmem_max=67108864
   printf '[[can]]\ninterface = "vcan0"\nreceive_buffer_kib = 65536\n' >"$work/roadloadd.toml"
+  # The baseline: the sender alone, nobody listening on the bus.
+  start=$(date +%s.%N)
+  "$build/tools/roadload" replay "$work/sim" --iface vcan0 --rate "$rate" -q
+  echo "$start $(date +%s.%N)" >"$work/alone"
   for ((run = 1; run <= runs; ++run)); do
     "$build/firmware/roadloadd" --config "$work/roadloadd.toml" --no-gnss --route "$route" --vehicle "$vehicle" \
       --data-dir "$work/rec$run" --status "$work/status.log" --status-json "$work/status$run.jsonl" \
@@ -58,7 +62,9 @@ for ((run = 1; run <= runs; ++run)); do
     equal="no (run $run: $recorded of $frames recorded; $lost)"
 done
 # Each run's wall time, fastest first, so that the median is the middle line.
-awk -v s="$seconds" '{ print $3 - $1, $2 - $1, s / ($3 - $1) }' "$work/times" | sort -g | awk -v rate="$rate" -v s="$seconds" -v f="$frames" -v goal="$goal_rtf" -v eq="$equal" '
+read -r a b <"$work/alone"
+awk -v s="$seconds" '{ print $3 - $1, $2 - $1, s / ($3 - $1) }' "$work/times" | sort -g |
+  awk -v rate="$rate" -v s="$seconds" -v f="$frames" -v goal="$goal_rtf" -v eq="$equal" -v alone="$(echo "$b - $a" | bc)" '
   { wall[NR] = $1; send[NR] = $2; rtf[NR] = $3 }
   END {
     printf "replay + roadloadd at --rate %s (UML, vcan0, %d s highway drive, %d frames, %d runs)\n", rate, s, f, NR
@@ -70,6 +76,7 @@ awk -v s="$seconds" '{ print $3 - $1, $2 - $1, s / ($3 - $1) }' "$work/times" | 
     printf "  %-40s %11.1fx %11dx %8.2f   (%s)\n", "real-time factor, median", median, goal, median / goal, verdict
     printf "  %-40s %11.2fs %11.1fs\n", "one hour of driving, replayed", 3600 / median, 3600 / goal
     printf "  %-40s %11.0f/s\n", "frames per second, median", f * median / s
+    printf "  %-40s %11.2fs %12s %8.2f   (baseline: the bus alone)\n", "the sender alone, nobody listening", alone, "", (s / median) / alone
     printf "  %-40s %12s\n", "recording equals input, frame for frame", eq
   }'
 [[ $equal == yes ]] || { echo "replay RTF: the recording is not the input; kept in $work" >&2; trap - EXIT; exit 1; }

@@ -162,9 +162,9 @@ std::size_t SocketCanSource::read(std::span<CanFrame> out, Nanoseconds timeout) 
   }
   // After a full batch the queue most likely holds more: read it before asking poll, one system
   // call a batch instead of two while a bus (or a replay) outruns the reads.
-  if (last_batch_ == kBatch) {
-    last_batch_ = receive(out);
-    if (last_batch_ > 0 || fd_ < 0) return last_batch_;
+  if (last_full_) {
+    const std::size_t n = receive(out);
+    if (n > 0 || fd_ < 0) return n;
   }
   pollfd p{fd_, POLLIN, 0};
   const int ms = static_cast<int>(std::clamp<std::int64_t>(timeout.count() / 1'000'000, 0, 60'000));
@@ -173,13 +173,11 @@ std::size_t SocketCanSource::read(std::span<CanFrame> out, Nanoseconds timeout) 
   if (ready == 0) return 0;
   // Once the queue has been drained, let a batch gather before reading again: one wake-up per
   // batch instead of one per frame. The kernel stamps the frames; the wait only delays reading.
-  if (last_batch_ < kBatch && config_.coalesce_ns > 0) {
+  if (!last_full_ && config_.coalesce_ns > 0) {
     const timespec pause{0, static_cast<long>(config_.coalesce_ns)};
     nanosleep(&pause, nullptr);
   }
-  const std::size_t n = receive(out);
-  last_batch_ = n;
-  return n;
+  return receive(out);
 }
 
 std::size_t SocketCanSource::receive(std::span<CanFrame> out) {
@@ -192,6 +190,7 @@ std::size_t SocketCanSource::receive(std::span<CanFrame> out) {
   }
   const int got = recvmmsg(fd_, buf_->msgs.data(), static_cast<unsigned>(want), MSG_DONTWAIT, nullptr);
   if (got < 0) {
+    last_full_ = false;
     if (errno == EAGAIN || errno == EINTR) return 0;
     go_down(errno);
     return 0;
@@ -204,6 +203,7 @@ std::size_t SocketCanSource::receive(std::span<CanFrame> out) {
     if (convert(buf_->msgs[i], buf_->frames[i], read_mono, out[n])) ++n;
   }
   status_.items += n;
+  last_full_ = want > 0 && static_cast<std::size_t>(got) == want;
   if (n > 0 && status_.state == io::SourceState::waiting) {
     status_.state = io::SourceState::up;
     std::snprintf(status_.detail, sizeof status_.detail, "receiving");

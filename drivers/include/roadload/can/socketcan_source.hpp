@@ -73,7 +73,7 @@ class SocketCanSource final : public io::Source<CanFrame> {
   int fd_ = -1;
   std::int64_t next_open_mono_ns_ = 0;
   std::uint32_t kernel_drops_ = 0;  // SO_RXQ_OVFL's running count on this socket
-  std::size_t last_batch_ = 0;      // frames the last receive returned
+  bool last_full_ = false;          // the last receive filled what it was given: more may wait
   clock::RealtimeMap map_;
   io::SourceStatus status_;
   SocketCanCounters counters_;

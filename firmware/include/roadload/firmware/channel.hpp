@@ -1,8 +1,9 @@
 #pragma once
 // One source, read on a thread of its own or in turn with others on a shared one (SharedReader): it
 // reads batches from the device (or a replay) and pushes each item into two rings, one drained by
-// the writer and one by the estimator, so a slow disk never stalls the estimator and neither
-// stalls acquisition. What either ring refuses is counted. The status is published under a mutex
+// the writer and one by the estimator, so a slow disk stalls neither the estimator nor acquisition
+// for long: a bus's frames wait in the kernel's queue while the writer's ring is full, at most
+// kDiskStall (read_size). What either ring refuses is counted. The status is published under a mutex
 // at most every 20 ms, and at the end, for the status thread; the items themselves pass through the
 // rings, which take no lock.
 #include <array>
@@ -10,6 +11,7 @@
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -65,12 +67,17 @@ class Channel {
     // full batches makes thousands of reads a second.
     const CaptureTime asked = clock.now();
     heard_ns_.store(to_ns(asked), std::memory_order_release);
-    const std::size_t n = source_->read(batch_, timeout);
+    const std::size_t want = read_size(asked);
+    if (want == 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      return true;
+    }
+    const std::size_t n = source_->read(std::span<T>(batch_).first(want), timeout);
     pass_on(n, stop, clock);
-    // A read that was not cut short by the batch's size returned everything stamped before it
-    // began; a full batch only what it holds.
+    // A read that was not cut short by the size asked for returned everything stamped before it
+    // began; a full one only what it holds.
     CaptureTime through = n > 0 ? batch_[n - 1].t : asked;
-    if (n < kBatch && asked > through) through = asked;
+    if (n < want && asked > through) through = asked;
     delivered_through_ns_.store(to_ns(through), std::memory_order_release);
     if (asked - published_at_ >= kPublishPeriod) {
       publish();
@@ -130,6 +137,26 @@ class Channel {
   // every 2 ms; status lines are at least 100 ms apart.
   static constexpr Nanoseconds kPublishPeriod{20'000'000};
   static constexpr int kDrainReads = 1024;
+  static constexpr Nanoseconds kDiskStall{500'000'000};
+
+  // A bus's frames wait in the kernel's socket queue until the writer's ring has room for them
+  // (a reader catching up on a backlog fills the ring faster than the disk empties it), unless the
+  // ring has been full for kDiskStall: then the disk is stalled, and the estimator is fed while
+  // the recording counts what it loses. An accelerometer's FIFO holds a few milliseconds: it is
+  // read in full and what a ring cannot take is dropped.
+  std::size_t read_size(CaptureTime now) {
+    if constexpr (!std::is_same_v<T, CanFrame>) {
+      return kBatch;
+    } else {
+      const std::size_t room = to_writer_.capacity() - to_writer_.size();
+      if (room > 0 || replay_) {
+        full_since_.reset();
+        return std::min(room > 0 ? room : kBatch, kBatch);
+      }
+      if (!full_since_) full_since_ = now;
+      return now - *full_since_ >= kDiskStall ? kBatch : 0;
+    }
+  }
 
   // A device cannot wait, so a full ring drops and counts; a replay can, so it waits for room. A
   // replay waiting on the consumer is not a hung source: it stays heard from.
@@ -182,6 +209,7 @@ class Channel {
   std::atomic<std::int64_t> heard_ns_{0};
   bool feed_estimator_ = true;
   bool replay_ = false;
+  std::optional<CaptureTime> full_since_;  // the writer's ring full since (CAN)
   std::thread thread_;
 };
 
