@@ -179,7 +179,6 @@ std::size_t Daemon::write_pending(std::size_t max_items, CaptureTime horizon) {
 }
 
 void Daemon::write_loop() {
-  CaptureTime last_round = clock_.now();
   for (;;) {
     const bool stopping = stop_workers_.load();
     const bool lifted = stopping || any_half_full(
@@ -197,10 +196,9 @@ void Daemon::write_loop() {
     // in, a frame or two a round, the rounds' clock readings and locks cost more than the writing.
     if (wrote < kWriteBatch && !stopping) {
       const Nanoseconds pause = idle_sleep(
-          sources_, [](auto& c) -> auto& { return c.to_writer(); }, wrote, now - last_round);
+          sources_, [](auto& c) -> auto& { return c.to_writer(); }, wrote);
       clock_.sleep_until(now + pause, pause);
     }
-    last_round = now;
   }
   if (recorder_) {
     recorder_->end_segment();
@@ -255,7 +253,7 @@ bool Daemon::estimate_next(CaptureTime horizon, CaptureTime place_horizon) {
 }
 
 void Daemon::estimate_loop() {
-  CaptureTime window_start = clock_.now(), last_round = window_start;
+  CaptureTime window_start = clock_.now();
   for (;;) {
     const bool stopping = stop_workers_.load();
     const CaptureTime now = clock_.now();
@@ -286,10 +284,9 @@ void Daemon::estimate_loop() {
     if (stopping && n == 0) break;
     if (n < kWriteBatch && !stopping) {
       const Nanoseconds pause = idle_sleep(
-          sources_, [](auto& c) -> auto& { return c.to_estimator(); }, n, now - last_round);
+          sources_, [](auto& c) -> auto& { return c.to_estimator(); }, n);
       clock_.sleep_until(now + pause, pause);
     }
-    last_round = now;
   }
 }
 

@@ -25,7 +25,7 @@ if [[ ${1:-} == --kernel-part ]]; then
   for ((run = 1; run <= runs; ++run)); do
     "$build/firmware/roadloadd" --config "$work/roadloadd.toml" --no-gnss --route "$route" --vehicle "$vehicle" \
       --data-dir "$work/rec$run" --status "$work/status.log" --status-json "$work/status$run.jsonl" \
-      --results "$work/live" 2>"$work/daemon.err" &
+      --results "$work/live" 2>>"$work/daemon.err" &
     daemon=$!
     sleep 1
     start=$(date +%s.%N)

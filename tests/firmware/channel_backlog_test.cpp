@@ -1,7 +1,8 @@
 // A bus's frames wait in the kernel's queue while the writer's ring is full, instead of being
 // taken and dropped: a reader catching up on a backlog outruns the disk. Once the ring has been
-// full for longer than a disk stall, the reader takes frames again so that the estimator is fed,
-// and the recording counts what it loses. An accelerometer's FIFO is always read in full.
+// full for longer than a disk stall, or the frames come out of the queue that late, the reader
+// takes whole batches again so that the estimator is fed, and the recording counts what it loses.
+// An accelerometer's FIFO is always read in full.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -14,14 +15,19 @@
 namespace roadload::firmware {
 namespace {
 
-// The kernel's socket queue: `backlog` frames ready at once, each read takes what it is asked for.
+// The kernel's socket queue: `backlog` items ready at once, 1 us apart from `first`; each read
+// takes what it is asked for.
 template <typename T>
 class Backlog final : public io::Source<T> {
  public:
-  explicit Backlog(std::size_t backlog) : left_(backlog) { status_.state = io::SourceState::up; }
+  Backlog(std::size_t backlog, CaptureTime first) : left_(backlog), next_(first) { status_.state = io::SourceState::up; }
   std::size_t read(std::span<T> out, Nanoseconds) override {
     const std::size_t n = std::min(out.size(), left_);
-    for (std::size_t i = 0; i < n; ++i) out[i] = T{};
+    for (std::size_t i = 0; i < n; ++i) {
+      out[i] = T{};
+      out[i].t = next_;
+      next_ += Nanoseconds{1000};
+    }
     left_ -= n;
     status_.items += n;
     return n;
@@ -29,9 +35,11 @@ class Backlog final : public io::Source<T> {
   const io::SourceStatus& status() const override { return status_; }
   const char* name() const override { return "backlog"; }
   std::size_t left() const { return left_; }
+  CaptureTime next() const { return next_; }
 
  private:
   std::size_t left_;
+  CaptureTime next_;
   io::SourceStatus status_;
 };
 
@@ -45,50 +53,66 @@ class ManualClock final : public io::WaitClock {
  public:
   CaptureTime now() const override { return t; }
   void sleep_until(CaptureTime, Nanoseconds) override {}
-  CaptureTime t = capture_time_from_ns(1'000'000'000);
+  CaptureTime t = capture_time_from_ns(10'000'000'000);
+};
+
+// A channel over a backlog of `extra` items more than its ring holds, stamped from `first`.
+template <typename C, typename T>
+struct Fixture {
+  Fixture(std::size_t extra, CaptureTime first, SourceKind kind) {
+    auto source = std::make_unique<Backlog<T>>(ring_capacity<C>() + extra, first);
+    queue = source.get();
+    channel = std::make_unique<C>(std::move(source), kind, "src");
+    channel->begin(false, clock);
+  }
+  void read(int times) {
+    for (int i = 0; i < times; ++i) channel->read_once(stop, clock, Nanoseconds{0});
+  }
+  ManualClock clock;
+  const std::atomic<bool> stop{false};
+  Backlog<T>* queue = nullptr;
+  std::unique_ptr<C> channel;
 };
 
 TEST(ChannelBacklog, FramesWaitInTheKernelWhileTheWritersRingIsFull) {
   constexpr std::size_t ring = ring_capacity<CanChannel>();
-  auto source = std::make_unique<Backlog<CanFrame>>(ring + 5000);
-  Backlog<CanFrame>& backlog = *source;
-  CanChannel channel(std::move(source), SourceKind::can, "can0");
-  ManualClock clock;
-  const std::atomic<bool> stop{false};
-  channel.begin(false, clock);
-  for (int i = 0; i < 200; ++i) channel.read_once(stop, clock, Nanoseconds{0});
-  EXPECT_EQ(channel.to_writer().size(), ring);
-  EXPECT_EQ(backlog.left(), 5000u);
-  EXPECT_EQ(channel.report().ring_dropped, 0u);
-
-  // Full for long enough to be a stalled disk: frames are taken again, and the ring counts.
-  channel.read_once(stop, clock, Nanoseconds{0});
-  clock.t += std::chrono::seconds(1);
-  channel.read_once(stop, clock, Nanoseconds{0});
-  EXPECT_LT(backlog.left(), 5000u);
-  EXPECT_EQ(channel.report().ring_dropped, 5000u - backlog.left());
+  Fixture<CanChannel, CanFrame> f(5000, capture_time_from_ns(9'900'000'000), SourceKind::can);
+  f.read(200);
+  EXPECT_EQ(f.channel->to_writer().size(), ring);
+  EXPECT_EQ(f.queue->left(), 5000u);
+  EXPECT_EQ(f.channel->report().ring_dropped, 0u);
+  // Delivered through the last frame taken, not through the read's start: older ones still wait.
+  EXPECT_EQ(f.channel->delivered_through(), f.queue->next() - Nanoseconds{1000});
 
   // Room again: reads are held to it.
-  CanFrame f;
-  for (int i = 0; i < 10; ++i) channel.to_writer().try_pop(f);
-  const std::size_t before = backlog.left();
-  channel.read_once(stop, clock, Nanoseconds{0});
-  EXPECT_EQ(before - backlog.left(), 10u);
-  EXPECT_EQ(channel.to_writer().size(), ring);
+  CanFrame frame;
+  for (int i = 0; i < 10; ++i) f.channel->to_writer().try_pop(frame);
+  f.read(1);
+  EXPECT_EQ(f.queue->left(), 4990u);
+  EXPECT_EQ(f.channel->to_writer().size(), ring);
+
+  // Full for as long as a stalled disk: whole batches again, and the ring counts what it drops.
+  f.read(1);
+  f.clock.t += std::chrono::seconds(1);
+  f.read(1);
+  EXPECT_LT(f.queue->left(), 4990u);
+  EXPECT_EQ(f.channel->report().ring_dropped, 4990u - f.queue->left());
+}
+
+TEST(ChannelBacklog, FramesThatWaitedLongerThanAStallAreReadInFull) {
+  // The queue's frames were stamped 0.6 s before the reads: the disk is slower than the bus.
+  Fixture<CanChannel, CanFrame> f(5000, capture_time_from_ns(9'400'000'000), SourceKind::can);
+  f.read(200);
+  EXPECT_EQ(f.queue->left(), 0u);
+  EXPECT_EQ(f.channel->report().ring_dropped, 5000u);
 }
 
 TEST(ChannelBacklog, AnAccelerometersFifoIsReadInFullAndTheRingDrops) {
-  constexpr std::size_t ring = ring_capacity<AccelChannel>();
-  auto source = std::make_unique<Backlog<AccelSample>>(ring + 5000);
-  Backlog<AccelSample>& fifo = *source;
-  AccelChannel channel(std::move(source), SourceKind::accelerometer, "accel");
-  ManualClock clock;
-  const std::atomic<bool> stop{false};
-  channel.begin(false, clock);
-  for (int i = 0; i < 200; ++i) channel.read_once(stop, clock, Nanoseconds{0});
-  EXPECT_EQ(fifo.left(), 0u);
-  EXPECT_EQ(channel.to_writer().size(), ring);
-  EXPECT_EQ(channel.report().ring_dropped, 5000u);
+  Fixture<AccelChannel, AccelSample> f(5000, capture_time_from_ns(9'900'000'000), SourceKind::accelerometer);
+  f.read(200);
+  EXPECT_EQ(f.queue->left(), 0u);
+  EXPECT_EQ(f.channel->to_writer().size(), ring_capacity<AccelChannel>());
+  EXPECT_EQ(f.channel->report().ring_dropped, 5000u);
 }
 
 }  // namespace

@@ -93,8 +93,6 @@ TEST(CandumpLine, FormatRoundTripsEveryKind) {
   }
 }
 
-// Lines shaped as candump -L writes them take a short path; a nanosecond stamp sends the same
-// frame through the general one. Both must read every frame alike.
 // The stamp is written by hand; printf's "(%010lld.%06lld)" is the reference, edges included.
 TEST(CandumpLine, StampsAreWrittenAsPrintfWritesThem) {
   std::mt19937_64 rng(7);
@@ -113,6 +111,8 @@ TEST(CandumpLine, StampsAreWrittenAsPrintfWritesThem) {
   }
 }
 
+// Lines shaped as candump -L writes them take a short path; a nanosecond stamp sends the same
+// frame through the general one. Both must read every frame alike.
 TEST(CandumpLine, TheShortAndTheGeneralPathReadTheSameFrames) {
   std::mt19937_64 rng(2026);
   for (int k = 0; k < 2000; ++k) {

@@ -61,6 +61,8 @@ Parsed<std::unique_ptr<SocketCanSender>> SocketCanSender::open(const std::string
 
 SocketCanSender::~SocketCanSender() { ::close(fd_); }
 
+static_assert(SocketCanSender::kBatch <= 1024, "sendmmsg takes at most UIO_MAXIOV (1,024) messages a call");
+
 bool SocketCanSender::send(std::span<const CanFrame> frames) {
   std::array<canfd_frame, kBatch> k;
   std::array<iovec, kBatch> iov;

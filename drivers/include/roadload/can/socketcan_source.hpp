@@ -74,6 +74,7 @@ class SocketCanSource final : public io::Source<CanFrame> {
   std::int64_t next_open_mono_ns_ = 0;
   std::uint32_t kernel_drops_ = 0;  // SO_RXQ_OVFL's running count on this socket
   bool last_full_ = false;          // the last receive filled what it was given: more may wait
+  std::size_t touched_ = 0;         // headers the last recvmmsg filled, to reset before the next
   clock::RealtimeMap map_;
   io::SourceStatus status_;
   SocketCanCounters counters_;

@@ -3,7 +3,7 @@
 // reads batches from the device (or a replay) and pushes each item into two rings, one drained by
 // the writer and one by the estimator, so a slow disk stalls neither the estimator nor acquisition
 // for long: a bus's frames wait in the kernel's queue while the writer's ring is full, at most
-// kDiskStall (read_size). What either ring refuses is counted. The status is published under a mutex
+// about kDiskStall (read_size). What either ring refuses is counted. The status is published under a mutex
 // at most every 20 ms, and at the end, for the status thread; the items themselves pass through the
 // rings, which take no lock.
 #include <array>
@@ -73,6 +73,7 @@ class Channel {
       return true;
     }
     const std::size_t n = source_->read(std::span<T>(batch_).first(want), timeout);
+    note_lag(asked, n);
     pass_on(n, stop, clock);
     // A read that was not cut short by the size asked for returned everything stamped before it
     // began; a full one only what it holds.
@@ -85,11 +86,19 @@ class Channel {
     }
     return source_->status().state != io::SourceState::ended;
   }
-  // On the way out, what the device already holds (frames queued in the socket) is still taken.
+  // On the way out, what the device already holds (frames queued in the socket) is still taken,
+  // as the writer makes room for it.
   void finish(const std::atomic<bool>& stop, const io::WaitClock& clock) {
     for (int i = 0; i < kDrainReads && source_->status().state != io::SourceState::ended; ++i) {
-      const std::size_t n = source_->read(batch_, Nanoseconds{0});
+      const CaptureTime now = clock.now();
+      const std::size_t want = read_size(now);
+      if (want == 0) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        continue;
+      }
+      const std::size_t n = source_->read(std::span<T>(batch_).first(want), Nanoseconds{0});
       if (n == 0) break;
+      note_lag(now, n);
       pass_on(n, stop, clock);
     }
     publish();
@@ -141,24 +150,31 @@ class Channel {
 
   // A bus's frames wait in the kernel's socket queue until the writer's ring has room for them
   // (a reader catching up on a backlog fills the ring faster than the disk empties it), unless the
-  // ring has been full for kDiskStall: then the disk is stalled, and the estimator is fed while
-  // the recording counts what it loses. An accelerometer's FIFO holds a few milliseconds: it is
-  // read in full and what a ring cannot take is dropped.
+  // disk is stalled or slower than the bus: the ring full for kDiskStall, or the frames last read
+  // stamped kDiskStall before the read. Then whole batches are read again, so that the estimator
+  // is fed and the socket's queue (a second or so of a full bus) does not overflow, and the
+  // recording counts what it loses. An accelerometer's FIFO holds a few milliseconds: it is read
+  // in full and what a ring cannot take is dropped.
   std::size_t read_size(CaptureTime now) {
     if constexpr (!std::is_same_v<T, CanFrame>) {
       return kBatch;
     } else {
+      if (replay_ || behind_) return kBatch;
       const std::size_t room = to_writer_.capacity() - to_writer_.size();
-      if (room > 0 || replay_) {
+      if (room > 0) {
         full_since_.reset();
-        return std::min(room > 0 ? room : kBatch, kBatch);
+        return std::min(room, kBatch);
       }
       if (!full_since_) full_since_ = now;
       return now - *full_since_ >= kDiskStall ? kBatch : 0;
     }
   }
+  void note_lag(CaptureTime asked, std::size_t n) {
+    if constexpr (std::is_same_v<T, CanFrame>) behind_ = n > 0 && asked - batch_[n - 1].t >= kDiskStall;
+  }
 
-  // A device cannot wait, so a full ring drops and counts; a replay can, so it waits for room. A
+  // A device cannot wait, so a full ring drops and counts (a bus's thread reads only what the
+  // writer's ring has room for, read_size); a replay can, so it waits for room. A
   // replay waiting on the consumer is not a hung source: it stays heard from.
   void push(SpscRing<T, RingCapacity>& ring, const T& item, const std::atomic<bool>& stop, const io::WaitClock& clock) {
     if (!replay_) {
@@ -210,6 +226,7 @@ class Channel {
   bool feed_estimator_ = true;
   bool replay_ = false;
   std::optional<CaptureTime> full_since_;  // the writer's ring full since (CAN)
+  bool behind_ = false;                    // the last frames read were kDiskStall old (CAN)
   std::thread thread_;
 };
 

@@ -1,7 +1,8 @@
 #pragma once
 // A single-producer single-consumer ring of fixed capacity: one acquisition thread pushes, one
 // consumer (estimator or writer) pops; neither blocks, locks or allocates. A full ring refuses the
-// push and counts it, so a stalled consumer costs samples, reported, and never the producer.
+// push and counts it, so a stalled consumer costs samples, reported, and never blocks the producer
+// (which may choose to wait: Channel::read_size).
 // Each side caches the other's index and reloads it only when the ring looks full or empty, so the
 // two threads touch shared cache lines once per batch rather than once per item.
 #include <array>

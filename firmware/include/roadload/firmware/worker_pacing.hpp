@@ -3,7 +3,6 @@
 // back: the policy both follow over their rings (DaemonSources).
 #include <algorithm>
 #include <cstddef>
-#include <cstdint>
 
 #include "roadload/firmware/daemon.hpp"
 #include "roadload/time.hpp"
@@ -33,28 +32,22 @@ bool any_half_full(DaemonSources& sources, RingOf ring_of) {
   return full;
 }
 
-// How long a worker sleeps after a round that took `took` items, less than a batch, `since` after
-// the round before began: kIdleSleep, less when items come so fast that kIdleSleep of them would
-// fill a quarter of the smallest CAN or accelerometer ring (a replay's too), and kBusySleep while
-// one already is a quarter full. On a truck's bus the rings hold seconds and it is always
-// kIdleSleep; a replay at full speed, 300,000 frames/s, fills a ring in 100 ms. GNSS and weather
-// rings hold their items for seconds by design (kMaxPlaceWait) and come too slowly to fill.
+// How long a worker sleeps after a round that took `took` items, less than a batch: kIdleSleep, or
+// kBusySleep while it is taking items and a CAN or accelerometer ring (a replay's too) is a quarter
+// full, so that none fills while it sleeps. A round that took nothing is held back by the merge's
+// horizon, or nothing came: waking sooner would not help. GNSS and weather rings hold their items
+// for seconds by design (kMaxPlaceWait) and come too slowly to fill.
 template <typename RingOf>
-Nanoseconds idle_sleep(DaemonSources& sources, RingOf ring_of, std::size_t took, Nanoseconds since) {
+Nanoseconds idle_sleep(DaemonSources& sources, RingOf ring_of, std::size_t took) {
+  if (took == 0) return kIdleSleep;
   bool filling = false;
-  std::size_t quarter = SIZE_MAX;
   auto look = [&](auto& c) {
     const auto& ring = ring_of(*c);
-    quarter = std::min(quarter, ring.capacity() / 4);
     filling = filling || ring.size() >= ring.capacity() / 4;
   };
   std::for_each(sources.can.begin(), sources.can.end(), look);
   std::for_each(sources.accel.begin(), sources.accel.end(), look);
-  if (filling) return kBusySleep;
-  if (took == 0 || since <= Nanoseconds{0}) return kIdleSleep;
-  // The rate summed over the rings stands for each one's: a shorter sleep, never a longer one.
-  const double fill_ns = static_cast<double>(quarter) * static_cast<double>(since.count()) / static_cast<double>(took);
-  return std::clamp(Nanoseconds{static_cast<std::int64_t>(std::min(fill_ns, 1e18))}, kBusySleep, kIdleSleep);
+  return filling ? kBusySleep : kIdleSleep;
 }
 
 }  // namespace roadload::firmware
