@@ -1,8 +1,8 @@
 // A bus's frames wait in the kernel's queue while the writer's ring is full, instead of being
 // taken and dropped: a reader catching up on a backlog outruns the disk. Once the ring has been
-// full for longer than a disk stall, or the frames come out of the queue that late, the reader
-// takes whole batches again so that the estimator is fed, and the recording counts what it loses.
-// An accelerometer's FIFO is always read in full.
+// full for longer than a disk stall, the frames come out of the queue that late, or the queue
+// overflowed, the reader takes whole batches again so that the estimator is fed, and the
+// recording counts what it loses. An accelerometer's FIFO is always read in full.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -35,6 +35,7 @@ class Backlog final : public io::Source<T> {
   const io::SourceStatus& status() const override { return status_; }
   const char* name() const override { return "backlog"; }
   std::size_t left() const { return left_; }
+  void overflow(std::uint64_t frames) { status_.dropped += frames; }  // the kernel's queue was full
   CaptureTime next() const { return next_; }
 
  private:
@@ -81,15 +82,15 @@ TEST(ChannelBacklog, FramesWaitInTheKernelWhileTheWritersRingIsFull) {
   EXPECT_EQ(f.channel->to_writer().size(), ring);
   EXPECT_EQ(f.queue->left(), 5000u);
   EXPECT_EQ(f.channel->report().ring_dropped, 0u);
-  // Delivered through the last frame taken, not through the read's start: older ones still wait.
-  EXPECT_EQ(f.channel->delivered_through(), f.queue->next() - Nanoseconds{1000});
 
-  // Room again: reads are held to it.
+  // Room again: reads are held to it, and deliver through the last frame taken, not through the
+  // read's start: older frames still wait in the queue.
   CanFrame frame;
   for (int i = 0; i < 10; ++i) f.channel->to_writer().try_pop(frame);
   f.read(1);
   EXPECT_EQ(f.queue->left(), 4990u);
   EXPECT_EQ(f.channel->to_writer().size(), ring);
+  EXPECT_EQ(f.channel->delivered_through(), f.queue->next() - Nanoseconds{1000});
 
   // Full for as long as a stalled disk: whole batches again, and the ring counts what it drops.
   f.read(1);
@@ -105,6 +106,19 @@ TEST(ChannelBacklog, FramesThatWaitedLongerThanAStallAreReadInFull) {
   f.read(200);
   EXPECT_EQ(f.queue->left(), 0u);
   EXPECT_EQ(f.channel->report().ring_dropped, 5000u);
+}
+
+TEST(ChannelBacklog, AKernelQueueThatOverflowedIsReadInFull) {
+  // A socket buffer smaller than a stall's worth of the bus: the kernel drops before the frames
+  // are old, and holding back would starve the estimate.
+  Fixture<CanChannel, CanFrame> f(5000, capture_time_from_ns(9'900'000'000), SourceKind::can);
+  f.read(200);
+  CanFrame frame;
+  for (int i = 0; i < 10; ++i) f.channel->to_writer().try_pop(frame);
+  f.queue->overflow(100);
+  f.read(2);
+  EXPECT_EQ(f.queue->left(), 5000u - 10 - 1024);
+  EXPECT_EQ(f.channel->report().ring_dropped, 1024u);
 }
 
 TEST(ChannelBacklog, AnAccelerometersFifoIsReadInFullAndTheRingDrops) {

@@ -55,6 +55,7 @@ class Channel {
   void begin(bool feed_estimator, const io::WaitClock& clock) {
     feed_estimator_ = feed_estimator;
     replay_ = is_replay();
+    dropped_seen_ = source_->status().dropped;
     // Nothing is delivered before the first read: a replay's items stamped before start() are
     // still to come, and a live device's socket may hold frames stamped before it.
     delivered_through_ns_.store(to_ns(CaptureTime{}), std::memory_order_relaxed);
@@ -150,8 +151,9 @@ class Channel {
 
   // A bus's frames wait in the kernel's socket queue until the writer's ring has room for them
   // (a reader catching up on a backlog fills the ring faster than the disk empties it), unless the
-  // disk is stalled or slower than the bus: the ring full for kDiskStall, or the frames last read
-  // stamped kDiskStall before the read. Then whole batches are read again, so that the estimator
+  // disk is stalled or slower than the bus: the ring full for kDiskStall, the frames last read
+  // stamped kDiskStall before the read, or the kernel dropping frames (a socket buffer smaller
+  // than kDiskStall of the bus). Then whole batches are read again, so that the estimator
   // is fed and the socket's queue (a second or so of a full bus) does not overflow, and the
   // recording counts what it loses. An accelerometer's FIFO holds a few milliseconds: it is read
   // in full and what a ring cannot take is dropped.
@@ -170,7 +172,11 @@ class Channel {
     }
   }
   void note_lag(CaptureTime asked, std::size_t n) {
-    if constexpr (std::is_same_v<T, CanFrame>) behind_ = n > 0 && asked - batch_[n - 1].t >= kDiskStall;
+    if constexpr (std::is_same_v<T, CanFrame>) {
+      const std::uint64_t dropped = source_->status().dropped;
+      behind_ = (n > 0 && asked - batch_[n - 1].t >= kDiskStall) || dropped != dropped_seen_;
+      dropped_seen_ = dropped;
+    }
   }
 
   // A device cannot wait, so a full ring drops and counts (a bus's thread reads only what the
@@ -227,6 +233,7 @@ class Channel {
   bool replay_ = false;
   std::optional<CaptureTime> full_since_;  // the writer's ring full since (CAN)
   bool behind_ = false;                    // the last frames read were kDiskStall old (CAN)
+  std::uint64_t dropped_seen_ = 0;         // the kernel's drops as of the last read (CAN)
   std::thread thread_;
 };
 
