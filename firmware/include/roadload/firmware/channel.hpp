@@ -3,9 +3,9 @@
 // reads batches from the device (or a replay) and pushes each item into two rings, one drained by
 // the writer and one by the estimator, so a slow disk stalls neither the estimator nor acquisition
 // for long: a bus's frames wait in the kernel's queue while the writer's ring is full, at most
-// about kDiskStall (read_size). What either ring refuses is counted. The status is published under a mutex
-// at most every 20 ms, and at the end, for the status thread; the items themselves pass through the
-// rings, which take no lock.
+// about kDiskStall (read_size). What either ring refuses is counted. The status is published under
+// a mutex at most every 20 ms, and at the end, for the status thread; the items themselves pass
+// through the rings, which take no lock.
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -68,18 +68,14 @@ class Channel {
     // full batches makes thousands of reads a second.
     const CaptureTime asked = clock.now();
     heard_ns_.store(to_ns(asked), std::memory_order_release);
-    const std::size_t want = read_size(asked);
-    if (want == 0) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-      return true;
-    }
-    const std::size_t n = source_->read(std::span<T>(batch_).first(want), timeout);
-    note_lag(asked, n);
+    const auto got = read_what_fits(asked, timeout);
+    if (!got) return true;
+    const std::size_t n = got->n;
     pass_on(n, stop, clock);
     // A read that was not cut short by the size asked for returned everything stamped before it
     // began; a full one only what it holds.
     CaptureTime through = n > 0 ? batch_[n - 1].t : asked;
-    if (n < want && asked > through) through = asked;
+    if (!got->full && asked > through) through = asked;
     delivered_through_ns_.store(to_ns(through), std::memory_order_release);
     if (asked - published_at_ >= kPublishPeriod) {
       publish();
@@ -91,16 +87,10 @@ class Channel {
   // as the writer makes room for it.
   void finish(const std::atomic<bool>& stop, const io::WaitClock& clock) {
     for (int i = 0; i < kDrainReads && source_->status().state != io::SourceState::ended; ++i) {
-      const CaptureTime now = clock.now();
-      const std::size_t want = read_size(now);
-      if (want == 0) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        continue;
-      }
-      const std::size_t n = source_->read(std::span<T>(batch_).first(want), Nanoseconds{0});
-      if (n == 0) break;
-      note_lag(now, n);
-      pass_on(n, stop, clock);
+      const auto got = read_what_fits(clock.now(), Nanoseconds{0});
+      if (!got) continue;
+      if (got->n == 0) break;
+      pass_on(got->n, stop, clock);
     }
     publish();
     delivered_through_ns_.store(to_ns(CaptureTime::max()), std::memory_order_release);
@@ -177,6 +167,22 @@ class Channel {
       behind_ = (n > 0 && asked - batch_[n - 1].t >= kDiskStall) || dropped != dropped_seen_;
       dropped_seen_ = dropped;
     }
+  }
+  // One read of as many items as read_size allows into batch_, or, when none fit, a 1 ms wait for
+  // room instead (nullopt). `full`: the read filled what it asked for, so more may be waiting.
+  struct Read {
+    std::size_t n;
+    bool full;
+  };
+  std::optional<Read> read_what_fits(CaptureTime now, Nanoseconds timeout) {
+    const std::size_t want = read_size(now);
+    if (want == 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      return std::nullopt;
+    }
+    const std::size_t n = source_->read(std::span<T>(batch_).first(want), timeout);
+    note_lag(now, n);
+    return Read{n, n == want};
   }
 
   // A device cannot wait, so a full ring drops and counts (a bus's thread reads only what the
