@@ -181,6 +181,8 @@ CASES = [
      ["decode", "{rec}", "{rec}/can.log"], 64, r"can\.log: not a recording folder"),
     ("segment number 0", as_segment(0), ANALYZE, 65,
      r"meta\.toml:\d+: segment: expected a segment number from 1"),
+    ("decode of a folder without can.log", lambda rec: (rec / "can.log").unlink(), ["decode", "{rec}"], 66,
+     r"without-can-log: no can\.log in the folder"),
     ("analyze without --out", None, ["analyze", "{rec}"], 64, r"--out is required"),
     ("analyze --mass not a number", None, ANALYZE + ["--mass", "heavy"], 64, r"--mass: 'heavy' is not a finite number"),
     ("analyze --mass 1e9 kg", None, ANALYZE + ["--mass", "1e9"], 64, r"--mass: '1e9' is not a finite number in"),

@@ -222,6 +222,15 @@ std::optional<fs::path> find_stream(const fs::path& dir, const char* name) {
   return std::nullopt;
 }
 
+std::string no_streams(unsigned streams) {
+  if ((streams & kAllStreams) == kAllStreams) return "not a recording: no can.log or sensor CSV";
+  std::string names;
+  for (unsigned bit : kStreamBits) {
+    if ((streams & bit) != 0) names += (names.empty() ? "" : " or ") + std::string(stream_file(bit));
+  }
+  return "no " + names;
+}
+
 bool has_stream(const fs::path& dir, unsigned bit) {
   return find_stream(dir, stream_file(bit)).has_value() || (bit == kAccelStream && !find_accel_flac(dir).empty());
 }
@@ -313,7 +322,7 @@ Parsed<RecordingReader> RecordingReader::open(const std::string& path, unsigned 
     if (!s) return s.error();
     r.streams_.push_back(std::move(s.value()));
   }
-  if (r.streams_.empty()) return ParseError{path, 0, "", "not a recording: no can.log or sensor CSV in the folder"};
+  if (r.streams_.empty()) return ParseError{path, 0, "", no_streams(streams) + " in the folder"};
   return r;
 }
 
@@ -345,6 +354,13 @@ const Record* RecordingReader::next() {
   has_taken_ = best.has_value();
   taken_ = best.value_or(0);
   return has_taken_ ? &heads_[taken_] : nullptr;
+}
+
+bool RecordingReader::next_into(Record& out) {
+  if (streams_.size() == 1) return streams_[0]->next(out, errors_);
+  const Record* r = next();
+  if (r != nullptr) out = *r;
+  return r != nullptr;
 }
 
 }  // namespace roadload::recording

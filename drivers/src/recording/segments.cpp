@@ -145,7 +145,7 @@ Parsed<RecordingReader> RecordingReader::open_drive(std::span<const std::string>
     const bool any = std::any_of(folders.begin(), folders.end(), [&](const fs::path& d) { return has_stream(d, bit); });
     if (any) r.streams_.push_back(std::make_unique<ChainStream>(bit, folders));
   }
-  if (r.streams_.empty()) return ParseError{segments[0], 0, "", "not a recording: no can.log or sensor CSV in any segment"};
+  if (r.streams_.empty()) return ParseError{segments[0], 0, "", no_streams(streams) + " in any segment"};
   return r;
 }
 

@@ -23,9 +23,13 @@ class InterfaceTable {
   // The interface found or added last ("" while the table is empty), and its index.
   std::string_view last() const { return count_ > 0 ? std::string_view(names_[last_]) : std::string_view(); }
   std::uint8_t last_index() const { return last_; }
+  // The last name's first eight bytes, the first in the lowest byte, zero-padded: most names are
+  // compared in one load.
+  std::uint64_t last_word() const { return words_[last_]; }
 
  private:
   std::array<std::string, kMax> names_;
+  std::array<std::uint64_t, kMax> words_{};
   std::size_t count_ = 0;
   std::uint8_t last_ = 0;  // most logs repeat one interface line after line
 };

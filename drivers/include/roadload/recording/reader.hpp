@@ -106,6 +106,8 @@ Parsed<Metadata> read_metadata(const std::filesystem::path& dir);
 inline constexpr unsigned kStreamBits[] = {kCanStream, kAccelStream, kGnssStream, kWeatherStream};
 // A stream's file name in a recording folder, and the stream read from it.
 const char* stream_file(unsigned bit);
+// What a folder lacks when it holds none of `streams`, e.g. "no can.log".
+std::string no_streams(unsigned streams);
 // The file that holds stream file `name` in `dir`: `name` itself or, compressed, `name.zst`; nullopt
 // when neither exists. A plain file is read first when a folder holds both (a copy decompressed
 // beside its original).
@@ -133,6 +135,8 @@ class RecordingReader {
 
   // Next record across all streams, earliest stamp first (ties: can, accel, gnss, weather).
   const Record* next();
+  // The next record into `out`; false at the end. One stream parses straight into it.
+  bool next_into(Record& out);
 
   const Metadata& metadata() const { return meta_; }
   bool has_metadata() const { return has_meta_; }
