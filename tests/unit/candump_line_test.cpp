@@ -142,6 +142,28 @@ TEST(CandumpLine, TheShortAndTheGeneralPathReadTheSameFrames) {
   }
 }
 
+// The short path compares the line's interface with the last one's name in one load: names of
+// every length, and names that begin another, are each read as themselves.
+TEST(CandumpLine, InterfaceNamesOfEveryLengthAreToldApart) {
+  const std::vector<std::string> names = {"c", "can1", "can10", "vcan0123", "vcan01234", "abcdefghijklmno"};
+  InterfaceTable ifaces;
+  std::mt19937 rng(7);
+  for (int k = 0; k < 1000; ++k) {
+    const std::string& name = names[rng() % names.size()];
+    CanFrame f;
+    f.id = 0x18FEF100u | (static_cast<std::uint32_t>(k) & 0xFF);
+    f.len = 8;
+    char buf[kMaxLineChars];
+    const std::size_t n = format_candump_line(f, name, buf);
+    CanFrame g;
+    LineResult result;
+    ASSERT_FALSE(parse_candump_line(std::string_view(buf, n), ifaces, g, result)) << buf;
+    EXPECT_EQ(ifaces.name(g.iface), name) << buf;
+    EXPECT_EQ(g.id, f.id) << buf;
+  }
+  EXPECT_EQ(ifaces.size(), names.size());
+}
+
 // Every byte value at every place of a frame line: what is read as a frame must be that frame
 // (it formats back to the line, letters' case aside); anything else is an error or ignored.
 TEST(CandumpLine, NoAlteredLineIsReadAsAnotherFrame) {
