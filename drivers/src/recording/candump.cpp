@@ -96,8 +96,9 @@ std::uint64_t load8(const char* p) {
 }
 
 // Two characters (load2) to the byte they spell in hex, either case, or -1. A look-up per byte
-// took the fast path's hex from 48 instructions per eight digits to about 16.
-constexpr auto kHexPairs = [] {
+// took the fast path's hex from 48 instructions per eight digits to about 16. Filled at start-up:
+// as a constant expression its 65,536 entries pass clang's evaluation step limit.
+const auto kHexPairs = [] {
   std::array<std::int16_t, 65536> t{};
   for (std::size_t i = 0; i < t.size(); ++i) {
     const int hi = kHexTable[i & 0xFF], lo = kHexTable[i >> 8];
@@ -107,7 +108,7 @@ constexpr auto kHexPairs = [] {
 }();
 
 // Two characters (load2) to the number 0-99 their decimal digits make, or -1.
-constexpr auto kDecimalPairs = [] {
+const auto kDecimalPairs = [] {
   std::array<std::int8_t, 65536> t{};
   for (std::size_t i = 0; i < t.size(); ++i) {
     const std::size_t hi = i & 0xFF, lo = i >> 8;

@@ -226,9 +226,11 @@ std::string no_streams(unsigned streams) {
   if ((streams & kAllStreams) == kAllStreams) return "not a recording: no can.log or sensor CSV";
   std::string names;
   for (unsigned bit : kStreamBits) {
-    if ((streams & bit) != 0) names += (names.empty() ? "" : " or ") + std::string(stream_file(bit));
+    if ((streams & bit) == 0) continue;
+    names += names.empty() ? "" : " or ";
+    names += bit == kAccelStream ? "accel.csv or accel-ID.flac" : stream_file(bit);
   }
-  return "no " + names;
+  return names.empty() ? "no stream asked for" : "no " + names;
 }
 
 bool has_stream(const fs::path& dir, unsigned bit) {
