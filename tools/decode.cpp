@@ -156,7 +156,7 @@ void print_summary(const KindCounts& k, const recording::RecordingReader& rec, c
 int decode(const DecodeOptions& o) {
   j1939::Database db;
   if (auto rc = load_definitions("decode", o.dbcs, db)) return *rc;
-  // Only the CAN stream: skipping the sensors' records still cost reading them, 33 times the time.
+  // Only the CAN stream: the sensors' streams would be read in full only to be skipped.
   auto rec = recording::RecordingReader::open_drive(o.inputs, recording::kCanStream);
   if (!rec) {
     std::fprintf(stderr, "roadload decode: %s\n", rec.error().to_string().c_str());

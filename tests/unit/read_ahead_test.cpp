@@ -9,6 +9,7 @@
 
 #include "roadload/recording/read_ahead.hpp"
 #include "roadload/recording/reader.hpp"
+#include "scratch.hpp"
 
 namespace roadload::recording {
 namespace {
@@ -18,12 +19,9 @@ namespace fs = std::filesystem;
 class ReadAheadFolder : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("roadload-ahead-" + std::to_string(::getpid()) + "-" + testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
+    dir_ = test::scratch_path("roadload-ahead", std::string("-") + testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;
 };
 

@@ -95,9 +95,9 @@ std::uint64_t load8(const char* p) {
   return v;
 }
 
-// Two characters (load2) to the byte they spell in hex, either case, or -1. A look-up per byte
-// took the fast path's hex from 48 instructions per eight digits to about 16. Filled at start-up:
-// as a constant expression its 65,536 entries pass clang's evaluation step limit.
+// Two characters (load2) to the byte they spell in hex, either case, or -1: one load a byte.
+// Filled at start-up: as a constant expression its 65,536 entries pass clang's evaluation step
+// limit.
 const auto kHexPairs = [] {
   std::array<std::int16_t, 65536> t{};
   for (std::size_t i = 0; i < t.size(); ++i) {
@@ -133,9 +133,9 @@ std::uint64_t decimal_pairs(const char* p, int& bad) {
 }
 
 // kBytes (at most 8) bytes in hex at p, the first in the lowest byte of `bytes`; negative `bad`
-// if any digit is not hex. Gathered in a register and stored by the caller in one move: byte
-// stores into the frame inside the loop kept `bad` in memory (a byte store may alias anything),
-// a dependency through the stack on every byte that made this loop half a decode's time.
+// if any digit is not hex. Gathered in a register for the caller to store in one move: a byte
+// store into the frame may alias anything, and inside the loop it would keep `bad` in memory,
+// each pair waiting on the last one's store.
 struct HexBytes {
   std::uint64_t bytes;
   int bad;
@@ -144,8 +144,7 @@ template <std::size_t kBytes>
 HexBytes hex_bytes(const char* p) {
   static_assert(kBytes <= 8);
   HexBytes h{0, 0};
-  // Unrolled, the digits are independent loads; as a loop, `bad` was spilled and each pair waited
-  // on the last one's store.
+  // Unrolled, the pairs are independent loads with nothing spilled between them.
 #pragma GCC unroll 8
   for (std::size_t i = 0; i < kBytes; ++i) {
     const int v = kHexPairs[load2(p + 2 * i)];
