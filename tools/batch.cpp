@@ -23,18 +23,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const HelpText kHelp{"usage: roadload batch MANIFEST --db URL [--scheduler ADDRESS | --workers N] [-o DIR]",
-                     "Analyses every drive of MANIFEST on Dask distributed, each task running `roadload analyze` in-process\n"
-                     "into DIR/<drive>/ and adding the results to the fleet database (`roadload collect`). MANIFEST is a CSV\n"
-                     "with the header recording,vehicle,route: one drive a row, its segments joined by '+', an empty\n"
-                     "vehicle or route for the recording's meta.toml or the road its GNSS traces; an optional column name\n"
-                     "names the drive's folder, and a column named after an option of analyze (mass, cda, engine_losses, ...)\n"
-                     "gives it per drive. Relative paths are the manifest's folder's. Every worker must read the recordings\n"
-                     "and write DIR at the same paths (a shared file system on a cluster).",
-                     "Progress (drives done, failed, time left) and each failure with its error go to standard error. Exit\n"
-                     "status: 0 when every drive was analysed and collected; 1 when one failed (the others are done);\n"
-                     "65 when some input was malformed; 69 when the scheduler cannot be reached. docs/python.md tells how\n"
-                     "to start a scheduler and workers on several machines."};
+const HelpText kBatchHelp{"usage: roadload batch MANIFEST --db URL [--scheduler ADDRESS | --workers N] [-o DIR]",
+                          "Analyses every drive of MANIFEST on Dask distributed, each task running `roadload analyze` in-process\n"
+                          "into DIR/<drive>/ and adding the results to the fleet database (`roadload collect`). MANIFEST is a CSV\n"
+                          "with the header recording,vehicle,route: one drive a row, its segments joined by '+', an empty\n"
+                          "vehicle or route for the recording's meta.toml or the road its GNSS traces; an optional column name\n"
+                          "names the drive's folder, and a column named after an option of analyze (mass, cda, engine_losses, ...)\n"
+                          "gives it per drive. Relative paths are the manifest's folder's. Every worker must read the recordings\n"
+                          "and write DIR at the same paths (a shared file system on a cluster).",
+                          "Progress (drives done, failed, time left) and each failure with its error go to standard error. Exit\n"
+                          "status: 0 when every drive was analysed and collected; 1 when one failed (the others are done);\n"
+                          "65 when some input was malformed; 69 when the scheduler cannot be reached. docs/python.md tells how\n"
+                          "to start a scheduler and workers on several machines."};
 
 struct BatchOptions {
   std::string manifest, db, scheduler, out = "batch-results";
@@ -80,7 +80,7 @@ int run_batch(const BatchOptions& o) {
 Run add_batch(CLI::App& roadload) {
   auto o = std::make_shared<BatchOptions>();
   CLI::App& cmd = *roadload.add_subcommand("batch", "analyse many recordings on Dask distributed into the fleet database");
-  describe(cmd, kHelp);
+  describe(cmd, kBatchHelp);
   cmd.add_option("MANIFEST", o->manifest, "CSV: recording,vehicle,route[,name][,option...]")->required();
   cmd.add_option("--db", o->db, "the fleet database: an SQLite file, sqlite:///path or postgresql://...")
       ->type_name("URL")

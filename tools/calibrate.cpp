@@ -22,7 +22,7 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{
+const HelpText kCalibrateHelp{
     "usage: roadload calibrate RECORDING... --out FILE [options]\n"
     "       roadload calibrate --aero SLOW FAST [SLOW FAST ...] --route ROUTE [--route ROUTE ...]\n"
     "                          --engine-losses FILE [--out FILE]\n"
@@ -186,7 +186,7 @@ Run add_calibrate(CLI::App& roadload) {
   auto o = std::make_shared<CalibrateOptions>();
   CLI::App& cmd = *roadload.add_subcommand(
       "calibrate", "measure the engine's losses by engine speed standing in neutral (replaces EEC3's whole percent)");
-  describe(cmd, kHelp);
+  describe(cmd, kCalibrateHelp);
   add_options(cmd, *o);
   return [o] { return calibrate(*o); };
 }

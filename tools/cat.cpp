@@ -24,13 +24,13 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{"usage: roadload cat STREAM RECORDING... [-o FILE]",
-                     "Writes one stream of a recording as text: can.log (candump -L), accel.csv, gnss.csv or\n"
-                     "weather.csv (docs/recording-format.md), whether the folder holds it plain, as zstd frames\n"
-                     "or, for the accelerometers, as accel-ID.flac files. Several recordings: the segments of one\n"
-                     "roadloadd run, written as one drive.",
-                     "Malformed lines or damaged frames are reported on standard error with file, line and field;\n"
-                     "the rest is written and the exit status is 65."};
+const HelpText kCatHelp{"usage: roadload cat STREAM RECORDING... [-o FILE]",
+                        "Writes one stream of a recording as text: can.log (candump -L), accel.csv, gnss.csv or\n"
+                        "weather.csv (docs/recording-format.md), whether the folder holds it plain, as zstd frames\n"
+                        "or, for the accelerometers, as accel-ID.flac files. Several recordings: the segments of one\n"
+                        "roadloadd run, written as one drive.",
+                        "Malformed lines or damaged frames are reported on standard error with file, line and field;\n"
+                        "the rest is written and the exit status is 65."};
 
 struct CatOptions {
   std::string stream;
@@ -104,7 +104,7 @@ int cat(const CatOptions& o) {
 Run add_cat(CLI::App& roadload) {
   auto o = std::make_shared<CatOptions>();
   CLI::App& cmd = *roadload.add_subcommand("cat", "write one stream of a recording as text, however it is stored");
-  describe(cmd, kHelp);
+  describe(cmd, kCatHelp);
   cmd.add_option("STREAM", o->stream, "can.log, accel.csv, gnss.csv or weather.csv")->required();
   cmd.add_option("RECORDING", o->inputs, "a recording folder; several: the segments of one roadloadd run,\nread as one drive")
       ->required();

@@ -22,14 +22,14 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{"usage: roadload decode [options] <recording-folder | can.log>...",
-                     "Prints the J1939 signals of every message the definitions know, one line per message.",
-                     "A summary of frame kinds, skipped lines, transport counters and the frames that the J1939 cadence\n"
-                     "judges lost or repeated (the count roadloadd's status gives, over the same stamps) goes to\n"
-                     "standard error.\n"
-                     "Malformed lines are reported with file, line and field and make the exit status 65.\n"
-                     "Of a recording folder only can.log is read. The log is read and parsed on a second thread, a batch\n"
-                     "ahead of the decoding."};
+const HelpText kDecodeHelp{"usage: roadload decode [options] <recording-folder | can.log>...",
+                           "Prints the J1939 signals of every message the definitions know, one line per message.",
+                           "A summary of frame kinds, skipped lines, transport counters and the frames that the J1939 cadence\n"
+                           "judges lost or repeated (the count roadloadd's status gives, over the same stamps) goes to\n"
+                           "standard error.\n"
+                           "Malformed lines are reported with file, line and field and make the exit status 65.\n"
+                           "Of a recording folder only can.log is read. The log is read and parsed on a second thread, a batch\n"
+                           "ahead of the decoding."};
 
 struct DecodeOptions {
   bool pgn_stats = false;
@@ -206,7 +206,7 @@ Run add_decode(CLI::App& roadload) {
   auto o = std::make_shared<DecodeOptions>();
   CLI::App& cmd = *roadload.add_subcommand("decode",
                                            "print decoded J1939 signals, transport messages or per-PGN statistics of a recording");
-  describe(cmd, kHelp);
+  describe(cmd, kDecodeHelp);
   cmd.add_option("INPUT", o->inputs,
                  "a recording folder or a candump -L log; several: the segments of\none roadloadd run, read as one drive")
       ->required();

@@ -24,7 +24,7 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{
+const HelpText kGapHelp{
     "usage: roadload gap --real RECORDING [--real RECORDING ...] [options]\n"
     "       roadload gap bench [--cases N] [--seed S] [--jobs N]\n"
     "       roadload gap tables [--jobs N]",
@@ -194,7 +194,7 @@ Run add_gap(CLI::App& roadload) {
   o->options.jobs = default_jobs();
   CLI::App& cmd = *roadload.add_subcommand(
       "gap", "diagnose the sim-to-real gap: where it lies, which unmodelled effect causes it, how far it shrinks");
-  describe(cmd, kHelp);
+  describe(cmd, kGapHelp);
   add_runs(cmd, *o);
   add_outputs(cmd, *o);
   cmd.require_subcommand(0, 1);

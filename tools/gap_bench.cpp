@@ -19,7 +19,7 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{
+const HelpText kGapBenchHelp{
     "usage: roadload gap bench [--cases N] [--seed S] [--effects A,B,...] [--days FILE] [--road NAME]\n"
     "                          [--model-truck] [--jobs N]",
     "Simulates test days of a truck (each on one road: two cruise runs and a neutral coast-down, as\n"
@@ -229,7 +229,7 @@ Run add_gap_bench(CLI::App& gap) {
   auto o = std::make_shared<BenchOptions>();
   o->options.jobs = default_jobs();
   CLI::App& cmd = *gap.add_subcommand("bench", "the diagnosis tried blind on simulated drives with hidden effects");
-  describe(cmd, kHelp);
+  describe(cmd, kGapBenchHelp);
   add_options(cmd, *o);
   return [o] { return run_bench(*o); };
 }

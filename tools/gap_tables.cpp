@@ -18,16 +18,16 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{"usage: roadload gap tables [--json FILE] [--jobs N]",
-                     "The seed report's Tables 6.5 and 6.6 (mean suspension power on the Mainline's bituminous and\n"
-                     "concrete cells at 30 mph, on TH 66 and TH 10 at 55 mph) against a simulation that knows only\n"
-                     "each pavement's IRI. Each candidate effect that acts on the vertical dynamics (joint-faulting,\n"
-                     "slab-curl, suspension-friction, tire-pressure) is fitted to the Mainline's concrete-to-bituminous\n"
-                     "ratio and judged on the highways' ratio, which it never saw; the best is added and the table\n"
-                     "printed before and after. The simulated figure is the simulator's own damper dissipation.\n"
-                     "Then each nominal parameter of the truck (mass, CdA, engine friction, driveline efficiency) is\n"
-                     "moved one sigma of its vehicle file's spread; for those that move the suspension power, the\n"
-                     "choice is made again at both ends of their 90 % interval."};
+const HelpText kGapTablesHelp{"usage: roadload gap tables [--json FILE] [--jobs N]",
+                              "The seed report's Tables 6.5 and 6.6 (mean suspension power on the Mainline's bituminous and\n"
+                              "concrete cells at 30 mph, on TH 66 and TH 10 at 55 mph) against a simulation that knows only\n"
+                              "each pavement's IRI. Each candidate effect that acts on the vertical dynamics (joint-faulting,\n"
+                              "slab-curl, suspension-friction, tire-pressure) is fitted to the Mainline's concrete-to-bituminous\n"
+                              "ratio and judged on the highways' ratio, which it never saw; the best is added and the table\n"
+                              "printed before and after. The simulated figure is the simulator's own damper dissipation.\n"
+                              "Then each nominal parameter of the truck (mass, CdA, engine friction, driveline efficiency) is\n"
+                              "moved one sigma of its vehicle file's spread; for those that move the suspension power, the\n"
+                              "choice is made again at both ends of their 90 % interval."};
 
 struct TablesOptions {
   std::string json;
@@ -171,7 +171,7 @@ int run_tables(const TablesOptions& o) {
 Run add_gap_tables(CLI::App& gap) {
   auto o = std::make_shared<TablesOptions>();
   CLI::App& cmd = *gap.add_subcommand("tables", "the seed report's suspension-power tables against the simulator");
-  describe(cmd, kHelp);
+  describe(cmd, kGapTablesHelp);
   cmd.add_option("--json", o->json, "write the comparison as JSON")->type_name("FILE");
   cmd.add_option("--jobs", o->jobs, "simulations at once (default: the number of CPUs)")->type_name("N")->transform(whole_in(1, 256));
   return [o] { return run_tables(*o); };

@@ -27,21 +27,21 @@ namespace {
 
 constexpr double kDefaultSurveySigma_m = 0.02;  // a levelled or RTK survey: about 2 cm in height
 
-const HelpText kHelp{"usage: roadload grade --route ROUTE [RECORDING...] --out FILE [options]",
-                     "Builds the route's grade profile per distance bin, with its standard error. Grade is the force\n"
-                     "balance's largest error: 0.1 % of grade is 356 N on the 36 t truck, 0.001 in CRR.\n\n"
-                     "Without recordings: from the route's survey elevations, a central difference over +-BASE, with\n"
-                     "the survey's height error (--survey-sigma) at both ends.\n"
-                     "With recordings: from their GNSS heights (seed report, Chapter 5). Each fix is placed on the\n"
-                     "route; fixes off it, beyond its ends or without a 3-D fix are counted and dropped. A recording\n"
-                     "is cut into passes where the travel along the route reverses. Each pass is averaged per bin,\n"
-                     "then the passes; grade is the least-squares slope over +-BASE and its standard error the\n"
-                     "scatter of the passes' slopes over sqrt(passes). A bin with fewer than --min-passes passes has\n"
-                     "no grade (an empty field), never a guess. At 30 mph a code-DGPS pass gives about 0.25 % per bin:\n"
-                     "six to ten passes, in both directions, reach 0.1 %. Each bin is compared with the survey on\n"
-                     "standard output, and summarised on standard error."};
+const HelpText kGradeHelp{"usage: roadload grade --route ROUTE [RECORDING...] --out FILE [options]",
+                          "Builds the route's grade profile per distance bin, with its standard error. Grade is the force\n"
+                          "balance's largest error: 0.1 % of grade is 356 N on the 36 t truck, 0.001 in CRR.\n\n"
+                          "Without recordings: from the route's survey elevations, a central difference over +-BASE, with\n"
+                          "the survey's height error (--survey-sigma) at both ends.\n"
+                          "With recordings: from their GNSS heights (seed report, Chapter 5). Each fix is placed on the\n"
+                          "route; fixes off it, beyond its ends or without a 3-D fix are counted and dropped. A recording\n"
+                          "is cut into passes where the travel along the route reverses. Each pass is averaged per bin,\n"
+                          "then the passes; grade is the least-squares slope over +-BASE and its standard error the\n"
+                          "scatter of the passes' slopes over sqrt(passes). A bin with fewer than --min-passes passes has\n"
+                          "no grade (an empty field), never a guess. At 30 mph a code-DGPS pass gives about 0.25 % per bin:\n"
+                          "six to ten passes, in both directions, reach 0.1 %. Each bin is compared with the survey on\n"
+                          "standard output, and summarised on standard error."};
 
-struct Options {
+struct GradeOptions {
   std::string route_name, out;
   TrackOptions track;
   std::vector<std::string> recordings;
@@ -50,7 +50,7 @@ struct Options {
   bool quiet = false;
 };
 
-void add_options(CLI::App& cmd, Options& o) {
+void add_options(CLI::App& cmd, GradeOptions& o) {
   cmd.add_option("RECORDING", o.recordings, "recording folders whose GNSS heights give the grade (none: the survey)");
   cmd.add_option("--route", o.route_name, "route file or built-in route name (config/routes): polyline and\nsurvey")
       ->type_name("R")
@@ -133,7 +133,7 @@ void compare(const GradeProfile& gnss, const GradeProfile& survey, bool quiet) {
   }
 }
 
-int grade(const Options& o) {
+int grade(const GradeOptions& o) {
   if (o.cfg.base_m < o.cfg.bin_m) return usage_error("grade", "--base must be at least --bin: a slope needs three bins");
   const auto loaded = load_route("grade", o.route_name);
   if (const int* rc = std::get_if<int>(&loaded)) return *rc;
@@ -174,10 +174,10 @@ int grade(const Options& o) {
 }  // namespace
 
 Run add_grade(CLI::App& roadload) {
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<GradeOptions>();
   CLI::App& cmd = *roadload.add_subcommand("grade",
                                            "build a route's grade profile with its uncertainty from its survey or GNSS passes");
-  describe(cmd, kHelp);
+  describe(cmd, kGradeHelp);
   add_options(cmd, *o);
   return [o] { return grade(*o); };
 }

@@ -20,15 +20,15 @@ constexpr Run (*kCommands[])(CLI::App&) = {add_decode,  add_analyze, add_batch, 
                                            add_collect, add_gap,     add_network, add_grade,     add_psd,
                                            add_replay,  add_report,  add_route,   add_simulate,  add_vehicle};
 
-const HelpText kHelp{"usage: roadload <command> [options]",
-                     "Measures what a heavy truck spends on rolling resistance, pavement by pavement.",
-                     "'roadload <command> --help' describes a command; every command takes --version."};
+const HelpText kRoadloadHelp{"usage: roadload <command> [options]",
+                             "Measures what a heavy truck spends on rolling resistance, pavement by pavement.",
+                             "'roadload <command> --help' describes a command; every command takes --version."};
 
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app("", "roadload");
-  describe(app, kHelp);
+  describe(app, kRoadloadHelp);
   app.require_subcommand(1);
   std::vector<std::pair<const CLI::App*, Run>> commands;
   for (const auto add : kCommands) {

@@ -17,25 +17,25 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{"usage: roadload network --db URL -o DIR [options]",
-                     "Estimates each section's CRR from every drive in the fleet database, with a 90 % interval,\n"
-                     "through one model: a drive's CRR of a section is the section's CRR plus what the drive shares\n"
-                     "over all its sections (its truck's tires, its truck's drag error growing with speed squared,\n"
-                     "the drive's own torque and weather errors) plus the cell's own error (docs/fleet.md).\n"
-                     "A cell the analysis withheld for its width is weighed; one withheld because the model did\n"
-                     "not fit the drive is not evidence, and is counted by its reason.\n\n"
-                     "Writes into DIR: network.csv (per section: CRR and interval, drives and trucks behind it,\n"
-                     "dynamic rolling resistance, fuel per pass and per year), network-bands.csv (per section and\n"
-                     "speed band), trucks.csv (each truck's own CRR offset), network.geojson, network.json (the\n"
-                     "model's spreads with intervals) and network.html, a self-contained map."};
+const HelpText kNetworkHelp{"usage: roadload network --db URL -o DIR [options]",
+                            "Estimates each section's CRR from every drive in the fleet database, with a 90 % interval,\n"
+                            "through one model: a drive's CRR of a section is the section's CRR plus what the drive shares\n"
+                            "over all its sections (its truck's tires, its truck's drag error growing with speed squared,\n"
+                            "the drive's own torque and weather errors) plus the cell's own error (docs/fleet.md).\n"
+                            "A cell the analysis withheld for its width is weighed; one withheld because the model did\n"
+                            "not fit the drive is not evidence, and is counted by its reason.\n\n"
+                            "Writes into DIR: network.csv (per section: CRR and interval, drives and trucks behind it,\n"
+                            "dynamic rolling resistance, fuel per pass and per year), network-bands.csv (per section and\n"
+                            "speed band), trucks.csv (each truck's own CRR offset), network.geojson, network.json (the\n"
+                            "model's spreads with intervals) and network.html, a self-contained map."};
 
-struct Options {
+struct NetworkOptions {
   std::string db, out;
   fleet::NetworkOptions network;
   double band_kmh = 25;
 };
 
-int network(Options o) {
+int network(NetworkOptions o) {
   o.network.speed_band_mps = o.band_kmh / 3.6;
   try {
     const fleet::NetworkView view = fleet::network_view(o.db, o.network);
@@ -63,9 +63,9 @@ int network(Options o) {
 }  // namespace
 
 Run add_network(CLI::App& roadload) {
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<NetworkOptions>();
   CLI::App& cmd = *roadload.add_subcommand("network", "estimate every section's CRR across a fleet's drives (map, CSV, GeoJSON)");
-  describe(cmd, kHelp);
+  describe(cmd, kNetworkHelp);
   cmd.add_option("--db", o->db, "database: a file path, sqlite:///PATH or postgresql://...")->type_name("URL")->required();
   cmd.add_option("-o,--out", o->out, "folder to write the outputs into")->type_name("DIR")->required();
   cmd.add_option("--trucks-per-day", o->network.trucks_per_day,

@@ -19,12 +19,12 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{"usage: roadload psd <recording | file.csv> [options]",
-                     "Welch power spectral density, one-sided, per Hz: Hann window (periodic), segments of N samples\n"
-                     "every N - M samples, each segment's mean removed, averaged. The numbers are those of\n"
-                     "scipy.signal.welch(x, fs, window='hann', nperseg=N, noverlap=M) (equal to 1e-9, tested).\n"
-                     "A recording gives one column per accelerometer and axis, in (m/s^2)^2/Hz, each at the sensor's\n"
-                     "rate from meta.toml; a CSV file gives the PSD of one column."};
+const HelpText kPsdHelp{"usage: roadload psd <recording | file.csv> [options]",
+                        "Welch power spectral density, one-sided, per Hz: Hann window (periodic), segments of N samples\n"
+                        "every N - M samples, each segment's mean removed, averaged. The numbers are those of\n"
+                        "scipy.signal.welch(x, fs, window='hann', nperseg=N, noverlap=M) (equal to 1e-9, tested).\n"
+                        "A recording gives one column per accelerometer and axis, in (m/s^2)^2/Hz, each at the sensor's\n"
+                        "rate from meta.toml; a CSV file gives the PSD of one column."};
 
 struct Channel {
   std::string name;
@@ -35,7 +35,7 @@ struct Channel {
   std::uint64_t samples = 0;
 };
 
-struct Options {
+struct PsdOptions {
   std::vector<std::string> inputs;  // a CSV file, a recording, or one drive's segments
   std::string out, column, axis = "z";
   std::vector<std::string> sensors;
@@ -44,7 +44,7 @@ struct Options {
   std::optional<double> fs_hz;
 };
 
-bool wanted(const Options& o, const recording::SensorInfo& s) {
+bool wanted(const PsdOptions& o, const recording::SensorInfo& s) {
   if (s.kind != "accelerometer") return false;
   if (o.sensors.empty()) return true;
   for (const std::string& w : o.sensors)
@@ -83,7 +83,7 @@ int feed(const std::string& path, std::span<const std::string_view> columns, std
   }
 }
 
-int write(const Options& o, const std::vector<Channel>& channels, const spectra::WelchConfig& first) {
+int write(const PsdOptions& o, const std::vector<Channel>& channels, const spectra::WelchConfig& first) {
   std::FILE* f = o.out.empty() ? stdout : std::fopen(o.out.c_str(), "w");
   if (!f) {
     std::fprintf(stderr, "roadload psd: %s: cannot create\n", o.out.c_str());
@@ -111,7 +111,7 @@ int write(const Options& o, const std::vector<Channel>& channels, const spectra:
   return kExitOk;
 }
 
-void add_options(CLI::App& cmd, Options& o) {
+void add_options(CLI::App& cmd, PsdOptions& o) {
   cmd.add_option("RECORDING", o.inputs,
                  "a recording folder or a CSV file; several: the segments of one\nroadloadd run, read as one drive")
       ->required();
@@ -126,7 +126,7 @@ void add_options(CLI::App& cmd, Options& o) {
   cmd.add_option("-o,--out", o.out, "write FILE instead of standard output: freq_hz,<sensor>_<axis>,...")->type_name("FILE");
 }
 
-int psd(const Options& o) {
+int psd(const PsdOptions& o) {
   const auto config = [&](double fs) { return spectra::WelchConfig{fs, o.nperseg, o.noverlap.value_or(o.nperseg / 2)}; };
   if (auto why = spectra::check(config(o.fs_hz.value_or(1.0)))) return usage_error("psd", *why);
 
@@ -182,10 +182,10 @@ int psd(const Options& o) {
 }  // namespace
 
 Run add_psd(CLI::App& roadload) {
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<PsdOptions>();
   CLI::App& cmd = *roadload.add_subcommand(
       "psd", "Welch power spectral density of accelerometer channels, as scipy.signal.welch computes it");
-  describe(cmd, kHelp);
+  describe(cmd, kPsdHelp);
   add_options(cmd, *o);
   return [o] { return on_one_drive("psd", o->inputs, [&] { return psd(*o); }); };
 }

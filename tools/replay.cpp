@@ -34,18 +34,18 @@ namespace {
 // spacing at any rate (J1939's fastest periods are 10 ms).
 constexpr std::int64_t kBatchWindow_ns = 1'000'000;
 
-const HelpText kHelp{"usage: roadload replay <recording | can.log> [options]",
-                     "Sends the recording's CAN frames onto a CAN interface, in order, with their recorded spacing\n"
-                     "divided by the rate; frames recorded within 1 ms of each other go out together, in one system call.\n"
-                     "Meant for vcan on a bench: it transmits, which a logger on a truck never does.",
-                     "--faults SPEC, comma-separated; T and D in seconds since the first frame:\n"
-                     "  drop=P dup=P seed=N  lose or repeat each frame with probability P\n"
-                     "  error@T              a CAN error frame\n"
-                     "  busoff@T+D           bus-off: error frame, D s of silence, restarted frame\n"
-                     "  tp-truncate@T        the next transport session loses its last packet\n"
-                     "  gnss-outage@T+D      no GNSS fix for D s        (in roadloadd, through --origin)\n"
-                     "  accel-overflow@T     an accelerometer FIFO overflow (in roadloadd, through --origin)\n"
-                     "  clock-step@T=S       step the wall clock by S s (needs CAP_SYS_TIME)"};
+const HelpText kReplayHelp{"usage: roadload replay <recording | can.log> [options]",
+                           "Sends the recording's CAN frames onto a CAN interface, in order, with their recorded spacing\n"
+                           "divided by the rate; frames recorded within 1 ms of each other go out together, in one system call.\n"
+                           "Meant for vcan on a bench: it transmits, which a logger on a truck never does.",
+                           "--faults SPEC, comma-separated; T and D in seconds since the first frame:\n"
+                           "  drop=P dup=P seed=N  lose or repeat each frame with probability P\n"
+                           "  error@T              a CAN error frame\n"
+                           "  busoff@T+D           bus-off: error frame, D s of silence, restarted frame\n"
+                           "  tp-truncate@T        the next transport session loses its last packet\n"
+                           "  gnss-outage@T+D      no GNSS fix for D s        (in roadloadd, through --origin)\n"
+                           "  accel-overflow@T     an accelerometer FIFO overflow (in roadloadd, through --origin)\n"
+                           "  clock-step@T=S       step the wall clock by S s (needs CAP_SYS_TIME)"};
 
 // Steps CLOCK_REALTIME as an NTP daemon stepping a gateway's clock would.
 bool step_wall_clock(Nanoseconds by) {
@@ -250,7 +250,7 @@ Run add_replay(CLI::App& roadload) {
   auto o = std::make_shared<ReplayOptions>();
   CLI::App& cmd = *roadload.add_subcommand("replay",
                                            "play a recording's CAN frames onto a (virtual) CAN interface, in real time or faster");
-  describe(cmd, kHelp);
+  describe(cmd, kReplayHelp);
   add_options(cmd, *o);
   return [o] { return on_one_drive("replay", o->inputs, [&] { return replay(*o); }); };
 }

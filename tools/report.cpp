@@ -16,11 +16,11 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{"usage: roadload report <results> -o report.html [options]",
-                     "Draws the results folder of `roadload analyze` or roadloadd --results as one self-contained HTML\n"
-                     "page (inline SVG, no script, no network): CRR per cell with its 90 % interval, fuel per cell and\n"
-                     "per trip by force, contact forces per axle, damper and tire power per cell, the spectra with their\n"
-                     "modes and joint lines, the drive's sync health, and the tables beside them."};
+const HelpText kReportHelp{"usage: roadload report <results> -o report.html [options]",
+                           "Draws the results folder of `roadload analyze` or roadloadd --results as one self-contained HTML\n"
+                           "page (inline SVG, no script, no network): CRR per cell with its 90 % interval, fuel per cell and\n"
+                           "per trip by force, contact forces per axle, damper and tire power per cell, the spectra with their\n"
+                           "modes and joint lines, the drive's sync health, and the tables beside them."};
 
 struct ReportOptions {
   std::string results_dir, out, truth_dir, title;
@@ -58,7 +58,7 @@ int write_report(const ReportOptions& o) {
 Run add_report(CLI::App& roadload) {
   auto o = std::make_shared<ReportOptions>();
   CLI::App& cmd = *roadload.add_subcommand("report", "draw a drive's results as one self-contained HTML page (figures and tables)");
-  describe(cmd, kHelp);
+  describe(cmd, kReportHelp);
   cmd.add_option("RESULTS", o->results_dir, "the results folder")->required();
   cmd.add_option("-o,--out", o->out, "the page to write")->type_name("FILE")->required();
   cmd.add_option("--truth", o->truth_dir, "a simulation's ground truth (`roadload simulate`): drawn beside the\nestimates")

@@ -26,18 +26,18 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{"usage: roadload route build RECORDING... --out FILE [--cell-length M | --sections FILE] [options]",
-                     "Makes a route file from the recordings' own GNSS (gnss.csv, else the truck's J1939 VP1 with VDS's\n"
-                     "altitude). The longest pass traces the road; each recording is cut into passes where it turns\n"
-                     "back on itself. The route runs the way the first recording's first pass drives: analyze follows\n"
-                     "a drive along its route, so a road driven both ways gets two routes from the same recordings,\n"
-                     "each with a recording of its direction first. Every pass's heights, less the antenna's height, give the\n"
-                     "grade per bin with its standard error, written beside FILE as FILE's stem + .grade.csv and named\n"
-                     "by the route file: from several passes the scatter of their slopes, from one pass a GNSS height's\n"
-                     "error over the slope's base (0.5 % of grade), so the intervals from a lone pass are wide.\n"
-                     "Cells carry no CRR: that is what analyze measures. Drive the road both ways, several times."};
+const HelpText kRouteHelp{"usage: roadload route build RECORDING... --out FILE [--cell-length M | --sections FILE] [options]",
+                          "Makes a route file from the recordings' own GNSS (gnss.csv, else the truck's J1939 VP1 with VDS's\n"
+                          "altitude). The longest pass traces the road; each recording is cut into passes where it turns\n"
+                          "back on itself. The route runs the way the first recording's first pass drives: analyze follows\n"
+                          "a drive along its route, so a road driven both ways gets two routes from the same recordings,\n"
+                          "each with a recording of its direction first. Every pass's heights, less the antenna's height, give the\n"
+                          "grade per bin with its standard error, written beside FILE as FILE's stem + .grade.csv and named\n"
+                          "by the route file: from several passes the scatter of their slopes, from one pass a GNSS height's\n"
+                          "error over the slope's base (0.5 % of grade), so the intervals from a lone pass are wide.\n"
+                          "Cells carry no CRR: that is what analyze measures. Drive the road both ways, several times."};
 
-struct Options {
+struct RouteOptions {
   std::vector<std::string> recordings;
   std::string out, sections, name;
   double cell_length_m = TrackRouteConfig{}.cell_length_m;
@@ -52,7 +52,7 @@ struct Options {
 // filter carries the errors as correlated over the window (120 m).
 constexpr double kTracedSlopeBase_m = 60.0;
 
-void add_options(CLI::App& cmd, Options& o) {
+void add_options(CLI::App& cmd, RouteOptions& o) {
   o.grade.min_passes = 1;
   o.grade.base_m = kTracedSlopeBase_m;
   o.grade.pass_slope_sigma = kGnssPassSlopeSigma;
@@ -92,7 +92,7 @@ void set_heights(std::vector<GeoPoint>& points, const RouteGeometry& geometry, c
     p.elev_m = grade.elevation_m(std::clamp(geometry.project(p.lat_deg, p.lon_deg).s_m, 0.0, geometry.length_m()));
 }
 
-std::variant<std::vector<CellDef>, int> section_cells(const Options& o, const RouteGeometry& geometry) {
+std::variant<std::vector<CellDef>, int> section_cells(const RouteOptions& o, const RouteGeometry& geometry) {
   auto loaded = load_geo_sections(o.sections);
   if (!loaded) {
     std::fprintf(stderr, "roadload route: %s\n", loaded.error().to_string().c_str());
@@ -144,7 +144,7 @@ double mean_cell_length_m(const std::vector<CellDef>& cells, double fallback_m) 
   return cells.empty() || !(sum_m > 0) ? fallback_m : sum_m / static_cast<double>(cells.size());
 }
 
-int build(Options& o) {
+int build(RouteOptions& o) {
   if (o.grade.base_m < o.grade.bin_m) return usage_error("route build", "--base must be at least --bin: a slope needs three bins");
   if (o.name.empty()) o.name = std::filesystem::path(o.out).stem().string();
   j1939::Database db;
@@ -224,10 +224,10 @@ int build(Options& o) {
 }  // namespace
 
 Run add_route(CLI::App& roadload) {
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<RouteOptions>();
   CLI::App& build_cmd = add_action_command(
       roadload, "route", "build a route file from the recordings' own GNSS passes, with cells or a GIS file's sections", "build",
-      "make a route file from the recordings' GNSS passes", kHelp);
+      "make a route file from the recordings' GNSS passes", kRouteHelp);
   add_options(build_cmd, *o);
   return [o] { return build(*o); };
 }

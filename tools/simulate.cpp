@@ -25,11 +25,11 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{"usage: roadload simulate --scenario NAME|FILE --out RECORDING [options]",
-                     "Simulates the scenario's truck (a vehicle file, config/vehicles) on a road and writes a recording\n"
-                     "(docs/recording-format.md)\n"
-                     "and, with --truth, the ground truth (true forces, CRR, dissipated powers, per-cell table).",
-                     "The same scenario and seed give byte-identical output."};
+const HelpText kSimulateHelp{"usage: roadload simulate --scenario NAME|FILE --out RECORDING [options]",
+                             "Simulates the scenario's truck (a vehicle file, config/vehicles) on a road and writes a recording\n"
+                             "(docs/recording-format.md)\n"
+                             "and, with --truth, the ground truth (true forces, CRR, dissipated powers, per-cell table).",
+                             "The same scenario and seed give byte-identical output."};
 
 int list_effects() {
   std::printf("%-22s %-9s %9s %9s %9s  %s\n", "effect", "unit", "typical", "min", "max", "model");
@@ -158,7 +158,7 @@ Run add_simulate(CLI::App& roadload) {
   auto o = std::make_shared<SimulateOptions>();
   CLI::App& cmd = *roadload.add_subcommand("simulate",
                                            "drive the simulated truck over a simulated road; write a recording and its ground truth");
-  describe(cmd, kHelp);
+  describe(cmd, kSimulateHelp);
   add_options(cmd, *o);
   return [o] { return simulate(*o); };
 }

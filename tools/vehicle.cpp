@@ -20,24 +20,24 @@
 namespace roadload::cli {
 namespace {
 
-const HelpText kHelp{"usage: roadload vehicle identify RECORDING... --out FILE [--vehicle PRIOR] [options]",
-                     "Writes a vehicle file for the truck the recordings were made with. It starts from a prior (the\n"
-                     "nearest vehicle file: --vehicle, else the one the first recording's meta.toml carries) and\n"
-                     "replaces what the drives tell, each value with its standard error and its source as a comment:\n"
-                     "  vin                  VI (PGN 65260)\n"
-                     "  reference torque     EC1 SPN 544\n"
-                     "  gear ratios          ETC2's actual ratio per current gear, else engine over wheel speed\n"
-                     "  drive tires' radius  GNSS speed against the wheels' turning rate in steady driving\n"
-                     "  mass                 CVW's gross combination weight (PGN 65136), where the truck sends it\n"
-                     "What the drives cannot tell (CdA, efficiency, a mass the bus does not send) keeps the prior's\n"
-                     "value and sigma; standard error lists each with the reason."};
+const HelpText kVehicleHelp{"usage: roadload vehicle identify RECORDING... --out FILE [--vehicle PRIOR] [options]",
+                            "Writes a vehicle file for the truck the recordings were made with. It starts from a prior (the\n"
+                            "nearest vehicle file: --vehicle, else the one the first recording's meta.toml carries) and\n"
+                            "replaces what the drives tell, each value with its standard error and its source as a comment:\n"
+                            "  vin                  VI (PGN 65260)\n"
+                            "  reference torque     EC1 SPN 544\n"
+                            "  gear ratios          ETC2's actual ratio per current gear, else engine over wheel speed\n"
+                            "  drive tires' radius  GNSS speed against the wheels' turning rate in steady driving\n"
+                            "  mass                 CVW's gross combination weight (PGN 65136), where the truck sends it\n"
+                            "What the drives cannot tell (CdA, efficiency, a mass the bus does not send) keeps the prior's\n"
+                            "value and sigma; standard error lists each with the reason."};
 
-struct Options {
+struct VehicleOptions {
   std::vector<std::string> recordings, dbcs;
   std::string out, vehicle, name;
 };
 
-void add_options(CLI::App& cmd, Options& o) {
+void add_options(CLI::App& cmd, VehicleOptions& o) {
   cmd.add_option("RECORDING", o.recordings, "recording folders of the truck")->required();
   cmd.add_option("-o,--out", o.out, "the vehicle file to write (TOML, docs/vehicle-file.md)")->type_name("FILE")->required();
   cmd.add_option("--vehicle", o.vehicle, "the prior: a vehicle file or a built-in name (config/vehicles)")->type_name("V");
@@ -123,7 +123,7 @@ void print(const Vehicle& prior, const VehicleIdentification& id) {
   for (const std::string& why : id.not_identified) std::fprintf(stderr, "vehicle: not identified: %s\n", why.c_str());
 }
 
-int identify(Options& o) {
+int identify(VehicleOptions& o) {
   if (o.name.empty()) o.name = std::filesystem::path(o.out).stem().string();
   j1939::Database db;
   if (auto rc = load_definitions("vehicle", o.dbcs, db)) return *rc;
@@ -170,10 +170,10 @@ int identify(Options& o) {
 }  // namespace
 
 Run add_vehicle(CLI::App& roadload) {
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<VehicleOptions>();
   CLI::App& identify_cmd = add_action_command(
       roadload, "vehicle", "identify a truck's vehicle file from its recordings: VIN, torque, gear ratios, tire radius, mass",
-      "identify", "write a vehicle file for the truck the recordings were made with", kHelp);
+      "identify", "write a vehicle file for the truck the recordings were made with", kVehicleHelp);
   add_options(identify_cmd, *o);
   return [o] { return identify(*o); };
 }
