@@ -39,7 +39,7 @@ grep -q "no-losses.csv" "$work/err" || fail "missing engine-loss table not named
 # A replayed drive: recorded frame for frame, reported every second with the live CRR.
 # A status line every 0.1 s: at three times real time, the first 3 s of the drive (before its CRR
 # is known) span ten of them. At ten times they spanned three, which a loaded machine (CI's
-# sanitizer tests beside the fuzz build) could delay past the CRR's identification.
+# sanitizer tests) could delay past the CRR's identification.
 "$roadload" simulate --scenario mnroad-mainline-30mph --seed 3 --duration 30 --out "$work/sim" -q
 printf '[status]\ninterval_s = 0.1\n' >"$work/fast-status.toml"
 expect_status 0 "$roadloadd" --config "$work/fast-status.toml" --replay "$work/sim" --replay-can --replay-rate 3 --exit-when-done \
