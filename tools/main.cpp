@@ -11,9 +11,10 @@
 #include "roadload/cli/help.hpp"
 #include "roadload/cli/parse.hpp"
 
+// Inside roadload::cli like every command's file: the commands compile together (unity build), and
+// a using-directive at file scope would carry their anonymous namespaces' names into the files after.
+namespace roadload::cli {
 namespace {
-
-using namespace roadload::cli;
 
 // In the order `roadload --help` lists them.
 constexpr Run (*kCommands[])(CLI::App&) = {add_decode,  add_analyze, add_batch,   add_calibrate, add_cat,
@@ -24,9 +25,7 @@ const HelpText kRoadloadHelp{"usage: roadload <command> [options]",
                              "Measures what a heavy truck spends on rolling resistance, pavement by pavement.",
                              "'roadload <command> --help' describes a command; every command takes --version."};
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int roadload_main(int argc, char** argv) {
   CLI::App app("", "roadload");
   describe(app, kRoadloadHelp);
   app.require_subcommand(1);
@@ -52,3 +51,8 @@ int main(int argc, char** argv) {
   }
   return usage_error("", "no command given");  // require_subcommand(1) makes this unreachable
 }
+
+}  // namespace
+}  // namespace roadload::cli
+
+int main(int argc, char** argv) { return roadload::cli::roadload_main(argc, argv); }
