@@ -86,9 +86,9 @@ class CanGenerator final : public io::Source<CanFrame> {
 
 class AccelGenerator final : public io::Source<AccelSample> {
  public:
-  // The part's counts are drawn here, a second's worth, and read over and over: drawn in read(),
-  // the noise cost the benchmark's process a tenth of what it measures as the daemon's CPU. A
-  // second is far longer than anything the FLAC predictor looks back on (32 sets).
+  // The part's counts are drawn here, a second's worth, and read over and over: drawing the noise
+  // in read() would add a tenth to what the benchmark measures as the daemon's CPU. A second is
+  // far longer than anything the FLAC predictor looks back on (32 sets).
   AccelGenerator(std::uint8_t sensor, CaptureTime start) : sensor_(sensor), start_(start) {
     status_.state = io::SourceState::up;
     std::array<double, 400> vibration{};
