@@ -48,6 +48,8 @@ constexpr std::array<EffectInfo, kEffectCount> kCatalog{{
 
 }  // namespace
 
+double tire_warmup_left(double driven_s) { return std::exp(-driven_s / 1200.0); }
+
 std::span<const EffectInfo> effect_catalog() { return kCatalog; }
 
 const EffectInfo& effect_info(Effect e) { return kCatalog[static_cast<std::size_t>(e)]; }

@@ -188,6 +188,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
           "start_m",
           "end_m",
           "duration_s",
+          "driven_before_s",
           "start_utc",
           "road_seed",
           "load_scale",
@@ -221,6 +222,10 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
   if (auto end = f.number(root, "end_m", "")) s.end_m = *end;
   if (s.hold_rpm.empty()) {
     if (auto d = f.number(root, "duration_s", "")) s.duration = Seconds{*d};
+  }
+  s.driven_before = Seconds{f.number(root, "driven_before_s", "", s.driven_before.count())};
+  if (!(s.driven_before.count() >= 0 && s.driven_before.count() <= 86400.0)) {
+    f.fail(root.get("driven_before_s"), "driven_before_s", "outside 0-86400 s");
   }
   if (const toml::node* utc = root.get("start_utc")) {
     const auto* dt = utc->as_date_time();

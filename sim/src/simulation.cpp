@@ -91,7 +91,7 @@ struct Simulation::Parts {
         profile(build_road(sc, route)),
         truck(scenario_truck(sc)),
         speedometer(speedometer_scale(sc, truck)),
-        plant(truck, route, profile, sc.effects, sd),
+        plant(truck, route, profile, sc.effects, sd, PlantOptions{.warm = sc.driven_before}),
         wind(sc.weather, sc.effects.magnitude(Effect::wind_gusts), Rng(sd, kWind)),
         bus(db, bus_options(sc.clocks), Rng(sd, kBus)),
         gnss(sc.gnss_rate_hz, sc.start_utc_ns, sc.clocks.gnss_latency.count(), sc.effects.magnitude(Effect::gnss_elevation_bias),
@@ -259,14 +259,15 @@ recording::Metadata Simulation::metadata() const {
   const Scenario& sc = p_->scenario;
   recording::Metadata m;
   m.created_by = "roadload simulate";
-  // A logger draws its run's id at random; a simulated run's is a hash of what makes it this run
-  // (scenario, seed, truck, effects), so the same run simulated again is the same drive.
+  // A logger draws its run's id at random; a simulated run's is a hash of what makes it this run (scenario, seed, truck, effects;
+  // the driving before it only off its default, so older runs keep their ids): the same run simulated again is the same drive.
   std::string identity = sc.name + "\n" + sc.source + "\n" + std::to_string(p_->seed) + "\n" + std::to_string(sc.start_utc_ns) +
                          "\n" + sc.vehicle.name + "\n" + p_->truck.vin + "\n" + std::to_string(sc.speed_mps) + "\n" +
                          std::to_string(sc.duration ? sc.duration->count() : -1.0);
   for (double v : {sc.load_scale, sc.engine_friction_scale, sc.accessory_scale, sc.cda_scale, sc.tire_radius_scale, sc.start_m,
                    sc.end_m, sc.weather.air_temp_c})
     identity += "," + std::to_string(v);
+  if (sc.driven_before != kReportWarmUp) identity += "\ndriven " + std::to_string(sc.driven_before.count());
   for (const auto& e : effect_catalog()) {
     if (sc.effects.on(e.id)) identity += "\n" + std::string(e.name) + "=" + std::to_string(sc.effects.magnitude(e.id));
   }
@@ -287,6 +288,7 @@ recording::Metadata Simulation::metadata() const {
     // Eq. 2.1's M_w. Not scaled by the mass-error effect: that is cargo, the axles weigh the same.
     m.vehicle[a.name + "_unsprung_kg"] = a.vertical.unsprung_kg;
   }
+  m.vehicle["driven_before_s"] = sc.driven_before.count();
   m.vehicle["gnss_antenna_behind_front_axle_m"] = t.gnss_antenna_behind_front_m;
   m.vehicle["gnss_antenna_height_m"] = t.gnss_antenna_height_m;
   for (const auto& a : p_->accels) {

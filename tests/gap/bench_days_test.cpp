@@ -26,6 +26,10 @@ TEST(GapBenchDays, ShippedDaysEachHoldACoastDownBetweenTwoCruiseRuns) {
     EXPECT_LT(d.drives[0].speed_mps + 2.0, d.drives[2].speed_mps);
     // The model keeps its scenario's weather; the drive has the day's.
     EXPECT_NE(d.drives[0].weather.air_temp_c, d.drives[2].weather.air_temp_c);
+    // The morning run starts 10 minutes out of the yard, the others warmed up; the model is not told.
+    EXPECT_EQ(d.drives[0].driven_before.count(), 600.0);
+    EXPECT_EQ(d.drives[2].driven_before, sim::kReportWarmUp);
+    EXPECT_EQ(d.models[0].driven_before, sim::kReportWarmUp);
   }
   EXPECT_EQ(days.value()[1].road, "th10");
   // TH 10's morning run is driven at 45 mph against a 55 mph model.
@@ -41,6 +45,11 @@ TEST(GapBenchDays, AWrongFieldIsNamedWithItsLine) {
   ASSERT_FALSE(days);
   EXPECT_EQ(days.error().line, 7);
   EXPECT_EQ(days.error().field, "day.run.speed_mph");
+  std::ofstream(path) << "[[day]]\nroad = \"x\"\n[[day.run]]\nlabel = \"a\"\nscenario = \"th66-55mph\"\ndriven_before_s = -1\n";
+  const auto cold = load_bench_days(path.string(), ROADLOAD_CONFIG_DIR);
+  ASSERT_FALSE(cold);
+  EXPECT_EQ(cold.error().line, 6);
+  EXPECT_EQ(cold.error().field, "day.run.driven_before_s");
   std::filesystem::remove(path);
 }
 

@@ -115,7 +115,7 @@ TEST(GapUnmatched, ChannelsOnOneSideOnlyAreNamedWithTheSideThatHasThem) {
   EXPECT_FALSE(u[1].recording_only);
 }
 
-TEST_F(GapFeatures, TheReSimulationTakesSpeedWeatherAndMassFromTheRecording) {
+TEST_F(GapFeatures, TheReSimulationTakesSpeedWeatherMassAndWarmUpFromTheRecording) {
   RunConditions c;
   c.mean_speed_mps = 20.0;
   c.duration_s = 100.0;
@@ -132,6 +132,9 @@ TEST_F(GapFeatures, TheReSimulationTakesSpeedWeatherAndMassFromTheRecording) {
   EXPECT_DOUBLE_EQ(s.weather.pressure_pa, 97000.0);
   EXPECT_EQ(s.weather.wind_trace.size(), 2u);
   EXPECT_NEAR(s.load_scale, 1.1, 1e-3);
+  EXPECT_EQ(s.driven_before, sim::kReportWarmUp);  // not stated: warmed up
+  meta.vehicle["driven_before_s"] = 600.0;
+  EXPECT_EQ(resimulation(scenario_, c, meta).driven_before.count(), 600.0);
   // A mean speed within 0.3 m/s of the model's is the model's set speed driven.
   c.mean_speed_mps = scenario_.speed_mps + 0.2;
   EXPECT_DOUBLE_EQ(resimulation(scenario_, c, meta).speed_mps, scenario_.speed_mps);

@@ -66,7 +66,8 @@ class TruthSink final : public SampleSink {
   std::size_t torque_n_ = 0, speed_n_ = 0;
 };
 
-Observed observe(std::optional<Effect> effect, double magnitude, double tire_radius_scale = 1.0, double tire_crr_scale = 1.0) {
+Observed observe(std::optional<Effect> effect, double magnitude, double tire_radius_scale = 1.0, double tire_crr_scale = 1.0,
+                 Seconds driven_before = kReportWarmUp) {
   static const j1939::Database db = test::core_database();
   Scenario sc = test::builtin("th10-55mph");  // jointed concrete at 31 C: every effect has something to act on
   sc.effects = EffectSet{};
@@ -75,6 +76,7 @@ Observed observe(std::optional<Effect> effect, double magnitude, double tire_rad
   if (effect) sc.effects.set(*effect, magnitude);
   sc.tire_radius_scale = tire_radius_scale;
   sc.tire_crr_scale = tire_crr_scale;
+  sc.driven_before = driven_before;
   Simulation sim(sc, 9, db);
   Observed o;
   TruthSink sink(o);
@@ -112,6 +114,17 @@ TEST(Effects, CrrEffectsMoveTheTrueRollingResistanceTheRightWay) {
   EXPECT_LT(observe(Effect::temperature_crr, 0.006).crr_mean, base * 0.92);  // 31.1 C vs 14.3 C: -10 %
   EXPECT_GT(observe(Effect::speed_crr, 0.01).crr_mean, base * 1.10);         // 55 vs 30 mph: +11 %
   EXPECT_GT(observe(Effect::tire_pressure, -0.1).crr_mean, base * 1.02);     // -10 % pressure: +3 %
+}
+
+// A run that starts 10 minutes after the truck left its yard: most of the cold excess is left, and
+// the recording says how long the truck had driven, as a logger running since it started knows.
+TEST(Effects, TireWarmupDependsOnTheDrivingBeforeTheRun) {
+  const double base = observe(std::nullopt, 0).crr_mean;
+  const Observed early = observe(Effect::tire_warmup, 0.3, 1.0, 1.0, Seconds{600.0});
+  // 1 + 0.3 exp(-(600 s + t) / 1200 s) over the 30 s run: 1.178 to 1.174.
+  EXPECT_NEAR(early.crr_mean / base, 1.176, 0.004);
+  EXPECT_NE(early.meta.find("driven_before_s = 600"), std::string::npos) << early.meta;
+  EXPECT_NE(observe(std::nullopt, 0).meta.find("driven_before_s = 1800"), std::string::npos);
 }
 
 TEST(Effects, TorqueBiasScalesOnlyTheReportedTorque) {

@@ -64,9 +64,14 @@ TEST_F(ScenarioFile, BadValuesAreRejected) {
   EXPECT_EQ(tires.error().field, "tire_crr_scale");
   EXPECT_EQ(tires.error().line, 4);
   EXPECT_NE(tires.error().message.find("0.5-2.0"), std::string::npos) << tires.error().to_string();
-  const auto good = load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\ntire_crr_scale = 1.1\n");
+  const auto good = load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\ntire_crr_scale = 1.1\ndriven_before_s = 600\n");
   ASSERT_TRUE(good.ok()) << good.error().to_string();
   EXPECT_DOUBLE_EQ(good.value().tire_crr_scale, 1.1);
+  EXPECT_DOUBLE_EQ(good.value().driven_before.count(), 600.0);
+  const auto cold = load("name = \"s\"\nroute = \"r\"\nspeed_mph = 30\ndriven_before_s = -5\n");
+  ASSERT_FALSE(cold.ok());
+  EXPECT_EQ(cold.error().field, "driven_before_s");
+  EXPECT_EQ(cold.error().line, 4);
   const std::string city = "name = \"s\"\nroute = \"r\"\nspeed_mph = 30\n[stop_and_go]\n";
   EXPECT_EQ(load(city + "every_m = 500\ncrawl_mph = 40\ncrawl_m = 60\n").error().field, "stop_and_go.crawl_mph");
   EXPECT_EQ(load(city + "every_m = 50\ncrawl_mph = 3\ncrawl_m = 20\n").error().field, "stop_and_go.every_m");

@@ -11,7 +11,9 @@ namespace {
 // for a cruise, its own speed.
 void read_run(const detail::TomlFields& f, const toml::table& t, const std::string& where, const std::string& data_dir,
               BenchDay& day) {
-  f.only(t, {"label", "scenario", "mode", "speed_mph", "duration_s", "air_temp_c", "wind_speed_mps", "wind_from_deg"}, where);
+  f.only(t,
+         {"label", "scenario", "mode", "speed_mph", "duration_s", "driven_before_s", "air_temp_c", "wind_speed_mps", "wind_from_deg"},
+         where);
   const std::string label = f.required_text(t, "label", where);
   const std::string name = f.required_text(t, "scenario", where);
   auto loaded = sim::load_scenario(name, data_dir);
@@ -35,6 +37,9 @@ void read_run(const detail::TomlFields& f, const toml::table& t, const std::stri
     if (t.contains(key)) value = f.required_in(t, key, where, lo, hi);
   };
   set_in("air_temp_c", -40.0, 50.0, drive.weather.air_temp_c);
+  double driven_s = drive.driven_before.count();
+  set_in("driven_before_s", 0.0, 86400.0, driven_s);
+  drive.driven_before = Seconds{driven_s};
   set_in("wind_speed_mps", 0.0, 25.0, drive.weather.wind_speed_mps);
   set_in("wind_from_deg", 0.0, 360.0, drive.weather.wind_from_deg);
   day.labels.push_back(label);

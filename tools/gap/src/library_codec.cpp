@@ -12,7 +12,7 @@ namespace roadload::gap {
 namespace {
 
 constexpr std::string_view kMagic = "roadload-gap-library";
-constexpr std::string_view kVersion = "1";
+constexpr std::string_view kVersion = "2";
 
 class Line {
  public:
@@ -53,6 +53,7 @@ std::string encode_library(const ModelLibrary& lib, std::string_view fingerprint
                .number(w.wind_speed_mps)
                .number(w.wind_from_deg)
                .number(duration_s(s))
+               .number(s.driven_before.count())
                .done();
   }
   out += Line()

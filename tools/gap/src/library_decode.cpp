@@ -100,9 +100,9 @@ Nominal nominal_named(std::string_view name) {
 void read_drives(Records& in, ModelLibrary& lib) {
   for (sim::Scenario& s : lib.scenarios) {
     const auto& f = in.expect("drive");
-    need(f, 8, "drive");
-    double v[7];
-    for (std::size_t i = 0; i < 7; ++i) v[i] = Records::number(f[i + 1], "drive");
+    need(f, 9, "drive");
+    double v[8];
+    for (std::size_t i = 0; i < 8; ++i) v[i] = Records::number(f[i + 1], "drive");
     s.speed_mps = v[0];
     s.load_scale = v[1];
     s.weather.air_temp_c = v[2];
@@ -111,6 +111,8 @@ void read_drives(Records& in, ModelLibrary& lib) {
     s.weather.wind_from_deg = v[5];
     s.duration.reset();
     if (std::isfinite(v[6])) s.duration = Seconds{v[6]};
+    if (!(v[7] >= 0)) throw Bad{"drive", "driving before the run is not a duration: " + std::to_string(v[7])};
+    s.driven_before = Seconds{v[7]};
   }
 }
 
@@ -174,7 +176,7 @@ void read_nominal(Records& in, ModelLibrary& lib) {
 ModelLibrary read(Records& in, std::string_view fingerprint, const std::vector<RealRun>& runs) {
   const auto& head = in.expect("roadload-gap-library");
   need(head, 3, "roadload-gap-library");
-  if (head[1] != "1") throw Bad{"version", "'" + std::string(head[1]) + "', this program reads 1"};
+  if (head[1] != "2") throw Bad{"version", "'" + std::string(head[1]) + "', this program reads 2"};
   if (head[2] != fingerprint) throw Bad{"fingerprint", "made for other inputs or by another build"};
   ModelLibrary lib;
   lib.scenarios = resimulations(runs);

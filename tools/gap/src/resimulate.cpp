@@ -134,6 +134,10 @@ sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, c
   if (auto it = meta.vehicle.find("mass_kg"); it != meta.vehicle.end() && it->second > 0) {
     s.load_scale = std::clamp(it->second / model.vehicle.mass_kg(), 0.5, 1.5);
   }
+  // A tire still warming up rolls harder; a recording that does not say is taken as warmed up.
+  if (auto it = meta.vehicle.find("driven_before_s"); it != meta.vehicle.end() && it->second >= 0) {
+    s.driven_before = Seconds{std::min(it->second, 86400.0)};
+  }
   return s;
 }
 

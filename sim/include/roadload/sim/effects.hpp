@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "roadload/time.hpp"
+
 namespace roadload::sim {
 
 enum class Effect : std::size_t {
@@ -46,6 +48,12 @@ inline constexpr std::size_t kEffectCount = static_cast<std::size_t>(Effect::cou
 inline constexpr double kWetCrrPerMm = 0.2;
 inline constexpr double kWornCrrDrop = 0.25;
 inline constexpr double kUsableTread_m = 0.017;
+
+// The share of a tire's cold excess of CRR left after driving this long (`tire-warmup`): it
+// falls with a 20 min time constant (docs/simulator-parameters.md).
+double tire_warmup_left(double driven_s);
+// The report's protocol warmed the truck up for 30 minutes or more before a run.
+inline constexpr Seconds kReportWarmUp{1800.0};
 
 struct EffectInfo {
   Effect id;

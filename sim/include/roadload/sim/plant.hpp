@@ -59,7 +59,7 @@ struct EnergyLedger {
 };
 
 struct PlantOptions {
-  Seconds warm{1800.0};  // driving before the run starts (the report warmed up >= 30 min)
+  Seconds warm = kReportWarmUp;  // driving before the run starts (Scenario::driven_before)
   double cruise_kp_per_s = 0.3;
   double cruise_ki_per_s2 = 0.02;
 };

@@ -60,6 +60,8 @@ struct Scenario {
   // and its tires' rolling resistance against the pavement's own CRR, which the route's cells give
   // (brand, model, wear: truck tires of one size differ by 5-10 %)
   double tire_crr_scale = 1.0;
+  // How long the truck had been driving when the run starts: its tires' warm-up.
+  Seconds driven_before = kReportWarmUp;
   bool coast = false;  // neutral coast-down instead of cruise
   // City traffic: at a stop line every `every_m` the driver slows to `crawl_mps` for `crawl_m`,
   // braking down to it and accelerating at full load back to the set speed. A crawl, not a stop:
