@@ -2,6 +2,8 @@
 // residuals made from them plus unit noise.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <set>
@@ -115,6 +117,38 @@ TEST(GapDiagnosis, FindsTwoEffectsAtOnce) {
   ASSERT_EQ(d.chosen->effects.size(), 2u);
   const std::set<std::string> named{s.chosen_name(d, 0), s.chosen_name(d, 1)};
   EXPECT_EQ(named, (std::set<std::string>{"effect-1", "effect-4"}));
+}
+
+// The drive has effect 0 and a leftover that no candidate is (what a nominal truck's fit leaves).
+// Effects 1 and 2 are made so that together they reproduce both: 1 is effect 0 plus a pattern c,
+// 2 takes c back and carries the leftover. The pair 1 + 2 fits best, but it is not an extension of
+// the effect the single fits found, and naming it would name an effect that is not there.
+TEST(GapDiagnosis, ASecondEffectExtendsTheNamedOneAndNeverReplacesIt) {
+  Synthetic s(3);
+  Eigen::VectorXd x(kProblemFeatures), c(kProblemFeatures), leftover(kProblemFeatures);
+  for (Eigen::Index i = 0; i < kProblemFeatures; ++i) {
+    const auto t = static_cast<double>(i);
+    x(i) = 2.0 * std::sin(0.05 * t);
+    c(i) = 2.0 * std::cos(0.11 * t);
+    leftover(i) = std::sin(0.23 * t + 1.0);
+  }
+  const Eigen::VectorXd y = x + c, z = leftover - c;
+  const std::array<const Eigen::VectorXd*, 3> shapes{&x, &y, &z};
+  for (std::size_t k = 0; k < shapes.size(); ++k) {
+    s.problem.candidates[k] = Candidate::from_two("effect-" + std::to_string(k), "unit", 0.0, 0.0, 3.0, 1.0, *shapes[k], 2.0,
+                                                  2.0 * *shapes[k]);
+  }
+  s.problem.z = 1.5 * x + 1.5 * leftover;
+  s.add_noise();
+  const Diagnosis d = diagnose(s.problem);
+  ASSERT_TRUE(d.chosen);
+  ASSERT_TRUE(d.best_pair);
+  EXPECT_EQ(s.problem.candidates[d.singles.front().effects[0]].name, "effect-0");
+  EXPECT_EQ(s.chosen_name(d), "effect-0");
+  EXPECT_EQ(d.best_pair->effects[0], d.chosen->effects[0]);
+  // The pair left out fits the drive better than the single named.
+  const Fit others = fit_effects(s.problem, {1, 2});
+  EXPECT_GT(others.gain, d.singles.front().gain + 100.0) << others.gain << " against " << d.singles.front().gain;
 }
 
 TEST(GapDiagnosis, AFitThatDoesNotCarryToTheOtherHalfIsNotNamed) {

@@ -303,17 +303,22 @@ Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
   for (const Fit& f : d.singles) {
     if (p.candidates[f.effects[0]].stood_for_by.empty()) nameable.push_back(f.effects[0]);
   }
-  const std::size_t pool = std::min(rule.pair_pool, nameable.size());
-  for (std::size_t i = 0; i < pool; ++i) {
-    for (std::size_t j = i + 1; j < pool; ++j) {
-      Fit f = fit_set(p, {nameable[i], nameable[j]}, rule);
-      if (!d.best_pair || f.gain > d.best_pair->gain) d.best_pair = std::move(f);
-    }
-  }
   const auto named = std::find_if(d.singles.begin(), d.singles.end(), [&](const Fit& f) {
     const Candidate& c = p.candidates[f.effects[0]];
     return c.stood_for_by.empty() && f.gain >= std::max(rule.null_gain, rule.null_factor * c.null_gain);
   });
+  // A second effect extends the first: paired with the single that is named (else the best), the
+  // others of the pool are tried. Two other effects that together beat it are no evidence against
+  // it: two magnitudes more take up what the nominal truck's fit left, whatever the effect.
+  if (!nameable.empty()) {
+    const std::size_t first = named != d.singles.end() ? named->effects[0] : nameable.front();
+    const std::size_t pool = std::min(rule.pair_pool, nameable.size());
+    for (std::size_t j = 0; j < pool; ++j) {
+      if (nameable[j] == first) continue;
+      Fit f = fit_set(p, {first, nameable[j]}, rule);
+      if (!d.best_pair || f.gain > d.best_pair->gain) d.best_pair = std::move(f);
+    }
+  }
   if (named == d.singles.end()) return d;
   d.chosen = *named;
   // A second effect must beat the first by more than the residual the first leaves unexplained
@@ -322,18 +327,8 @@ Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
   const double calibrated = Quadratic(p, {}, kBothHalves).sse({});
   const double dispersion = std::max(1.0, (calibrated - d.chosen->gain) / static_cast<double>(std::max<std::size_t>(1, d.features)));
   const double needed = std::max(rule.pair_gain * dispersion, rule.pair_share * d.chosen->gain);
-  if (d.best_pair && d.best_pair->gain - d.chosen->gain > needed) {
-    // The pair's stronger member first: it is the one the single fit found.
-    Fit pair = *d.best_pair;
-    if (pair.effects[1] == d.chosen->effects[0]) {
-      std::swap(pair.effects[0], pair.effects[1]);
-      std::swap(pair.magnitude[0], pair.magnitude[1]);
-      std::swap(pair.lo[0], pair.lo[1]);
-      std::swap(pair.hi[0], pair.hi[1]);
-      std::swap(pair.magnitude_half0[0], pair.magnitude_half0[1]);
-    }
-    d.chosen = pair;
-  }
+  // The pair's first member is the named single.
+  if (d.best_pair && d.best_pair->gain - d.chosen->gain > needed) d.chosen = *d.best_pair;
   d.rivals = rivals(p, d, rule);
   // The nominal truck as fitted beside the chosen effects; its held-out figures stay those of the
   // nominal calibration alone.

@@ -91,15 +91,15 @@ struct DecisionRule {
   double pair_gain = 50.0;        // and a second effect beyond the first
   double pair_share = 0.01;       // and at least this share of the first's gain: less is the first's model error
   double penalty = 2.0;           // per fitted magnitude, AIC-like
-  std::size_t pair_pool = 6;      // the best singles tried in pairs
+  std::size_t pair_pool = 6;      // the best singles tried as the named one's second
   double range_tolerance = 0.25;  // of the realistic range's width, outside it
 };
 
 struct Diagnosis {
-  NominalFit nominal;        // the model's truck fitted to this one, before any effect
-  std::vector<Fit> singles;  // every candidate, best first
-  std::optional<Fit> best_pair;
-  std::optional<Fit> chosen;  // none: no candidate explains the gap significantly
+  NominalFit nominal;            // the model's truck fitted to this one, before any effect
+  std::vector<Fit> singles;      // every candidate, best first
+  std::optional<Fit> best_pair;  // the named single (else the best) and the best second beside it
+  std::optional<Fit> chosen;     // none: no candidate explains the gap significantly
   // Single fits of other candidates that would be named on their own and came within
   // rival_margin() of the first chosen effect's: the drives cannot tell them from it. Best first.
   std::vector<Fit> rivals;
