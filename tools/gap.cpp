@@ -29,11 +29,11 @@ const HelpText kGapHelp{
     "       roadload gap bench [--cases N] [--seed S] [--jobs N]\n"
     "       roadload gap tables [--jobs N]",
     "Diagnoses the gap between the simulator and recorded drives: re-simulates each drive from what\n"
-    "its recording says (route, speed, weather, mass), ranks where real and simulated channels\n"
-    "differ beyond a calibrated noise floor, fits every effect of `roadload simulate --list-effects`\n"
-    "that its features can see (and pairs) on half of the road's cells, judges them on the other\n"
-    "half, names the best or none (with the rivals it cannot tell from it), and re-simulates with it\n"
-    "to show how far the gap shrinks on held-out cells.\n"
+    "its recording says (route, speed, weather, mass, driving before it), ranks where real and\n"
+    "simulated channels differ beyond a calibrated noise floor, fits every effect of `roadload\n"
+    "simulate --list-effects` that its features can see (and pairs) on half of the road's cells,\n"
+    "judges them on the other half, names the best or none (with the rivals it cannot tell from it),\n"
+    "and re-simulates with it to show how far the gap shrinks on held-out cells.\n"
     "Only the recordings are read: never a simulation's ground truth.",
     "bench: generates drives with effects the diagnosis is not told (one or two at random\n"
     "magnitudes within their ranges, or none), diagnoses them blind and prints the confusion matrix,\n"

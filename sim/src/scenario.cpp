@@ -224,7 +224,7 @@ Scenario read(const detail::TomlFields& f, const toml::table& root, const fs::pa
     if (auto d = f.number(root, "duration_s", "")) s.duration = Seconds{*d};
   }
   s.driven_before = Seconds{f.number(root, "driven_before_s", "", s.driven_before.count())};
-  if (!(s.driven_before.count() >= 0 && s.driven_before.count() <= 86400.0)) {
+  if (!(s.driven_before.count() >= 0 && s.driven_before <= kMaxDrivenBefore)) {
     f.fail(root.get("driven_before_s"), "driven_before_s", "outside 0-86400 s");
   }
   if (const toml::node* utc = root.get("start_utc")) {

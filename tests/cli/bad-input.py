@@ -166,6 +166,8 @@ CASES = [
     ("meta is a directory", replace_with_dir("meta.toml"), ANALYZE, 66, r"meta\.toml: Is a directory"),
     ("meta version 2", meta("version = 1", "version = 2"), ANALYZE, 65, r"meta\.toml:\d+: version: unsupported format version"),
     ("meta negative mass", meta("mass_kg = ", "mass_kg = -5 #"), ANALYZE, 65, r"meta\.toml:\d+: vehicle\.mass_kg: a mass must lie"),
+    ("meta driven before it -600 s", meta("driven_before_s = ", "driven_before_s = -600 #"), ANALYZE, 65,
+     r"meta\.toml:\d+: vehicle\.driven_before_s: the driving before the recording must lie 0-86,400 s"),
     ("meta TOML syntax", append_meta("[[sensor\n"), ANALYZE, 65, r"meta\.toml:\d+: toml:"),
     ("meta non-ASCII key", append_meta("\u03a6 = 1\n"), ANALYZE, 65, r"meta\.toml:\d+"),
     ("meta sensor id text", append_meta('[[sensor]]\nid = "zero"\nname = "a"\nkind = "b"\n'), ANALYZE, 65, r"meta\.toml:\d+: sensor\[\d+\]\.id"),

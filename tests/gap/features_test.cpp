@@ -132,9 +132,12 @@ TEST_F(GapFeatures, TheReSimulationTakesSpeedWeatherMassAndWarmUpFromTheRecordin
   EXPECT_DOUBLE_EQ(s.weather.pressure_pa, 97000.0);
   EXPECT_EQ(s.weather.wind_trace.size(), 2u);
   EXPECT_NEAR(s.load_scale, 1.1, 1e-3);
-  EXPECT_EQ(s.driven_before, sim::kReportWarmUp);  // not stated: warmed up
+  EXPECT_EQ(s.driven_before, sim::kReportWarmUp);  // not stated: the model's
+  sim::Scenario yard = scenario_;
+  yard.driven_before = Seconds{300.0};
+  EXPECT_EQ(resimulation(yard, c, meta).driven_before.count(), 300.0);
   meta.vehicle["driven_before_s"] = 600.0;
-  EXPECT_EQ(resimulation(scenario_, c, meta).driven_before.count(), 600.0);
+  EXPECT_EQ(resimulation(yard, c, meta).driven_before.count(), 600.0);
   // A mean speed within 0.3 m/s of the model's is the model's set speed driven.
   c.mean_speed_mps = scenario_.speed_mps + 0.2;
   EXPECT_DOUBLE_EQ(resimulation(scenario_, c, meta).speed_mps, scenario_.speed_mps);

@@ -116,7 +116,7 @@ TEST_F(GapLibraryCache, TheStoredDriveDecidesWhomItServes) {
 }
 
 // The tire-warmup candidate's response is the library drive's warm-up: 10 minutes of driving
-// leave 61 % of the cold excess, 30 minutes 22 %, 32 minutes 21 %.
+// leave 61 % of the cold excess, 30 minutes 22 %, 32 minutes 20 %.
 TEST_F(GapLibraryCache, ALibraryServesDrivesWhoseTiresWereAsWarm) {
   lib_.scenarios.front().driven_before = Seconds{600.0};
   auto back = decode_library(encode_library(lib_, "f"), "x.lib", "f", {run_});

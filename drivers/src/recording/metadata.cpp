@@ -56,11 +56,13 @@ class Reader {
   }
 
   // A vehicle number a truck can have: finite; a mass (its name ends in _kg) above 0 and below
-  // 200 t; an axle's position between 0 and 50 m behind the front axle.
+  // 200 t; an axle's position between 0 and 50 m behind the front axle; the driving before the
+  // recording within a day (a tire's warm-up is gone after two hours).
   static const char* unphysical(std::string_view key, double v) {
     if (!std::isfinite(v)) return "not a finite number";
     if (key.ends_with("_kg") && !(v > 0 && v < 200'000)) return "a mass must lie between 0 and 200,000 kg";
     if (key.ends_with("_position_m") && !(v >= 0 && v <= 50)) return "an axle's position must lie 0-50 m behind the front axle";
+    if (key == "driven_before_s" && !(v >= 0 && v <= 86'400)) return "the driving before the recording must lie 0-86,400 s";
     return nullptr;
   }
 

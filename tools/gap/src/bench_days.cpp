@@ -38,7 +38,7 @@ void read_run(const detail::TomlFields& f, const toml::table& t, const std::stri
   };
   set_in("air_temp_c", -40.0, 50.0, drive.weather.air_temp_c);
   double driven_s = drive.driven_before.count();
-  set_in("driven_before_s", 0.0, 86400.0, driven_s);
+  set_in("driven_before_s", 0.0, sim::kMaxDrivenBefore.count(), driven_s);
   drive.driven_before = Seconds{driven_s};
   set_in("wind_speed_mps", 0.0, 25.0, drive.weather.wind_speed_mps);
   set_in("wind_from_deg", 0.0, 360.0, drive.weather.wind_from_deg);

@@ -327,7 +327,8 @@ Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
   const double calibrated = Quadratic(p, {}, kBothHalves).sse({});
   const double dispersion = std::max(1.0, (calibrated - d.chosen->gain) / static_cast<double>(std::max<std::size_t>(1, d.features)));
   const double needed = std::max(rule.pair_gain * dispersion, rule.pair_share * d.chosen->gain);
-  // The pair's first member is the named single.
+  // Its first member is the named single (fit_set keeps the order), which the answer, its rivals
+  // and the bench's score read as the effect named.
   if (d.best_pair && d.best_pair->gain - d.chosen->gain > needed) d.chosen = *d.best_pair;
   d.rivals = rivals(p, d, rule);
   // The nominal truck as fitted beside the chosen effects; its held-out figures stay those of the

@@ -111,7 +111,9 @@ void read_drives(Records& in, ModelLibrary& lib) {
     s.weather.wind_from_deg = v[5];
     s.duration.reset();
     if (std::isfinite(v[6])) s.duration = Seconds{v[6]};
-    if (!(v[7] >= 0)) throw Bad{"drive", "driving before the run is not a duration: " + std::to_string(v[7])};
+    if (!(v[7] >= 0 && v[7] <= sim::kMaxDrivenBefore.count())) {
+      throw Bad{"drive", "driving before the run outside 0-86400 s: " + std::to_string(v[7])};
+    }
     s.driven_before = Seconds{v[7]};
   }
 }

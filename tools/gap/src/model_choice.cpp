@@ -218,16 +218,14 @@ std::string describe(const RealRun& run) {
   const RunConditions& c = run.recorded.features.conditions;
   const auto& vehicle = run.recorded.meta.vehicle;
   const auto mass = vehicle.find("mass_kg");
-  const auto driven = vehicle.find("driven_before_s");
   char line[512];
   std::snprintf(line, sizeof line,
                 "run %s: model %s (route %s%s), %.0f s at %.2f m/s, %.1f C, %.0f Pa, wind %.1f m/s from %.0f deg, mass %.0f kg",
                 run.label.c_str(), run.model.name.c_str(), run.model.route.name.c_str(), run.model.coast ? ", coast-down" : "",
                 c.duration_s, c.mean_speed_mps, c.air_temp_c, c.pressure_pa, c.wind_speed_mps, c.wind_from_deg,
                 mass != vehicle.end() ? mass->second : 0.0);
-  std::string out = line;
-  if (driven != vehicle.end()) out += ", driven " + std::to_string(std::lround(driven->second / 60.0)) + " min before";
-  return out;
+  return std::string(line) + ", driven " + std::to_string(std::lround(driven_before(run.recorded.meta, run.model).count() / 60.0)) +
+         " min before";
 }
 
 }  // namespace roadload::gap

@@ -114,6 +114,12 @@ Parsed<RecordedRun> read_run(const std::string& path, const j1939::Database& db,
   return run;
 }
 
+Seconds driven_before(const recording::Metadata& meta, const sim::Scenario& model) {
+  // The metadata reader refuses a value outside 0-86400 s.
+  const auto it = meta.vehicle.find("driven_before_s");
+  return it != meta.vehicle.end() ? Seconds{it->second} : model.driven_before;
+}
+
 sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, const recording::Metadata& meta) {
   sim::Scenario s = model;
   // A drive near the model's set speed was driven at it: the measured mean carries the cruise
@@ -134,10 +140,7 @@ sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, c
   if (auto it = meta.vehicle.find("mass_kg"); it != meta.vehicle.end() && it->second > 0) {
     s.load_scale = std::clamp(it->second / model.vehicle.mass_kg(), 0.5, 1.5);
   }
-  // A tire still warming up rolls harder; a recording that does not say is taken as warmed up.
-  if (auto it = meta.vehicle.find("driven_before_s"); it != meta.vehicle.end() && it->second >= 0) {
-    s.driven_before = Seconds{std::min(it->second, 86400.0)};
-  }
+  s.driven_before = driven_before(meta, model);
   return s;
 }
 

@@ -91,7 +91,7 @@ struct DecisionRule {
   double pair_gain = 50.0;        // and a second effect beyond the first
   double pair_share = 0.01;       // and at least this share of the first's gain: less is the first's model error
   double penalty = 2.0;           // per fitted magnitude, AIC-like
-  std::size_t pair_pool = 6;      // the best singles tried as the named one's second
+  std::size_t pair_pool = 6;      // the best singles, itself left out, tried beside the named one
   double range_tolerance = 0.25;  // of the realistic range's width, outside it
 };
 

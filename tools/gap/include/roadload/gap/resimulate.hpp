@@ -27,9 +27,12 @@ struct RecordedRun {
 // `base` is the vehicle the recording's metadata is read over (the model's).
 Parsed<RecordedRun> read_run(const std::string& path, const j1939::Database& db, const RunLayout& layout, const Vehicle& base);
 
-// The model scenario, told the recording's mean speed, weather, duration and the mass in its
-// metadata. Effects stay as the model has them.
+// The model scenario, told the recording's mean speed, weather, duration, and the mass and the
+// driving before it in its metadata. Effects stay as the model has them.
 sim::Scenario resimulation(const sim::Scenario& model, const RunConditions& c, const recording::Metadata& meta);
+// How long the truck had been driving when the recording starts (its tires' warm-up): meta.toml's
+// driven_before_s, else the model's (by default the report's 30 minutes; roadloadd does not write it).
+Seconds driven_before(const recording::Metadata& meta, const sim::Scenario& model);
 
 // Simulates in memory, straight into features; the metadata is what its recording would hold.
 RecordedRun simulate_run(const sim::Scenario& scenario, std::uint64_t seed, const j1939::Database& db, const RunLayout& layout);
