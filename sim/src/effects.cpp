@@ -48,7 +48,7 @@ constexpr std::array<EffectInfo, kEffectCount> kCatalog{{
 
 }  // namespace
 
-double tire_warmup_left(double driven_s) { return std::exp(-driven_s / 1200.0); }
+double tire_warmup_left(Seconds driven) { return std::exp(-driven.count() / 1200.0); }
 
 std::span<const EffectInfo> effect_catalog() { return kCatalog; }
 

@@ -81,7 +81,7 @@ double TruckPlant::crr_of_axle(std::size_t axle, const Environment& env) const {
   double crr = route_.crr_at(state_.x_m - truck_.axles[axle].position_m) * truck_.tire_crr_scale;
   const auto& fx = effects_;
   if (fx.on(Effect::tire_warmup)) {
-    crr *= 1.0 + fx.magnitude(Effect::tire_warmup) * tire_warmup_left(state_.t_s + options_.warm.count());
+    crr *= 1.0 + fx.magnitude(Effect::tire_warmup) * tire_warmup_left(Seconds{state_.t_s} + options_.warm);
   }
   if (fx.on(Effect::temperature_crr)) crr *= 1.0 - fx.magnitude(Effect::temperature_crr) * (env.air_temp_c - 14.3);
   if (fx.on(Effect::speed_crr)) crr *= 1.0 + fx.magnitude(Effect::speed_crr) * (state_.speed_mps - 13.4112);

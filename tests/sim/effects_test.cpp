@@ -117,7 +117,7 @@ TEST(Effects, CrrEffectsMoveTheTrueRollingResistanceTheRightWay) {
 }
 
 // A run that starts 10 minutes after the truck left its yard: most of the cold excess is left, and
-// the recording says how long the truck had driven, as a logger running since it started knows.
+// the simulated recording says how long the truck had driven, for the gap's re-simulation.
 TEST(Effects, TireWarmupDependsOnTheDrivingBeforeTheRun) {
   const double base = observe(std::nullopt, 0).crr_mean;
   const Observed early = observe(Effect::tire_warmup, 0.3, 1.0, 1.0, Seconds{600.0});

@@ -212,8 +212,7 @@ bool library_serves(const ModelLibrary& lib, const std::vector<sim::Scenario>& r
     if (std::abs(a.weather.air_temp_c - b.weather.air_temp_c) > 6.0) return false;
     // The tires' warm-up left at the start, within a twentieth of their cold excess: at the largest
     // excess (0.5) that is 2.5 % of CRR, less than the 6 C allowed above moves a CRR with temperature.
-    if (std::abs(sim::tire_warmup_left(a.driven_before.count()) - sim::tire_warmup_left(b.driven_before.count())) > 0.05)
-      return false;
+    if (std::abs(sim::tire_warmup_left(a.driven_before) - sim::tire_warmup_left(b.driven_before)) > 0.05) return false;
     if (std::abs(a.weather.pressure_pa - b.weather.pressure_pa) > 2000.0) return false;  // as 6 C does to the air's density
     if (a.duration.has_value() != b.duration.has_value()) return false;
     if (a.duration && std::abs(a.duration->count() - b.duration->count()) > 0.05 * a.duration->count() + 5.0) return false;

@@ -51,7 +51,7 @@ inline constexpr double kUsableTread_m = 0.017;
 
 // The share of a tire's cold excess of CRR left after driving this long (`tire-warmup`): it
 // falls with a 20 min time constant (docs/simulator-parameters.md).
-double tire_warmup_left(double driven_s);
+double tire_warmup_left(Seconds driven);
 // The report's protocol warmed the truck up for 30 minutes or more before a run. A day is the most
 // a run is taken to follow (the warm-up is gone after two hours).
 inline constexpr Seconds kReportWarmUp{1800.0};
