@@ -2,6 +2,7 @@
 // residuals made from them plus unit noise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -176,6 +177,34 @@ TEST(GapDiagnosis, OfTwoLookalikesNamesTheOneWhoseFittedMagnitudeIsRealistic) {
   ASSERT_TRUE(d.chosen);
   EXPECT_EQ(s.chosen_name(d), "effect-1");
   EXPECT_LT(d.singles.back().plausibility, 0.01);
+}
+
+TEST(GapDiagnosis, AnEffectThatFitsOnlyBesideAnImplausibleTruckIsNotNamed) {
+  // The drive holds effect 0 and a leftover. Effect 1 reproduces both, but only beside a truck six
+  // of its prior's sigmas from the model's, as worn tread does beside a tyre radius far off.
+  Synthetic s(3);
+  const Eigen::VectorXd gap = s.problem.candidates[0].response(1.0);
+  const Eigen::VectorXd leftover = 0.5 * s.problem.candidates[2].response(1.0);
+  Eigen::VectorXd truck(kProblemFeatures);
+  for (Eigen::Index i = 0; i < kProblemFeatures; ++i) truck(i) = 2.0 * std::cos(0.05 * static_cast<double>(i));
+  s.problem.nominal.push_back({"tire radius", "m", 0.5, 0.004, truck});
+  const Eigen::VectorXd lookalike = gap + leftover - 6.0 * truck;
+  s.problem.candidates[1] = Candidate::from_two("effect-1", "unit", 0.0, 0.0, 3.0, 1.0, lookalike, 2.0, 2.0 * lookalike);
+  s.problem.candidates.pop_back();
+  s.problem.z = gap + leftover;
+  s.add_noise();
+  DecisionRule any_truck;
+  any_truck.truck_sigmas = std::numeric_limits<double>::infinity();
+  const Diagnosis blind = diagnose(s.problem, any_truck);
+  ASSERT_TRUE(blind.chosen);
+  EXPECT_EQ(s.chosen_name(blind), "effect-1");  // what the rule is for
+  const Diagnosis d = diagnose(s.problem);
+  ASSERT_TRUE(d.chosen);
+  EXPECT_EQ(s.chosen_name(d), "effect-0");
+  const auto lookalike_fit = std::find_if(d.singles.begin(), d.singles.end(), [](const Fit& f) { return f.effects[0] == 1; });
+  ASSERT_NE(lookalike_fit, d.singles.end());
+  EXPECT_GT(lookalike_fit->truck_sigma, 5.0);
+  EXPECT_LT(lookalike_fit->truck_plausibility, 0.05);
 }
 
 TEST(GapLocate, RanksTheChannelWithTheExcessFirstAndNamesItsWorstPlace) {

@@ -170,7 +170,15 @@ Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const Decisio
       f.plausibility *= std::exp(-outside * outside);
     }
   }
-  if (f.gain > 0) f.gain *= f.plausibility;
+  // The truck the effects were fitted beside: an effect that fits only beside an implausible truck
+  // is taking up what the truck's linear model cannot, not explaining the drive.
+  const Eigen::VectorXd t = all.theta(all.effect_coeffs(u));
+  for (Eigen::Index j = 0; j < t.size(); ++j) {
+    f.truck_sigma = std::max(f.truck_sigma, std::abs(t(j)));
+    const double beyond = std::max(0.0, std::abs(t(j)) - rule.truck_sigmas);
+    f.truck_plausibility *= std::exp(-beyond * beyond);
+  }
+  if (f.gain > 0) f.gain *= f.plausibility * f.truck_plausibility;
   return f;
 }
 

@@ -132,7 +132,7 @@ std::string library_fingerprint(const std::vector<sim::Scenario>& resims, const 
   hash_database(h, db);
   const DecisionRule& r = options.rule;
   for (const double v : {static_cast<double>(options.noise_runs), static_cast<double>(options.holdout), r.null_gain, r.null_factor,
-                         r.pair_gain, r.pair_share, r.penalty, static_cast<double>(r.pair_pool), r.range_tolerance}) {
+                         r.pair_gain, r.pair_share, r.penalty, static_cast<double>(r.pair_pool), r.range_tolerance, r.truck_sigmas}) {
     h.number(v);
   }
   return h.hex();

@@ -102,9 +102,12 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
   for (std::size_t i = 0; i < shown; ++i) {
     const Fit& f = d.singles[i];
     const Candidate& c = g.problem.candidates[f.effects[0]];
-    const std::string note = !c.stood_for_by.empty() ? "  (the nominal " + c.stood_for_by + " stands for it)"
-                             : f.plausibility < 0.99 ? "  (outside its realistic range)"
-                                                     : "";
+    char truck[64];
+    std::snprintf(truck, sizeof truck, "  (beside a truck %.1f sigma from the model's)", f.truck_sigma);
+    const std::string note = !c.stood_for_by.empty()       ? "  (the nominal " + c.stood_for_by + " stands for it)"
+                             : f.plausibility < 0.99       ? "  (outside its realistic range)"
+                             : f.truck_plausibility < 0.99 ? std::string(truck)
+                                                           : "";
     std::fprintf(out, "  %-22s gain %8.1f (%5.0f)   %s = %.4g %s [%.4g, %.4g]%s\n", c.name.c_str(), f.gain, c.null_gain,
                  c.name.c_str(), f.magnitude[0], c.unit.c_str(), f.lo[0], f.hi[0], note.c_str());
   }
@@ -196,7 +199,9 @@ std::string result_json(const GapResult& g, const std::vector<std::string>& run_
     const Fit& f = d.singles[i];
     j << (i ? "," : "") << "\n    {\"name\": " << results::json_quote(g.problem.candidates[f.effects[0]].name)
       << ", \"gain\": " << json_number(f.gain) << ", \"noise_gain\": " << json_number(g.problem.candidates[f.effects[0]].null_gain)
-      << ", \"magnitude\": " << json_number(f.magnitude[0]) << ", \"plausibility\": " << json_number(f.plausibility) << "}";
+      << ", \"magnitude\": " << json_number(f.magnitude[0]) << ", \"plausibility\": " << json_number(f.plausibility)
+      << ", \"truck_sigma\": " << json_number(f.truck_sigma) << ", \"truck_plausibility\": " << json_number(f.truck_plausibility)
+      << "}";
   }
   j << "\n  ],\n  \"rivals\": [";
   for (std::size_t i = 0; d.chosen && i < d.rivals.size(); ++i) {

@@ -72,8 +72,10 @@ struct Fit {
   std::vector<double> magnitude, lo, hi;  // fitted on both halves; 90 % interval
   std::vector<double> magnitude_half0;    // fitted on half 0 alone: what the held-out check uses
   double gain = 0;                        // chi-square removed on held-out data, both folds, minus the complexity penalty,
-                                          // times the plausibility of the magnitudes
+                                          // times the plausibility of the magnitudes and of the truck beside them
   double plausibility = 1;                // exp(-(d / tolerance)^2), d: distance outside the realistic range in its widths
+  double truck_sigma = 0;                 // the nominal offset farthest from the model, in prior sigmas (both halves' fit)
+  double truck_plausibility = 1;          // exp(-(|t| - DecisionRule::truck_sigmas)^2) over the offsets beyond it
 };
 
 struct WhereItem {
@@ -93,6 +95,9 @@ struct DecisionRule {
   double penalty = 2.0;           // per fitted magnitude, AIC-like
   std::size_t pair_pool = 6;      // the best singles, itself left out, tried beside the named one
   double range_tolerance = 0.25;  // of the realistic range's width, outside it
+  // A fit that needs the truck farther than this from the model, in its priors' sigmas, explains
+  // the drive with a truck the spreads hardly ever draw: believed less by a sigma each beyond it.
+  double truck_sigmas = 3.0;
 };
 
 struct Diagnosis {
