@@ -207,6 +207,27 @@ TEST(GapDiagnosis, AnEffectThatFitsOnlyBesideAnImplausibleTruckIsNotNamed) {
   EXPECT_LT(lookalike_fit->truck_plausibility, 0.05);
 }
 
+TEST(GapDiagnosis, AnEffectThatBringsARunawayTruckBackIsBelieved) {
+  // Fitted alone, the truck runs ten sigmas out to take up the effect; beside it, five. The effect
+  // needs a truck beyond the spreads but nearer than the truck alone: it is not penalised.
+  Synthetic s(1);
+  Eigen::VectorXd truck(kProblemFeatures);
+  for (Eigen::Index i = 0; i < kProblemFeatures; ++i) truck(i) = 2.0 * std::cos(0.05 * static_cast<double>(i));
+  s.problem.nominal.push_back({"mass", "kg", 30000.0, 360.0, truck});
+  Eigen::VectorXd own = s.problem.candidates[0].response(1.0);
+  own -= truck * (own.dot(truck) / truck.squaredNorm());
+  const Eigen::VectorXd response = own + 5.0 * truck;
+  s.problem.candidates[0] = Candidate::from_two("effect-0", "unit", 0.0, 0.0, 3.0, 1.0, response, 2.0, 2.0 * response);
+  s.problem.z = response + 5.0 * truck;
+  s.add_noise();
+  const Diagnosis d = diagnose(s.problem);
+  ASSERT_TRUE(d.chosen);
+  EXPECT_EQ(s.chosen_name(d), "effect-0");
+  EXPECT_GT(d.singles.front().truck_sigma, 4.0);
+  EXPECT_GT(d.singles.front().truck_plausibility, 0.99);
+  EXPECT_GT(std::abs(d.nominal.shift_sigma.front()), 4.0);
+}
+
 TEST(GapLocate, RanksTheChannelWithTheExcessFirstAndNamesItsWorstPlace) {
   Synthetic s(1);
   s.add_noise();

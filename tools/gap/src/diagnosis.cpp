@@ -170,12 +170,14 @@ Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const Decisio
       f.plausibility *= std::exp(-outside * outside);
     }
   }
-  // The truck the effects were fitted beside: an effect that fits only beside an implausible truck
-  // is taking up what the truck's linear model cannot, not explaining the drive.
+  // The truck the effects were fitted beside: an effect that fits only beside a truck farther out
+  // than the spreads draw and than the truck fitted alone is taking up what the truck's linear
+  // model cannot, not explaining the drive. One that brings a runaway truck back is not.
   const Eigen::VectorXd t = all.theta(all.effect_coeffs(u));
+  const Eigen::VectorXd alone = all.theta(Eigen::VectorXd::Zero(all.ne));
   for (Eigen::Index j = 0; j < t.size(); ++j) {
     f.truck_sigma = std::max(f.truck_sigma, std::abs(t(j)));
-    const double beyond = std::max(0.0, std::abs(t(j)) - rule.truck_sigmas);
+    const double beyond = std::max(0.0, std::abs(t(j)) - std::max(rule.truck_sigmas, std::abs(alone(j))));
     f.truck_plausibility *= std::exp(-beyond * beyond);
   }
   if (f.gain > 0) f.gain *= f.plausibility * f.truck_plausibility;

@@ -75,7 +75,8 @@ struct Fit {
                                           // times the plausibility of the magnitudes and of the truck beside them
   double plausibility = 1;                // exp(-(d / tolerance)^2), d: distance outside the realistic range in its widths
   double truck_sigma = 0;                 // the nominal offset farthest from the model, in prior sigmas (both halves' fit)
-  double truck_plausibility = 1;          // exp(-(|t| - DecisionRule::truck_sigmas)^2) over the offsets beyond it
+  double truck_plausibility = 1;          // exp(-b^2) per offset, b: how far it lies beyond both
+                                          // DecisionRule::truck_sigmas and the truck fitted alone
 };
 
 struct WhereItem {
@@ -95,8 +96,9 @@ struct DecisionRule {
   double penalty = 2.0;           // per fitted magnitude, AIC-like
   std::size_t pair_pool = 6;      // the best singles, itself left out, tried beside the named one
   double range_tolerance = 0.25;  // of the realistic range's width, outside it
-  // A fit that needs the truck farther than this from the model, in its priors' sigmas, explains
-  // the drive with a truck the spreads hardly ever draw: believed less by a sigma each beyond it.
+  // A fit that needs the truck farther than this from the model, in its priors' sigmas, and
+  // farther than the truck fitted alone, explains the drive with a truck the spreads hardly ever
+  // draw: believed less by a sigma each beyond both.
   double truck_sigmas = 3.0;
 };
 
