@@ -175,10 +175,12 @@ Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const Decisio
   // model cannot, not explaining the drive. One that brings a runaway truck back is not.
   const Eigen::VectorXd t = all.theta(all.effect_coeffs(u));
   const Eigen::VectorXd alone = all.theta(Eigen::VectorXd::Zero(all.ne));
+  double most_beyond = 0;
   for (Eigen::Index j = 0; j < t.size(); ++j) {
-    f.truck_sigma = std::max(f.truck_sigma, std::abs(t(j)));
     const double beyond = std::max(0.0, std::abs(t(j)) - std::max(rule.truck_sigmas, std::abs(alone(j))));
     f.truck_plausibility *= std::exp(-beyond * beyond);
+    if (beyond > most_beyond || (most_beyond == 0 && std::abs(t(j)) > f.truck_sigma)) f.truck_sigma = std::abs(t(j));
+    most_beyond = std::max(most_beyond, beyond);
   }
   if (f.gain > 0) f.gain *= f.plausibility * f.truck_plausibility;
   return f;

@@ -95,8 +95,8 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
                  w.significance, w.worst_where.c_str(), w.worst_z);
   }
   std::fprintf(out,
-               "\ncandidates (held-out chi-square removed, both folds, minus %g per magnitude; in brackets the most it\n"
-               "removed from a noise drive):\n",
+               "\ncandidates (held-out chi-square removed, both folds, minus %g per magnitude, times the plausibility of\n"
+               "the magnitude and of the truck beside it; in brackets the most it removed from a noise drive):\n",
                2.0);
   const std::size_t shown = std::min<std::size_t>(6, d.singles.size());
   for (std::size_t i = 0; i < shown; ++i) {

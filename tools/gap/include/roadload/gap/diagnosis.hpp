@@ -74,7 +74,8 @@ struct Fit {
   double gain = 0;                        // chi-square removed on held-out data, both folds, minus the complexity penalty,
                                           // times the plausibility of the magnitudes and of the truck beside them
   double plausibility = 1;                // exp(-(d / tolerance)^2), d: distance outside the realistic range in its widths
-  double truck_sigma = 0;                 // the nominal offset farthest from the model, in prior sigmas (both halves' fit)
+  double truck_sigma = 0;                 // in prior sigmas (both halves' fit): the offset the truck factor penalises
+                                          // most, else the one farthest from the model
   double truck_plausibility = 1;          // exp(-b^2) per offset, b: how far it lies beyond both
                                           // DecisionRule::truck_sigmas and the truck fitted alone
 };
@@ -98,7 +99,7 @@ struct DecisionRule {
   double range_tolerance = 0.25;  // of the realistic range's width, outside it
   // A fit that needs the truck farther than this from the model, in its priors' sigmas, and
   // farther than the truck fitted alone, explains the drive with a truck the spreads hardly ever
-  // draw: believed less by a sigma each beyond both.
+  // draw: its gain is scaled by exp(-b^2), b the excess beyond both.
   double truck_sigmas = 3.0;
 };
 
