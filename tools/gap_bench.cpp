@@ -127,10 +127,14 @@ void print_case(std::size_t i, const gap::CaseOutcome& o) {
     const bool hidden = std::any_of(o.truth.effects.begin(), o.truth.effects.end(),
                                     [&](const auto& e) { return sim::effect_info(e.first).name == c.name; });
     if (k >= 4 && !hidden) continue;
-    char text[128];
+    char text[160];
     std::snprintf(text, sizeof text, "%s %s%s %.1f (%.0f)", lead.empty() ? "" : ",", c.name.c_str(),
                   c.stood_for_by.empty() ? "" : "*", d.singles[k].gain, c.null_gain);
     lead += text;
+    if (d.singles[k].truck_plausibility < 0.99) {
+      std::snprintf(text, sizeof text, " [truck %.1f sigma: x %.2g]", d.singles[k].truck_sigma, d.singles[k].truck_plausibility);
+      lead += text;
+    }
   }
   if (d.best_pair) {
     char text[160];
