@@ -7,6 +7,7 @@
 #include "roadload/firmware/worker_pacing.hpp"
 #include "roadload/io/posix_time.hpp"
 #include "roadload/merge.hpp"
+#include "roadload/recording/candump.hpp"
 #include "roadload/results/results_files.hpp"
 #include "roadload/utc_text.hpp"
 
@@ -238,7 +239,10 @@ bool Daemon::estimate_next(CaptureTime horizon, CaptureTime place_horizon) {
     if (!ring.try_pop(item)) return;
     if (setup_.timeline) item.t = setup_.timeline->recorded(item.t);
     if constexpr (std::is_same_v<decltype(item), CanFrame>) {
-      cadence_.push(item);
+      // On the recording's stamps, so the status counts what a decode of the recording finds.
+      CanFrame as_recorded = item;
+      as_recorded.t = recording::candump_stamp(item.t);
+      cadence_.push(as_recorded);
       if (!analyzer_) bus_watch_.push(item);
     }
     if constexpr (std::is_same_v<decltype(item), GnssFix>) {

@@ -111,6 +111,21 @@ TEST(CandumpLine, StampsAreWrittenAsPrintfWritesThem) {
   }
 }
 
+// The daemon judges live what a decode of its recording must find, on candump_stamp's stamps.
+TEST(CandumpLine, AWrittenStampReadsBackAsCandumpStampSaysItWill) {
+  std::mt19937_64 rng(11);
+  for (int k = 0; k < 2000; ++k) {
+    CanFrame f;
+    f.kind = CanFrameKind::standard;
+    f.id = 0x123;
+    f.t = capture_time_from_ns(static_cast<std::int64_t>(rng() >> (2 + k % 30)));
+    const ParsedLine p = parse(format(f));
+    ASSERT_FALSE(p.error) << format(f);
+    EXPECT_EQ(p.frame.t, candump_stamp(f.t)) << to_ns(f.t);
+  }
+  EXPECT_EQ(to_ns(candump_stamp(capture_time_from_ns(1'000'000'999))), 1'000'000'000);
+}
+
 // Lines shaped as candump -L writes them take a short path; a nanosecond stamp sends the same
 // frame through the general one. Both must read every frame alike.
 TEST(CandumpLine, TheShortAndTheGeneralPathReadTheSameFrames) {

@@ -50,4 +50,11 @@ std::optional<LineError> parse_candump_line(std::string_view line, InterfaceTabl
 inline constexpr std::size_t kMaxLineChars = 192;
 std::size_t format_candump_line(const CanFrame& f, std::string_view iface, char* buf);
 
+// A stamp as its candump line keeps it, whole microseconds: what reads a recording sees this,
+// so a live judgement that must agree with it (the cadence counts) is made on it too.
+inline CaptureTime candump_stamp(CaptureTime t) {
+  const std::int64_t ns = to_ns(t);
+  return capture_time_from_ns(ns - ns % 1000);
+}
+
 }  // namespace roadload::recording
