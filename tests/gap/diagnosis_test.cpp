@@ -75,9 +75,8 @@ TEST(GapDiagnosis, NamesTheEffectThatMadeTheResidualWithItsMagnitudeInsideTheInt
   EXPECT_GT(d.chosen->gain, 1000.0);
 }
 
-// Two effects whose signatures differ by less than noise can tell: the one named lists the other
-// as a rival; effects whose fits fall short by more than noise alone gives are not listed.
-TEST(GapDiagnosis, ListsTheRivalsTheDrivesCannotTellApart) {
+// Effect 3 made the residual; candidate 5 is its twin, differing by less than the noise can tell.
+Synthetic with_twin() {
   Synthetic s(6);
   Candidate twin = s.problem.candidates[3];
   twin.name = "twin";
@@ -85,6 +84,13 @@ TEST(GapDiagnosis, ListsTheRivalsTheDrivesCannotTellApart) {
   s.problem.candidates[5] = twin;
   s.problem.z = s.problem.candidates[3].response(1.7);
   s.add_noise();
+  return s;
+}
+
+// Two effects whose signatures differ by less than noise can tell: the one named lists the other
+// as a rival; effects whose fits fall short by more than noise alone gives are not listed.
+TEST(GapDiagnosis, ListsTheRivalsTheDrivesCannotTellApart) {
+  Synthetic s = with_twin();
   Diagnosis d = diagnose(s.problem);
   ASSERT_TRUE(d.chosen);
   const std::string named = s.chosen_name(d);
@@ -97,6 +103,25 @@ TEST(GapDiagnosis, ListsTheRivalsTheDrivesCannotTellApart) {
   d = diagnose(s.problem);
   ASSERT_TRUE(d.chosen);
   EXPECT_TRUE(d.rivals.empty());
+}
+
+// Beside an effect named just past the rule's gain, a twin just short of it is listed: the drives
+// tell them apart no better than there.
+TEST(GapDiagnosis, ARivalJustShortOfTheRulesGainIsListed) {
+  Synthetic s = with_twin();
+  const Diagnosis d = diagnose(s.problem);
+  ASSERT_TRUE(d.chosen);
+  ASSERT_EQ(d.rivals.size(), 1u);
+  DecisionRule rule;
+  rule.null_gain = 0.5 * (d.chosen->gain + d.rivals[0].gain);
+  ASSERT_GT(d.chosen->gain - d.rivals[0].gain, 0.0);
+  const Diagnosis past = diagnose(s.problem, rule);
+  ASSERT_TRUE(past.chosen);
+  EXPECT_EQ(s.chosen_name(past), s.chosen_name(d));
+  const std::size_t rival = d.rivals[0].effects[0];
+  const auto listed = std::find_if(past.rivals.begin(), past.rivals.end(), [&](const Fit& f) { return f.effects[0] == rival; });
+  ASSERT_NE(listed, past.rivals.end());
+  EXPECT_LT(listed->gain, rule.null_gain);
 }
 
 TEST(GapDiagnosis, NamesNothingInPureNoise) {

@@ -279,9 +279,10 @@ double rival_margin(const Candidate& named, const Candidate& other, const Decisi
 
 namespace {
 
-// The single fits that would be named on their own (beyond the rule's gain and twice their own
-// noise) and came within rival_margin() of the first chosen effect's own; the chosen effects and
-// those a nominal parameter stands for left out.
+// The single fits beyond twice their own noise that came within rival_margin() of the first chosen
+// effect's own; the chosen effects and those a nominal parameter stands for left out. A rival
+// need not clear the rule's gain: beside an effect named just past it, one just short of it is
+// as likely.
 std::vector<Fit> rivals(const Problem& p, const Diagnosis& d, const DecisionRule& rule) {
   const std::vector<std::size_t>& chosen = d.chosen->effects;
   const auto first = std::find_if(d.singles.begin(), d.singles.end(), [&](const Fit& f) { return f.effects[0] == chosen[0]; });
@@ -289,8 +290,8 @@ std::vector<Fit> rivals(const Problem& p, const Diagnosis& d, const DecisionRule
   for (const Fit& f : d.singles) {
     const Candidate& c = p.candidates[f.effects[0]];
     if (std::find(chosen.begin(), chosen.end(), f.effects[0]) != chosen.end() || !c.stood_for_by.empty()) continue;
-    const bool nameable = f.gain >= std::max(rule.null_gain, rule.null_factor * c.null_gain);
-    if (nameable && f.gain >= first->gain - rival_margin(p.candidates[chosen[0]], c, rule)) out.push_back(f);
+    const bool beyond_noise = f.gain > 0 && f.gain >= rule.null_factor * c.null_gain;
+    if (beyond_noise && f.gain >= first->gain - rival_margin(p.candidates[chosen[0]], c, rule)) out.push_back(f);
   }
   return out;
 }
