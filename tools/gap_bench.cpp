@@ -21,7 +21,7 @@ namespace {
 
 const HelpText kGapBenchHelp{
     "usage: roadload gap bench [--cases N] [--seed S] [--effects A,B,...] [--days FILE] [--road NAME]\n"
-    "                          [--model-truck] [--jobs N]",
+    "                          [--model-truck] [--case K ...] [--jobs N]",
     "Simulates test days of a truck (each on one road: two cruise runs and a neutral coast-down, as\n"
     "a test-days file sets them out) with effects the diagnosis is not told: one at a random\n"
     "magnitude within its range, two at once (15 % of cases) or none (20 %). Each day is diagnosed\n"
@@ -29,7 +29,9 @@ const HelpText kGapBenchHelp{
     "Prints every case, the confusion matrix, top-1 accuracy (null runs count as right when nothing\n"
     "is named), the mean held-out shrink over cases whose effect is visible above the noise, and\n"
     "the false-alarm rate on null runs. The last line reads\n"
-    "cases=N top1=F shrink=F false_alarm=F."};
+    "cases=N top1=F shrink=F false_alarm=F.\n"
+    "--case runs only the cases named, as numbered in a run of the whole draw; their model library is\n"
+    "built for them alone, so their figures can differ a little from that run's."};
 
 std::string name_of(sim::Effect e) { return std::string(sim::effect_info(e).name); }
 
@@ -62,6 +64,7 @@ struct BenchOptions {
   DaysChoice days{gap::default_bench_days(data_dir()), {}};
   std::string effects_list;
   bool model_truck = false;
+  std::vector<std::size_t> only;  // case numbers, 1-based; empty: every case
 };
 
 void add_options(CLI::App& cmd, BenchOptions& o) {
@@ -86,9 +89,32 @@ void add_options(CLI::App& cmd, BenchOptions& o) {
                "every case drives the model's own truck (default: each case a truck\n"
                "drawn from the vehicle file's spreads of mass, CdA, engine friction and\n"
                "driveline efficiency, whose recovery is scored)");
+  cmd.add_option("--case", o.only, "only case K of the draw (repeatable), to look again at it")
+      ->type_name("K")
+      ->transform(whole_in(1, 100000));
   cmd.add_option("--jobs", o.options.jobs, "simulations at once (default: the number of CPUs)")
       ->type_name("N")
       ->transform(whole_in(1, 256));
+}
+
+// For a case looked at again: the truck fitted on half 0 alone and beside each leading single, in
+// prior sigmas, which the truck factor and the nominal recovery turn on.
+void print_trucks(const gap::CaseOutcome& o) {
+  const auto& d = o.result.diagnosis;
+  auto line = [&](const std::string& label, const std::vector<std::size_t>& set, const std::vector<double>& magnitudes) {
+    const gap::NominalFit f = gap::fit_nominal(o.result.problem, set, magnitudes);
+    std::string text;
+    for (std::size_t j = 0; j < f.shift_sigma.size(); ++j) {
+      char v[64];
+      std::snprintf(v, sizeof v, "  %s %+.1f", o.result.problem.nominal[j].name.c_str(), f.shift_sigma[j]);
+      text += v;
+    }
+    std::printf("      truck %s (half 0):%s\n", label.c_str(), text.c_str());
+  };
+  line("alone", {}, {});
+  for (std::size_t k = 0; k < d.singles.size() && k < 4; ++k) {
+    line("beside " + o.result.problem.candidates[d.singles[k].effects[0]].name, d.singles[k].effects, d.singles[k].magnitude_half0);
+  }
 }
 
 void print_case(std::size_t i, const gap::CaseOutcome& o) {
@@ -205,6 +231,17 @@ int run_bench(BenchOptions& bench) {
   }
   options.progress = [](const std::string& line) { std::fprintf(stderr, "gap bench: %s\n", line.c_str()); };
   const auto cases = gap::draw_cases(plan, days);
+  for (const std::size_t k : bench.only) {
+    if (k > cases.size()) {
+      std::fprintf(stderr, "roadload gap bench: --case %zu: the draw has %zu cases (--cases)\n", k, cases.size());
+      return kExitUsage;
+    }
+  }
+  auto chosen = [&](std::size_t i) {
+    return bench.only.empty() || std::find(bench.only.begin(), bench.only.end(), i + 1) != bench.only.end();
+  };
+  std::size_t runs = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) runs += chosen(i) ? 1 : 0;
   if (plan.effects.empty()) {
     for (const auto& e : sim::effect_catalog()) {
       if (const char* why = gap::unobservable(e.id)) std::printf("not drawn: %s: %s\n", name_of(e.id).c_str(), why);
@@ -215,13 +252,17 @@ int run_bench(BenchOptions& bench) {
   gap::BenchScore score;
   const auto wall0 = std::chrono::steady_clock::now();
   std::printf("%4s  %-48s %-44s %8s %7s\n", "case", "hidden effects", "named (fitted magnitude)", "gain", "shrink");
+  std::size_t done = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
+    if (!chosen(i)) continue;
     const gap::CaseOutcome o = gap::run_case(cases[i], days, libraries, db, options);
     score.add(o);
     print_case(i, o);
+    if (!bench.only.empty()) print_trucks(o);
+    ++done;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    const double left = wall / static_cast<double>(i + 1) * static_cast<double>(cases.size() - i - 1);
-    std::fprintf(stderr, "gap bench: %zu/%zu cases, %.0f s, about %.0f s left\n", i + 1, cases.size(), wall, left);
+    const double left = wall / static_cast<double>(done) * static_cast<double>(runs - done);
+    std::fprintf(stderr, "gap bench: %zu/%zu cases, %.0f s, about %.0f s left\n", done, runs, wall, left);
   }
   print_score(score, libraries.size());
   return kExitOk;

@@ -11,6 +11,8 @@ expect_status 0 "$roadload" gap --help
 grep -q -- "--real DIR" "$work/out" || fail "--help does not describe --real"
 expect_status 64 "$roadload" gap
 expect_status 64 "$roadload" gap --real "$work/rec" --model a --model b --real "$work/rec2" --model c
+expect_status 64 "$roadload" gap bench --cases 10 --case 11
+grep -q -- "--case 11: the draw has 10 cases" "$work/err" || fail "a case beyond the draw not named: $(cat "$work/err")"
 expect_status 66 "$roadload" gap --real "$work/no-such-recording"
 grep -q "no-such-recording" "$work/err" || fail "missing recording not named: $(cat "$work/err")"
 
