@@ -108,5 +108,38 @@ TEST(GapNominal, AnEffectANominalParameterStandsForIsListedButNeverNamed) {
   EXPECT_EQ(t.problem.candidates[d.singles.front().effects[0]].name, "effect-1") << "still fitted and listed first";
 }
 
+// A truck and an effect placed off the truth, and the residual their re-simulation leaves (here the
+// problem's own responses stand for the simulator): one step lands on the truth, as the fit does
+// on a model it holds exactly; with no effect, the truck alone does too.
+TEST(GapNominal, OneGaussNewtonStepFromWhereAResimulationStoodLandsOnTheTruth) {
+  Truck t;
+  // Curved: 1.5 u + 0.5 u^2, so that a step must re-centre it to land.
+  t.problem.candidates[1] = Candidate::from_two("curved", "unit", 0.0, 0.0, 3.0, 1.0, 2.0 * shape(0.031, 2.0), 2.0,
+                                                5.0 * shape(0.031, 2.0));
+  const Candidate& effect = t.problem.candidates[1];
+  auto plant = [&](const std::vector<double>& shift, double magnitude) {
+    Eigen::VectorXd v = effect.response(magnitude);
+    for (std::size_t j = 0; j < shift.size(); ++j) v += shift[j] * t.problem.nominal[j].per_sigma;
+    return v;
+  };
+  t.problem.z = plant({0.9, -1.2}, 1.8);
+  t.add_noise();
+  const Placement from{{-0.4, 0.5}, {1}, {0.6}};
+  const Placement to = gauss_newton_step(t.problem, t.problem.z - plant(from.shift_sigma, 0.6), from);
+  ASSERT_EQ(to.magnitude_half0.size(), 1u);
+  EXPECT_NEAR(to.magnitude_half0[0], 1.8, 0.05);
+  EXPECT_NEAR(to.shift_sigma[0], 0.9, 0.1);
+  EXPECT_NEAR(to.shift_sigma[1], -1.2, 0.1);
+  EXPECT_EQ(to.effects, from.effects);
+
+  t.problem.z = plant({0.9, -1.2}, 0.0);
+  t.add_noise();
+  const Placement alone{{-0.4, 0.5}, {}, {}};
+  const Placement moved = gauss_newton_step(t.problem, t.problem.z - plant(alone.shift_sigma, 0.0), alone);
+  EXPECT_TRUE(moved.magnitude_half0.empty());
+  EXPECT_NEAR(moved.shift_sigma[0], 0.9, 0.1);
+  EXPECT_NEAR(moved.shift_sigma[1], -1.2, 0.1);
+}
+
 }  // namespace
 }  // namespace roadload::gap

@@ -7,43 +7,22 @@
 namespace roadload::gap {
 namespace {
 
-// The library's responses about where `placed` stands: each effect's quadratic re-centred on its
-// magnitude, the nominal columns as they are; z what its re-simulation left.
-Problem around(const Problem& p, const Placed& placed, const Eigen::VectorXd& real, const Eigen::VectorXd& sigma) {
-  Problem q;
-  q.keys = p.keys;
-  q.nominal = p.nominal;
-  q.z = (real - placed.values).cwiseQuotient(sigma);
-  if (!placed.effects) return q;
-  for (std::size_t i = 0; i < placed.effects->effects.size(); ++i) {
-    Candidate c = p.candidates[placed.effects->effects[i]];
-    const double m = placed.effects->magnitude_half0[i];
-    c.a += 2.0 * (m - c.base) * c.b;
-    c.base = m;
-    q.candidates.push_back(std::move(c));
-  }
-  return q;
-}
-
-// The step fitted on half 0: the truck's offsets moved, and the effects' magnitudes with them.
-Placed stepped(const Problem& q, const Placed& from, const DecisionRule& rule) {
+// One step from where `from` stands (gauss_newton_step), its effects' other figures moved with
+// their magnitudes.
+Placed stepped(const Problem& p, const Placed& from, const Eigen::VectorXd& real, const Eigen::VectorXd& sigma,
+               const DecisionRule& rule) {
+  Placement at{from.shift_sigma, {}, {}};
+  if (from.effects) at = {from.shift_sigma, from.effects->effects, from.effects->magnitude_half0};
+  const Placement next = gauss_newton_step(p, (real - from.values).cwiseQuotient(sigma), at, rule);
   Placed to = from;
-  std::vector<std::size_t> set;
-  std::vector<double> magnitudes;
-  if (from.effects) {
-    for (std::size_t i = 0; i < q.candidates.size(); ++i) set.push_back(i);
-    const Fit refit = fit_effects(q, set, rule);
-    magnitudes = refit.magnitude_half0;
-    for (std::size_t i = 0; i < set.size(); ++i) {
-      const double moved = refit.magnitude_half0[i] - from.effects->magnitude_half0[i];
-      to.effects->magnitude_half0[i] += moved;
-      to.effects->magnitude[i] += moved;
-      to.effects->lo[i] += moved;
-      to.effects->hi[i] += moved;
-    }
+  to.shift_sigma = next.shift_sigma;
+  for (std::size_t i = 0; to.effects && i < next.magnitude_half0.size(); ++i) {
+    const double moved = next.magnitude_half0[i] - from.effects->magnitude_half0[i];
+    to.effects->magnitude_half0[i] += moved;
+    to.effects->magnitude[i] += moved;
+    to.effects->lo[i] += moved;
+    to.effects->hi[i] += moved;
   }
-  const NominalFit truck = fit_nominal(q, set, magnitudes);
-  for (std::size_t j = 0; j < to.shift_sigma.size() && j < truck.shift_sigma.size(); ++j) to.shift_sigma[j] += truck.shift_sigma[j];
   return to;
 }
 
@@ -56,8 +35,8 @@ double half0_chi2(const Problem& p, const Eigen::VectorXd& real, const Eigen::Ve
 
 void second_look(const ModelLibrary& lib, const Problem& p, const std::vector<sim::Scenario>& resims, const Eigen::VectorXd& real,
                  Placed& alone, Placed& with, const j1939::Database& db, const GapOptions& options) {
-  Placed next_alone = stepped(around(p, alone, real, lib.sigma), alone, options.rule);
-  Placed next_with = stepped(around(p, with, real, lib.sigma), with, options.rule);
+  Placed next_alone = stepped(p, alone, real, lib.sigma, options.rule);
+  Placed next_with = stepped(p, with, real, lib.sigma, options.rule);
   const std::vector<Eigen::VectorXd> sims = resimulated(
       lib, resims, std::vector<Resimulation>{{next_alone.shift_sigma, nullptr}, {next_with.shift_sigma, &*next_with.effects}}, db,
       options);

@@ -130,6 +130,17 @@ Fit fit_effects(const Problem& p, const std::vector<std::size_t>& set, const Dec
 // The nominal parameters fitted on half 0 beside a set of candidates at their half-0 magnitudes.
 NominalFit fit_nominal(const Problem& p, const std::vector<std::size_t>& set, const std::vector<double>& magnitude_half0);
 
+// Where a truck (offsets in prior sigmas) and effects stand, and where one Gauss-Newton step
+// takes them: `z` is what their re-simulation left (whitened), the problem's responses (taken
+// about the model's truck) the Jacobian, each effect's quadratic re-centred on its magnitude. The
+// step is fitted on half 0, the nominal offsets' prior about where they stand.
+struct Placement {
+  std::vector<double> shift_sigma;
+  std::vector<std::size_t> effects;     // indices into Problem::candidates
+  std::vector<double> magnitude_half0;  // one per effect
+};
+Placement gauss_newton_step(const Problem& p, const Eigen::VectorXd& z, const Placement& from, const DecisionRule& rule = {});
+
 // Groups by (run, channel), ranked by significance, each naming its worst place.
 std::vector<WhereItem> locate(const std::vector<FeatureKey>& keys, const Eigen::VectorXd& z, std::size_t limit);
 
