@@ -21,44 +21,6 @@ namespace {
 
 constexpr std::uint64_t kNoiseSeed0 = 1000;
 
-// The recordings' features in the library's order. A recording may carry other sensors than the
-// model's truck: what the model has and the recording lacks is missing (NaN), the rest is ignored.
-Eigen::VectorXd aligned(const std::vector<RealRun>& runs, const ModelLibrary& lib) {
-  std::map<std::tuple<std::string, std::string, std::string, std::uint8_t>, double> real;
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    for (const Feature& f : runs[r].recorded.features.features) real[{lib.labels[r], f.channel, f.where, f.half}] = f.value;
-  }
-  Eigen::VectorXd v(static_cast<Eigen::Index>(lib.keys.size()));
-  for (std::size_t i = 0; i < lib.keys.size(); ++i) {
-    const FeatureKey& k = lib.keys[i];
-    const auto it = real.find({k.run, k.channel, k.where, lib.feature_half[i]});
-    v(static_cast<Eigen::Index>(i)) = it == real.end() ? kNaN : it->second;
-  }
-  return v;
-}
-
-}  // namespace
-
-std::vector<UnmatchedChannel> unmatched_channels(const std::vector<RealRun>& runs, const ModelLibrary& lib) {
-  std::vector<UnmatchedChannel> out;
-  for (std::size_t r = 0; r < runs.size() && r < lib.labels.size(); ++r) {
-    std::set<std::string> real, model;
-    for (const Feature& f : runs[r].recorded.features.features) real.insert(f.channel);
-    for (const FeatureKey& k : lib.keys) {
-      if (k.run == lib.labels[r]) model.insert(k.channel);
-    }
-    for (const std::string& c : real) {
-      if (!model.contains(c)) out.push_back({lib.labels[r], c, true});
-    }
-    for (const std::string& c : model) {
-      if (!real.contains(c)) out.push_back({lib.labels[r], c, false});
-    }
-  }
-  return out;
-}
-
-namespace {
-
 void say(const GapOptions& o, const std::string& line) {
   if (o.progress) o.progress(line);
 }
@@ -229,8 +191,8 @@ struct Trucks {
   std::vector<double> alone, beside;  // fitted on half 0 alone and beside the chosen effects
 };
 void look_again(GapResult& g, const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Eigen::VectorXd& real,
-                const Trucks& trucks, const j1939::Database& db, const GapOptions& options);
-void withhold(GapResult& g, const Eigen::VectorXd& real, const Eigen::VectorXd& sigma);
+                Trucks& trucks, const j1939::Database& db, const GapOptions& options);
+void withhold(GapResult& g, const Eigen::VectorXd& real, const ModelLibrary& lib, const std::vector<double>& alone_shift);
 
 // A name withheld takes its rivals with it: they were rivals of that name.
 void unname(Diagnosis& d) {
@@ -303,10 +265,11 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
     g.after = resimulated(lib, resims, shift, &*g.diagnosis.chosen, db, options);
   }
   held_out(g, (real - g.calibrated).cwiseQuotient(lib.sigma), (real - g.after).cwiseQuotient(lib.sigma));
-  if (g.diagnosis.chosen && g.chi2_after >= g.chi2_before) look_again(g, lib, resims, real, {alone_shift, shift}, db, options);
+  Trucks fitted{alone_shift, shift};
+  if (g.diagnosis.chosen && g.chi2_after >= g.chi2_before) look_again(g, lib, resims, real, fitted, db, options);
   // The fit predicted the held-out residual from linear responses; the re-simulation with the
   // effect must bear it out. A name the simulator does not confirm is withheld, not reported.
-  if (g.diagnosis.chosen && g.chi2_after >= g.chi2_before) withhold(g, real, lib.sigma);
+  if (g.diagnosis.chosen && g.chi2_after >= g.chi2_before) withhold(g, real, lib, fitted.alone);
   g.unmatched = unmatched_channels(runs, lib);
   return g;
 }
@@ -338,7 +301,7 @@ std::vector<Candidate> candidates(const ModelLibrary& lib, const Eigen::VectorXd
 // The re-simulation with the chosen effects did not lower the held-out residual: one step more
 // for the truck alone and for the truck with them (second_look.hpp), then the verdict again.
 void look_again(GapResult& g, const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Eigen::VectorXd& real,
-                const Trucks& trucks, const j1939::Database& db, const GapOptions& options) {
+                Trucks& trucks, const j1939::Database& db, const GapOptions& options) {
   say(options, "re-simulated, the effect does not lower the held-out residual: one step more for the truck alone and with it");
   Placed alone{trucks.alone, std::nullopt, g.calibrated}, with{trucks.beside, g.diagnosis.chosen, g.after};
   second_look(lib, g.problem, resims, real, alone, with, db, options);
@@ -346,17 +309,22 @@ void look_again(GapResult& g, const ModelLibrary& lib, const std::vector<sim::Sc
   g.after = with.values;
   g.diagnosis.chosen = with.effects;
   move_truck(g.diagnosis.nominal, g.problem.nominal, with.shift_sigma);
+  trucks.alone = alone.shift_sigma;
   held_out(g, (real - g.calibrated).cwiseQuotient(lib.sigma), (real - g.after).cwiseQuotient(lib.sigma));
 }
 
-void withhold(GapResult& g, const Eigen::VectorXd& real, const Eigen::VectorXd& sigma) {
+// Nothing named: the answer's truck rows are the truck fitted alone, where the re-simulation left it.
+void withhold(GapResult& g, const Eigen::VectorXd& real, const ModelLibrary& lib, const std::vector<double>& alone_shift) {
   char why[160];
   std::snprintf(why, sizeof why, "re-simulated with %s, the held-out chi-square does not fall (%.0f before, %.0f after)",
                 g.problem.candidates[g.diagnosis.chosen->effects[0]].name.c_str(), g.chi2_before, g.chi2_after);
   g.withheld = why;
   unname(g.diagnosis);
+  g.diagnosis.nominal = fit_nominal(g.problem, {}, {});
+  widen_by_miss(g.diagnosis.nominal, lib, g.problem.nominal);
+  move_truck(g.diagnosis.nominal, g.problem.nominal, alone_shift);
   g.after = g.calibrated;
-  held_out(g, (real - g.calibrated).cwiseQuotient(sigma), (real - g.after).cwiseQuotient(sigma));
+  held_out(g, (real - g.calibrated).cwiseQuotient(lib.sigma), (real - g.after).cwiseQuotient(lib.sigma));
 }
 
 // The held-out half's residual as the model was, with the nominal truck, and with the chosen

@@ -14,6 +14,10 @@ namespace roadload::gap {
 // hold the change alone.
 inline constexpr std::uint64_t kBaselineSeed = 1;
 
+// The recordings' features in the library's order. A recording may carry other sensors than the
+// model's truck: what the model has and the recording lacks is missing (NaN), the rest is ignored.
+Eigen::VectorXd aligned(const std::vector<RealRun>& runs, const ModelLibrary& lib);
+
 // Every run's features, concatenated in order.
 Eigen::VectorXd values(std::span<const RecordedRun> runs);
 // Simulations made `runs` at a time (every run of one change, then the next change): group g's.
