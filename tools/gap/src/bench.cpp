@@ -148,12 +148,8 @@ CaseOutcome run_case(const BenchCase& c, const std::vector<BenchDay>& days, std:
     const auto& rivals = o.result.diagnosis.rivals;
     o.rival_right = !o.named_right && std::any_of(rivals.begin(), rivals.end(), [&](const Fit& f) { return hidden(f.effects[0]); });
   }
-  // The residual the effect causes: the held-out chi-square beyond what drives with nothing
-  // missing score.
-  const double excess_before = o.result.chi2_before - o.result.null_chi2_mean;
-  const double excess_after = o.result.chi2_after - o.result.null_chi2_mean;
-  o.visible = excess_before > 4.0 * std::max(o.result.null_chi2_sd, 10.0);
-  o.shrink = o.visible ? 1.0 - std::max(0.0, excess_after) / excess_before : 0.0;
+  o.visible = gap_visible(o.result);
+  o.shrink = gap_shrink(o.result);
   return o;
 }
 

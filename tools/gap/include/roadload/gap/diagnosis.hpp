@@ -101,6 +101,10 @@ struct DecisionRule {
   // farther than the truck fitted alone, explains the drive with a truck the spreads hardly ever
   // draw: its gain is scaled by exp(-b^2), b the excess beyond both.
   double truck_sigmas = 3.0;
+  // Of a gap visible above the noise, the share the named effects must remove once re-simulated:
+  // one that removes a sliver of a large gap is not its explanation, and a gap mostly unexplained
+  // bends every fit beside it.
+  double min_shrink = 0.25;
 };
 
 struct Diagnosis {

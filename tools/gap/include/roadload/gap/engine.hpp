@@ -121,6 +121,12 @@ struct GapResult {
 
 GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, const j1939::Database& db, const GapOptions& options);
 
+// The gap the named effects are asked to explain: the held-out chi-square the truck fitted alone
+// leaves beyond the noise drives' mean, visible beyond four of their standard deviations (at
+// least 40). Its shrink is the share of it the effects removed (0 when it is not visible).
+bool gap_visible(const GapResult& g);
+double gap_shrink(const GapResult& g);
+
 // Simulates each (scenario, seed) into features on `jobs` threads; results in task order.
 struct SimTask {
   sim::Scenario scenario;
