@@ -97,8 +97,7 @@ TEST(GapDiagnosis, ListsTheRivalsTheDrivesCannotTellApart) {
   ASSERT_TRUE(named == "effect-3" || named == "twin") << named;
   ASSERT_EQ(d.rivals.size(), 1u);
   EXPECT_EQ(s.problem.candidates[d.rivals[0].effects[0]].name, named == "twin" ? "effect-3" : "twin");
-  // A rival must be one that could be named on its own: a twin that fits noise as well as this
-  // gap could not.
+  // A rival must clear twice its own noise: a twin that fits noise as well as this gap does not.
   s.problem.candidates[d.rivals[0].effects[0]].null_gain = 10.0 * d.chosen->gain;
   d = diagnose(s.problem);
   ASSERT_TRUE(d.chosen);

@@ -199,10 +199,14 @@ void look_again(GapResult& g, const ModelLibrary& lib, const std::vector<sim::Sc
                 Trucks& trucks, const j1939::Database& db, const GapOptions& options);
 void withhold(GapResult& g, const Eigen::VectorXd& real, const ModelLibrary& lib, const std::vector<double>& alone_shift);
 
-// A name withheld takes its rivals with it: they were rivals of that name.
-void unname(Diagnosis& d) {
-  d.chosen.reset();
-  d.rivals.clear();
+// A name withheld takes its rivals with it (they were rivals of that name), and the answer's truck
+// rows become the truck fitted alone, at `alone_shift` when a second look moved it.
+void unname(GapResult& g, const ModelLibrary& lib, const std::vector<double>& alone_shift = {}) {
+  g.diagnosis.chosen.reset();
+  g.diagnosis.rivals.clear();
+  g.diagnosis.nominal = fit_nominal(g.problem, {}, {});
+  widen_by_miss(g.diagnosis.nominal, lib, g.problem.nominal);
+  move_truck(g.diagnosis.nominal, g.problem.nominal, alone_shift);
 }
 }  // namespace
 
@@ -247,7 +251,7 @@ GapResult run_gap(const ModelLibrary& lib, const std::vector<RealRun>& runs, con
     if (run.caveat.empty()) continue;
     g.withheld += (g.withheld.empty() ? "" : "; ") + run.label + ": " + run.caveat;
   }
-  if (!g.withheld.empty()) unname(g.diagnosis);
+  if (!g.withheld.empty()) unname(g, lib);
 
   g.null_chi2_mean = lib.null_chi2_mean;
   g.null_chi2_sd = lib.null_chi2_sd;
@@ -303,11 +307,13 @@ std::vector<Candidate> candidates(const ModelLibrary& lib, const Eigen::VectorXd
   return out;
 }
 
-// The re-simulation with the chosen effects did not lower the held-out residual: one step more
+// The re-simulation with the chosen effects did not bear them out: one step more
 // for the truck alone and for the truck with them (second_look.hpp), then the verdict again.
 void look_again(GapResult& g, const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const Eigen::VectorXd& real,
                 Trucks& trucks, const j1939::Database& db, const GapOptions& options) {
-  say(options, "re-simulated, the effect does not lower the held-out residual: one step more for the truck alone and with it");
+  say(options,
+      "re-simulated, the effect does not lower the held-out residual by its share: one step more for the truck alone and "
+      "with it");
   Placed alone{trucks.alone, std::nullopt, g.calibrated}, with{trucks.beside, g.diagnosis.chosen, g.after};
   second_look(lib, g.problem, resims, real, alone, with, db, options);
   g.calibrated = alone.values;
@@ -332,10 +338,7 @@ void withhold(GapResult& g, const Eigen::VectorXd& real, const ModelLibrary& lib
                   name, 100.0 * gap_shrink(g), g.chi2_before, g.chi2_after, g.null_chi2_mean);
   }
   g.withheld = why;
-  unname(g.diagnosis);
-  g.diagnosis.nominal = fit_nominal(g.problem, {}, {});
-  widen_by_miss(g.diagnosis.nominal, lib, g.problem.nominal);
-  move_truck(g.diagnosis.nominal, g.problem.nominal, alone_shift);
+  unname(g, lib, alone_shift);
   g.after = g.calibrated;
   held_out(g, (real - g.calibrated).cwiseQuotient(lib.sigma), (real - g.after).cwiseQuotient(lib.sigma));
 }

@@ -1,8 +1,11 @@
 #include "roadload/gap/diagnosis.hpp"
 
+#include <cassert>
+
 namespace roadload::gap {
 
 Placement gauss_newton_step(const Problem& p, const Eigen::VectorXd& z, const Placement& from, const DecisionRule& rule) {
+  assert(from.magnitude_half0.size() == from.effects.size());
   Problem q;
   q.keys = p.keys;
   q.nominal = p.nominal;

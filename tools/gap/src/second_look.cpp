@@ -1,6 +1,7 @@
 #include "second_look.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "resimulated.hpp"
 
@@ -26,9 +27,18 @@ Placed stepped(const Problem& p, const Placed& from, const Eigen::VectorXd& real
   return to;
 }
 
-double half0_chi2(const Problem& p, const Eigen::VectorXd& real, const Eigen::VectorXd& values, const Eigen::VectorXd& sigma) {
-  const double r = rms((real - values).cwiseQuotient(sigma), p.keys, 0);
-  return r * r;
+// Half 0's chi-square of each of two re-simulations, over the features both saw: a step that
+// loses a feature must not gain by its absence.
+std::pair<double, double> half0_chi2(const Problem& p, const Eigen::VectorXd& real, const Eigen::VectorXd& a,
+                                     const Eigen::VectorXd& b, const Eigen::VectorXd& sigma) {
+  const Eigen::VectorXd za = (real - a).cwiseQuotient(sigma), zb = (real - b).cwiseQuotient(sigma);
+  double sa = 0, sb = 0;
+  for (Eigen::Index i = 0; i < za.size(); ++i) {
+    if (p.keys[static_cast<std::size_t>(i)].half != 0 || !std::isfinite(za(i)) || !std::isfinite(zb(i))) continue;
+    sa += za(i) * za(i);
+    sb += zb(i) * zb(i);
+  }
+  return {sa, sb};
 }
 
 }  // namespace
@@ -43,7 +53,8 @@ void second_look(const ModelLibrary& lib, const Problem& p, const std::vector<si
   next_alone.values = sims[0];
   next_with.values = sims[1];
   for (auto [side, next] : {std::pair{&alone, &next_alone}, std::pair{&with, &next_with}}) {
-    if (half0_chi2(p, real, next->values, lib.sigma) < half0_chi2(p, real, side->values, lib.sigma)) *side = std::move(*next);
+    const auto [chi2_now, chi2_stepped] = half0_chi2(p, real, side->values, next->values, lib.sigma);
+    if (chi2_stepped < chi2_now) *side = std::move(*next);
   }
 }
 
