@@ -95,12 +95,7 @@ Fit refit_on_truck(const ModelLibrary& lib, const std::vector<sim::Scenario>& re
   }
   const Fit refit = fit_effects(q, set, options.rule);
   Fit out = chosen;
-  for (std::size_t i = 0; i < set.size(); ++i) {
-    out.lo[i] = refit.magnitude[i] - (chosen.magnitude[i] - chosen.lo[i]);
-    out.hi[i] = refit.magnitude[i] + (chosen.hi[i] - chosen.magnitude[i]);
-    out.magnitude[i] = refit.magnitude[i];
-    out.magnitude_half0[i] = refit.magnitude_half0[i];
-  }
+  for (std::size_t i = 0; i < set.size(); ++i) move_effect(out, i, refit.magnitude[i], refit.magnitude_half0[i]);
   return out;
 }
 

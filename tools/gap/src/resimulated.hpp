@@ -32,6 +32,14 @@ struct Span {
 };
 Span span_of(const sim::EffectInfo& info, double base);
 
+// Effect i of `f` moved to new magnitudes (both halves, half 0), its interval keeping its widths.
+inline void move_effect(Fit& f, std::size_t i, double magnitude, double magnitude_half0) {
+  f.lo[i] += magnitude - f.magnitude[i];
+  f.hi[i] += magnitude - f.magnitude[i];
+  f.magnitude[i] = magnitude;
+  f.magnitude_half0[i] = magnitude_half0;
+}
+
 // The drives re-simulated with the nominal truck moved by `shift_sigma` and, when given, the
 // effects at their magnitudes fitted on half 0 (`magnitude_half0`).
 Eigen::VectorXd resimulated(const ModelLibrary& lib, const std::vector<sim::Scenario>& resims, const std::vector<double>& shift_sigma,

@@ -19,10 +19,7 @@ Placed stepped(const Problem& p, const Placed& from, const Eigen::VectorXd& real
   to.shift_sigma = next.shift_sigma;
   for (std::size_t i = 0; to.effects && i < next.magnitude_half0.size(); ++i) {
     const double moved = next.magnitude_half0[i] - from.effects->magnitude_half0[i];
-    to.effects->magnitude_half0[i] += moved;
-    to.effects->magnitude[i] += moved;
-    to.effects->lo[i] += moved;
-    to.effects->hi[i] += moved;
+    move_effect(*to.effects, i, from.effects->magnitude[i] + moved, next.magnitude_half0[i]);
   }
   return to;
 }
