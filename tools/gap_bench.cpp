@@ -157,8 +157,8 @@ void print_case(std::size_t i, const gap::CaseOutcome& o) {
     std::snprintf(text, sizeof text, "%s %s%s %.1f (%.0f)", lead.empty() ? "" : ",", c.name.c_str(),
                   c.stood_for_by.empty() ? "" : "*", d.singles[k].gain, c.null_gain);
     lead += text;
-    if (d.singles[k].truck_held) {
-      std::snprintf(text, sizeof text, " [truck held %.1f sigma]", d.singles[k].truck_sigma);
+    if (d.singles[k].truck_plausibility < 0.99) {
+      std::snprintf(text, sizeof text, " [truck %.1f sigma: x %.2g]", d.singles[k].truck_sigma, d.singles[k].truck_plausibility);
       lead += text;
     }
   }

@@ -227,34 +227,8 @@ TEST(GapDiagnosis, AnEffectThatFitsOnlyBesideAnImplausibleTruckIsNotNamed) {
   EXPECT_EQ(s.chosen_name(d), "effect-0");
   const auto lookalike_fit = std::find_if(d.singles.begin(), d.singles.end(), [](const Fit& f) { return f.effects[0] == 1; });
   ASSERT_NE(lookalike_fit, d.singles.end());
-  EXPECT_TRUE(lookalike_fit->truck_held);
-  EXPECT_NEAR(lookalike_fit->truck_sigma, 3.0, 1e-9);  // held at the rule's bound
-}
-
-TEST(GapDiagnosis, AnEffectThatWouldBendTheTruckFarIsScoredBesideATruckHeldAtTheBound) {
-  // The model's response to effect 0 carries a share of the truck's own (a hunting cruise control
-  // simulated on the model's truck moves what the mass moves): fitted freely, the truck runs eight
-  // sigmas out to cancel it. Held at three, the effect still explains most of the drive and is
-  // named; scaled by a plausibility of the runaway truck it would have been lost.
-  Synthetic s(2);
-  Eigen::VectorXd truck(kProblemFeatures);
-  for (Eigen::Index i = 0; i < kProblemFeatures; ++i) truck(i) = 0.5 * std::cos(0.05 * static_cast<double>(i));
-  s.problem.nominal.push_back({"mass", "kg", 30000.0, 360.0, truck});
-  Eigen::VectorXd own = s.problem.candidates[0].response(1.0);
-  own -= truck * (own.dot(truck) / truck.squaredNorm());
-  const Eigen::VectorXd modelled = own + 4.0 * truck;
-  s.problem.candidates[0] = Candidate::from_two("effect-0", "unit", 0.0, 0.0, 3.0, 1.0, modelled, 2.0, 2.0 * modelled);
-  s.problem.z = 2.0 * own;
-  s.add_noise();
-  EXPECT_LT(std::abs(fit_nominal(s.problem, {}, {}).shift_sigma.front()), 1.0);  // the truck alone stays home
-  const Diagnosis d = diagnose(s.problem);
-  ASSERT_TRUE(d.chosen);
-  EXPECT_EQ(s.chosen_name(d), "effect-0");
-  const Fit& f = d.singles.front();
-  EXPECT_TRUE(f.truck_held);
-  EXPECT_NEAR(f.truck_sigma, 3.0, 1e-9);
-  EXPECT_GT(f.gain, 0.5 * (2.0 * own).squaredNorm());
-  EXPECT_NEAR(d.nominal.shift_sigma.front(), -3.0, 1e-9);  // the truck reported beside it is held too
+  EXPECT_GT(lookalike_fit->truck_sigma, 5.0);
+  EXPECT_LT(lookalike_fit->truck_plausibility, 0.05);
 }
 
 TEST(GapDiagnosis, AnEffectThatBringsARunawayTruckBackIsBelieved) {
@@ -274,7 +248,7 @@ TEST(GapDiagnosis, AnEffectThatBringsARunawayTruckBackIsBelieved) {
   ASSERT_TRUE(d.chosen);
   EXPECT_EQ(s.chosen_name(d), "effect-0");
   EXPECT_GT(d.singles.front().truck_sigma, 4.0);
-  EXPECT_FALSE(d.singles.front().truck_held);
+  EXPECT_GT(d.singles.front().truck_plausibility, 0.99);
   EXPECT_GT(std::abs(fit_nominal(s.problem, {}, {}).shift_sigma.front()), 8.0);  // the truck alone
 }
 

@@ -7,14 +7,80 @@
 #include <map>
 #include <numeric>
 
-#include "quadratic.hpp"
-
 namespace roadload::gap {
 namespace {
 
-using detail::in_half;
-using detail::kBothHalves;
-using detail::Quadratic;
+constexpr std::uint8_t kBothHalves = 255;
+
+bool in_half(const FeatureKey& k, std::uint8_t half) { return half == kBothHalves || k.half == half; }
+
+// The chi-square of z minus a candidate set's response and the nominal parameters' as a function
+// of the magnitudes' offsets u from base and the nominal offsets t (in prior sigmas), over one
+// half: zz - 2 c'h + c'Gc with c = (u1, u1^2, u2, u2^2, ..., t). For given u the best t is linear
+// (with its unit prior), so a fit searches over u alone.
+struct Quadratic {
+  Eigen::MatrixXd g;
+  Eigen::VectorXd h;
+  double zz = 0;
+  std::size_t n = 0;
+  Eigen::Index ne = 0, nn = 0;                // effect and nominal columns
+  Eigen::LDLT<Eigen::MatrixXd> nominal_info;  // G_nn + I: the nominal block with its prior
+
+  Quadratic(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t half) {
+    ne = static_cast<Eigen::Index>(2 * set.size());
+    nn = static_cast<Eigen::Index>(p.nominal.size());
+    Eigen::MatrixXd basis(p.z.size(), ne + nn);
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      basis.col(static_cast<Eigen::Index>(2 * i)) = p.candidates[set[i]].a;
+      basis.col(static_cast<Eigen::Index>(2 * i + 1)) = p.candidates[set[i]].b;
+    }
+    for (Eigen::Index j = 0; j < nn; ++j) basis.col(ne + j) = p.nominal[static_cast<std::size_t>(j)].per_sigma;
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index r = 0; r < p.z.size(); ++r) {
+      if (std::isfinite(p.z(r)) && in_half(p.keys[static_cast<std::size_t>(r)], half)) rows.push_back(r);
+    }
+    Eigen::MatrixXd b(static_cast<Eigen::Index>(rows.size()), ne + nn);
+    Eigen::VectorXd z(static_cast<Eigen::Index>(rows.size()));
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      b.row(static_cast<Eigen::Index>(i)) = basis.row(rows[i]);
+      z(static_cast<Eigen::Index>(i)) = p.z(rows[i]);
+    }
+    g = b.transpose() * b;
+    h = b.transpose() * z;
+    zz = z.squaredNorm();
+    n = rows.size();
+    nominal_info.compute(g.bottomRightCorner(nn, nn) + Eigen::MatrixXd::Identity(nn, nn));
+  }
+  Eigen::VectorXd effect_coeffs(const std::vector<double>& u) const {
+    Eigen::VectorXd c(ne);
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      c(static_cast<Eigen::Index>(2 * i)) = u[i];
+      c(static_cast<Eigen::Index>(2 * i + 1)) = u[i] * u[i];
+    }
+    return c;
+  }
+  // The nominal offsets that fit best beside the effect coefficients ce.
+  Eigen::VectorXd theta(const Eigen::VectorXd& ce) const {
+    if (nn == 0) return {};
+    return nominal_info.solve(h.tail(nn) - g.bottomLeftCorner(nn, ne) * ce);
+  }
+  double misfit(const Eigen::VectorXd& ce, const Eigen::VectorXd& t) const {
+    Eigen::VectorXd c(ne + nn);
+    c << ce, t;
+    return zz - 2.0 * c.dot(h) + c.dot(g * c);
+  }
+  // What a fit minimises: the misfit with the best nominal offsets, plus their prior.
+  double sse(const std::vector<double>& u) const {
+    const Eigen::VectorXd ce = effect_coeffs(u);
+    const Eigen::VectorXd t = theta(ce);
+    return misfit(ce, t) + t.squaredNorm();
+  }
+  // This half's misfit at u with the nominal offsets another half's fit chose for u.
+  double judged(const Quadratic& fit, const std::vector<double>& u) const {
+    const Eigen::VectorXd ce = effect_coeffs(u);
+    return misfit(ce, fit.theta(ce));
+  }
+};
 
 // Minimises along one coordinate within [lo, hi]: a grid, then golden section around its best.
 double line_minimum(const Quadratic& q, std::vector<double>& u, std::size_t i, double lo, double hi) {
@@ -57,8 +123,8 @@ std::vector<double> minimise(const Problem& p, const std::vector<std::size_t>& s
   return u;
 }
 
-double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t fit_half, const DecisionRule& rule) {
-  const Quadratic fit(p, set, fit_half, rule.truck_sigmas);
+double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t fit_half) {
+  const Quadratic fit(p, set, fit_half);
   const Quadratic judge(p, set, static_cast<std::uint8_t>(1 - fit_half));
   const std::vector<double> u = minimise(p, set, fit);
   return judge.judged(fit, std::vector<double>(set.size(), 0.0)) - judge.judged(fit, u);
@@ -67,10 +133,10 @@ double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, std:
 Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const DecisionRule& rule) {
   Fit f;
   f.effects = set;
-  f.gain = held_out_gain(p, set, 0, rule) + held_out_gain(p, set, 1, rule) - rule.penalty * static_cast<double>(set.size());
-  const Quadratic all(p, set, kBothHalves, rule.truck_sigmas);
+  f.gain = held_out_gain(p, set, 0) + held_out_gain(p, set, 1) - rule.penalty * static_cast<double>(set.size());
+  const Quadratic all(p, set, kBothHalves);
   const std::vector<double> u = minimise(p, set, all);
-  const std::vector<double> u0 = minimise(p, set, Quadratic(p, set, 0, rule.truck_sigmas));
+  const std::vector<double> u0 = minimise(p, set, Quadratic(p, set, 0));
   // Interval from the curvature (Fisher information of unit-variance residuals, the nominal
   // parameters moving beside the effects with their prior), widened by the fit's own scatter when
   // it exceeds the noise model's.
@@ -104,17 +170,19 @@ Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const Decisio
       f.plausibility *= std::exp(-outside * outside);
     }
   }
-  // The truck the effects were fitted beside, held within the bound (Quadratic::bound): an effect
-  // that fits only beside a truck farther out than the spreads draw and than the truck fitted alone
-  // would take up what the truck's linear model cannot. Its gain is what it explains beside a
-  // truck held there; one that brings a runaway truck back is not held.
-  const Eigen::VectorXd ce = all.effect_coeffs(u);
-  const Eigen::VectorXd t = all.theta(ce), free = all.free_theta(ce);
+  // The truck the effects were fitted beside: an effect that fits only beside a truck farther out
+  // than the spreads draw and than the truck fitted alone is taking up what the truck's linear
+  // model cannot, not explaining the drive. One that brings a runaway truck back is not.
+  const Eigen::VectorXd t = all.theta(all.effect_coeffs(u));
+  const Eigen::VectorXd alone = all.theta(Eigen::VectorXd::Zero(all.ne));
+  double most_beyond = 0;
   for (Eigen::Index j = 0; j < t.size(); ++j) {
-    f.truck_sigma = std::max(f.truck_sigma, std::abs(t(j)));
-    if (all.bound.size() > 0 && std::abs(free(j)) > all.bound(j)) f.truck_held = true;
+    const double beyond = std::max(0.0, std::abs(t(j)) - std::max(rule.truck_sigmas, std::abs(alone(j))));
+    f.truck_plausibility *= std::exp(-beyond * beyond);
+    if (beyond > most_beyond || (most_beyond == 0 && std::abs(t(j)) > f.truck_sigma)) f.truck_sigma = std::abs(t(j));
+    most_beyond = std::max(most_beyond, beyond);
   }
-  if (f.gain > 0) f.gain *= f.plausibility;
+  if (f.gain > 0) f.gain *= f.plausibility * f.truck_plausibility;
   return f;
 }
 
@@ -182,10 +250,9 @@ double rms(const Eigen::VectorXd& z, const std::vector<FeatureKey>& keys, std::u
 
 Fit fit_effects(const Problem& p, const std::vector<std::size_t>& set, const DecisionRule& rule) { return fit_set(p, set, rule); }
 
-NominalFit fit_nominal(const Problem& p, const std::vector<std::size_t>& set, const std::vector<double>& magnitude_half0,
-                       const DecisionRule& rule) {
+NominalFit fit_nominal(const Problem& p, const std::vector<std::size_t>& set, const std::vector<double>& magnitude_half0) {
   NominalFit out;
-  const Quadratic q0(p, set, 0, rule.truck_sigmas), q1(p, set, 1);
+  const Quadratic q0(p, set, 0), q1(p, set, 1);
   std::vector<double> u;
   for (std::size_t i = 0; i < set.size(); ++i) u.push_back(magnitude_half0[i] - p.candidates[set[i]].base);
   const Eigen::VectorXd ce = q0.effect_coeffs(u);
@@ -279,7 +346,7 @@ Diagnosis diagnose(const Problem& p, const DecisionRule& rule) {
   d.rivals = rivals(p, d, rule);
   // The nominal truck as fitted beside the chosen effects; its held-out figures stay those of the
   // nominal calibration alone.
-  const NominalFit joint = fit_nominal(p, d.chosen->effects, d.chosen->magnitude_half0, rule);
+  const NominalFit joint = fit_nominal(p, d.chosen->effects, d.chosen->magnitude_half0);
   d.nominal.value = joint.value;
   d.nominal.lo = joint.lo;
   d.nominal.hi = joint.hi;

@@ -21,7 +21,7 @@ Placement gauss_newton_step(const Problem& p, const Eigen::VectorXd& z, const Pl
   }
   Placement to = from;
   if (!set.empty()) to.magnitude_half0 = fit_effects(q, set, rule).magnitude_half0;
-  const NominalFit truck = fit_nominal(q, set, to.magnitude_half0, rule);
+  const NominalFit truck = fit_nominal(q, set, to.magnitude_half0);
   for (std::size_t j = 0; j < to.shift_sigma.size() && j < truck.shift_sigma.size(); ++j) to.shift_sigma[j] += truck.shift_sigma[j];
   return to;
 }

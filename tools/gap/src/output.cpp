@@ -96,18 +96,18 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
   }
   std::fprintf(out,
                "\ncandidates (held-out chi-square removed, both folds, minus %g per magnitude, times the plausibility of\n"
-               "the magnitude, beside a truck held within the spreads; in brackets the most it removed from a noise drive):\n",
+               "the magnitude and of the truck beside it; in brackets the most it removed from a noise drive):\n",
                2.0);
   const std::size_t shown = std::min<std::size_t>(6, d.singles.size());
   for (std::size_t i = 0; i < shown; ++i) {
     const Fit& f = d.singles[i];
     const Candidate& c = g.problem.candidates[f.effects[0]];
     char truck[64];
-    std::snprintf(truck, sizeof truck, "  (beside a truck held %.1f sigma from the model's)", f.truck_sigma);
-    const std::string note = !c.stood_for_by.empty() ? "  (the nominal " + c.stood_for_by + " stands for it)"
-                             : f.plausibility < 0.99 ? "  (outside its realistic range)"
-                             : f.truck_held          ? std::string(truck)
-                                                     : "";
+    std::snprintf(truck, sizeof truck, "  (beside a truck %.1f sigma from the model's)", f.truck_sigma);
+    const std::string note = !c.stood_for_by.empty()       ? "  (the nominal " + c.stood_for_by + " stands for it)"
+                             : f.plausibility < 0.99       ? "  (outside its realistic range)"
+                             : f.truck_plausibility < 0.99 ? std::string(truck)
+                                                           : "";
     std::fprintf(out, "  %-22s gain %8.1f (%5.0f)   %s = %.4g %s [%.4g, %.4g]%s\n", c.name.c_str(), f.gain, c.null_gain,
                  c.name.c_str(), f.magnitude[0], c.unit.c_str(), f.lo[0], f.hi[0], note.c_str());
   }
@@ -200,7 +200,8 @@ std::string result_json(const GapResult& g, const std::vector<std::string>& run_
     j << (i ? "," : "") << "\n    {\"name\": " << results::json_quote(g.problem.candidates[f.effects[0]].name)
       << ", \"gain\": " << json_number(f.gain) << ", \"noise_gain\": " << json_number(g.problem.candidates[f.effects[0]].null_gain)
       << ", \"magnitude\": " << json_number(f.magnitude[0]) << ", \"plausibility\": " << json_number(f.plausibility)
-      << ", \"truck_sigma\": " << json_number(f.truck_sigma) << ", \"truck_held\": " << (f.truck_held ? "true" : "false") << "}";
+      << ", \"truck_sigma\": " << json_number(f.truck_sigma) << ", \"truck_plausibility\": " << json_number(f.truck_plausibility)
+      << "}";
   }
   j << "\n  ],\n  \"rivals\": [";
   for (std::size_t i = 0; d.chosen && i < d.rivals.size(); ++i) {

@@ -72,11 +72,12 @@ struct Fit {
   std::vector<double> magnitude, lo, hi;  // fitted on both halves; 90 % interval
   std::vector<double> magnitude_half0;    // fitted on half 0 alone: what the held-out check uses
   double gain = 0;                        // chi-square removed on held-out data, both folds, minus the complexity penalty,
-                                          // times the plausibility of the magnitudes
+                                          // times the plausibility of the magnitudes and of the truck beside them
   double plausibility = 1;                // exp(-(d / tolerance)^2), d: distance outside the realistic range in its widths
-  double truck_sigma = 0;                 // the truck beside the effects (both halves' fit): its largest offset, prior sigmas
-  bool truck_held = false;                // an offset was held at the farther of DecisionRule::truck_sigmas and the
-                                          // truck fitted alone: the effect would take the truck beyond both
+  double truck_sigma = 0;                 // in prior sigmas (both halves' fit): the offset the truck factor penalises
+                                          // most, else the one farthest from the model
+  double truck_plausibility = 1;          // exp(-b^2) per offset, b: how far it lies beyond both
+                                          // DecisionRule::truck_sigmas and the truck fitted alone
 };
 
 struct WhereItem {
@@ -96,9 +97,9 @@ struct DecisionRule {
   double penalty = 2.0;           // per fitted magnitude, AIC-like
   std::size_t pair_pool = 6;      // the best singles, itself left out, tried beside the named one
   double range_tolerance = 0.25;  // of the realistic range's width, outside it
-  // Beside effects, the truck is held within this many of its priors' sigmas of the model, or
-  // within the truck fitted alone where that lies farther: beyond both, the truck's linear
-  // responses are extrapolated and an effect would take up what they cannot reproduce.
+  // A fit that needs the truck farther than this from the model, in its priors' sigmas, and
+  // farther than the truck fitted alone, explains the drive with a truck the spreads hardly ever
+  // draw: its gain is scaled by exp(-b^2), b the excess beyond both.
   double truck_sigmas = 3.0;
   // Of a gap visible above the noise, the share the named effects must remove once re-simulated:
   // one that removes a sliver of a large gap is not its explanation, and a gap mostly unexplained
@@ -130,10 +131,8 @@ double rival_margin(const Candidate& named, const Candidate& other, const Decisi
 // scores it.
 Fit fit_effects(const Problem& p, const std::vector<std::size_t>& set, const DecisionRule& rule = {});
 
-// The nominal parameters fitted on half 0 beside a set of candidates at their half-0 magnitudes,
-// held within the rule's bound as a fit of the set holds them.
-NominalFit fit_nominal(const Problem& p, const std::vector<std::size_t>& set, const std::vector<double>& magnitude_half0,
-                       const DecisionRule& rule = {});
+// The nominal parameters fitted on half 0 beside a set of candidates at their half-0 magnitudes.
+NominalFit fit_nominal(const Problem& p, const std::vector<std::size_t>& set, const std::vector<double>& magnitude_half0);
 
 // Where a truck (offsets in prior sigmas) and effects stand, and where one Gauss-Newton step
 // takes them: `z` is what their re-simulation left (whitened), the problem's responses (taken
