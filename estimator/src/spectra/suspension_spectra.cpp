@@ -13,6 +13,11 @@ namespace {
 constexpr std::array<double AxlePower::*, 4> kPowers = {&AxlePower::damper_w, &AxlePower::damper_accel_w, &AxlePower::tire_eq27_w,
                                                         &AxlePower::tire_deflection_w};
 
+// std::complex's product checks its result for NaN, which keeps the loops around it scalar.
+std::complex<double> times(std::complex<double> x, std::complex<double> y) {
+  return {x.real() * y.real() - x.imag() * y.imag(), x.real() * y.imag() + x.imag() * y.real()};
+}
+
 std::size_t slot_count(const std::vector<SuspensionAxle>& axles) {
   int n = 0;
   for (const auto& a : axles) n = std::max({n, a.axle_slot + 1, a.frame_slot + 1});
@@ -88,7 +93,7 @@ AxlePower SuspensionSpectra::segment_power(std::size_t axle) const {
   for (std::size_t pair = 0; pair < 2; ++pair) {
     for (std::size_t k = 0; k < bins; ++k) {
       const std::complex<double> x = us[pair][k], y = ss[pair][k];
-      const std::array<double, 3> terms = {std::norm(x), std::norm(y), (std::conj(x) * y).real()};
+      const std::array<double, 3> terms = {std::norm(x), std::norm(y), x.real() * y.real() + x.imag() * y.imag()};
       for (std::size_t f = 0; f < kPowers.size(); ++f) {
         for (std::size_t t = 0; t < 3; ++t) p.*kPowers[f] += c[((f * 2 + pair) * 3 + t) * bins + k] * terms[t];
       }
@@ -170,8 +175,8 @@ void SuspensionSpectra::delay(std::span<const std::complex<double>> accel, std::
   const double step = -2.0 * std::numbers::pi * bin_hz(transform_.config()) * tau_s;
   for (std::size_t k = 0; k < accel.size(); ++k) {
     const std::complex<double> phase = std::polar(1.0, step * static_cast<double>(k));
-    accel_out[k] = accel[k] * phase;
-    velocity_out[k] = velocity[k] * phase;
+    accel_out[k] = times(accel[k], phase);
+    velocity_out[k] = times(velocity[k], phase);
   }
 }
 

@@ -51,7 +51,11 @@ void SpectralSum::add(std::span<const std::complex<double>> x) {
 void SpectralSum::add(std::span<const std::complex<double>> x, std::span<const std::complex<double>> y) { add_scaled(x, y, 1.0); }
 
 void SpectralSum::add_scaled(std::span<const std::complex<double>> x, std::span<const std::complex<double>> y, double weight) {
-  for (std::size_t k = 0; k < sum_.size(); ++k) sum_[k] += weight * std::conj(x[k]) * y[k];
+  // Spelled out in reals: std::complex's product checks for NaN and defeats vectorisation.
+  for (std::size_t k = 0; k < sum_.size(); ++k) {
+    const double a = weight * x[k].real(), b = weight * x[k].imag(), yr = y[k].real(), yi = y[k].imag();
+    sum_[k] += std::complex<double>(a * yr + b * yi, a * yi - b * yr);
+  }
   segments_ += weight;
 }
 
