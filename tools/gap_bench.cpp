@@ -158,7 +158,8 @@ void print_case(std::size_t i, const gap::CaseOutcome& o) {
                   c.stood_for_by.empty() ? "" : "*", d.singles[k].gain, c.null_gain);
     lead += text;
     if (d.singles[k].truck_plausibility < 0.99) {
-      std::snprintf(text, sizeof text, " [truck %.1f sigma: x %.2g]", d.singles[k].truck_sigma, d.singles[k].truck_plausibility);
+      std::snprintf(text, sizeof text, " [truck %.1f sigma: x %.2g; kept %.1f]", d.singles[k].truck_sigma,
+                    d.singles[k].truck_plausibility, d.singles[k].gain_truck_kept);
       lead += text;
     }
   }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
 
 namespace roadload::gap {
 namespace {
@@ -25,6 +26,7 @@ struct Quadratic {
   std::size_t n = 0;
   Eigen::Index ne = 0, nn = 0;                // effect and nominal columns
   Eigen::LDLT<Eigen::MatrixXd> nominal_info;  // G_nn + I: the nominal block with its prior
+  std::optional<Eigen::VectorXd> kept;        // the nominal offsets, when held rather than fitted
 
   Quadratic(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t half) {
     ne = static_cast<Eigen::Index>(2 * set.size());
@@ -59,8 +61,9 @@ struct Quadratic {
     }
     return c;
   }
-  // The nominal offsets that fit best beside the effect coefficients ce.
+  // The nominal offsets that fit best beside the effect coefficients ce, or those kept.
   Eigen::VectorXd theta(const Eigen::VectorXd& ce) const {
+    if (kept) return *kept;
     if (nn == 0) return {};
     return nominal_info.solve(h.tail(nn) - g.bottomLeftCorner(nn, ne) * ce);
   }
@@ -80,6 +83,8 @@ struct Quadratic {
     const Eigen::VectorXd ce = effect_coeffs(u);
     return misfit(ce, fit.theta(ce));
   }
+  // From here on the truck stays where it fits without any effect.
+  void keep_truck_alone() { kept = theta(Eigen::VectorXd::Zero(ne)); }
 };
 
 // Minimises along one coordinate within [lo, hi]: a grid, then golden section around its best.
@@ -123,8 +128,11 @@ std::vector<double> minimise(const Problem& p, const std::vector<std::size_t>& s
   return u;
 }
 
-double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t fit_half) {
-  const Quadratic fit(p, set, fit_half);
+enum class Truck { fitted, kept_alone };
+
+double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t fit_half, Truck truck) {
+  Quadratic fit(p, set, fit_half);
+  if (truck == Truck::kept_alone) fit.keep_truck_alone();
   const Quadratic judge(p, set, static_cast<std::uint8_t>(1 - fit_half));
   const std::vector<double> u = minimise(p, set, fit);
   return judge.judged(fit, std::vector<double>(set.size(), 0.0)) - judge.judged(fit, u);
@@ -133,7 +141,8 @@ double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, std:
 Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const DecisionRule& rule) {
   Fit f;
   f.effects = set;
-  f.gain = held_out_gain(p, set, 0) + held_out_gain(p, set, 1) - rule.penalty * static_cast<double>(set.size());
+  const double penalty = rule.penalty * static_cast<double>(set.size());
+  f.gain = held_out_gain(p, set, 0, Truck::fitted) + held_out_gain(p, set, 1, Truck::fitted) - penalty;
   const Quadratic all(p, set, kBothHalves);
   const std::vector<double> u = minimise(p, set, all);
   const std::vector<double> u0 = minimise(p, set, Quadratic(p, set, 0));
@@ -182,7 +191,15 @@ Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const Decisio
     if (beyond > most_beyond || (most_beyond == 0 && std::abs(t(j)) > f.truck_sigma)) f.truck_sigma = std::abs(t(j));
     most_beyond = std::max(most_beyond, beyond);
   }
-  if (f.gain > 0) f.gain *= f.plausibility * f.truck_plausibility;
+  // What the effects explain with the truck left where it fits alone needs no truck beyond it at all.
+  if (f.truck_plausibility < 1) {
+    f.gain_truck_kept = held_out_gain(p, set, 0, Truck::kept_alone) + held_out_gain(p, set, 1, Truck::kept_alone) - penalty;
+  }
+  if (f.gain > 0) {
+    const double kept = std::min(f.gain, f.gain_truck_kept), scaled = f.gain * f.truck_plausibility;
+    f.scored_truck_kept = kept > scaled;
+    f.gain = f.plausibility * std::max(kept, scaled);
+  }
   return f;
 }
 

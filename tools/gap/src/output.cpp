@@ -102,8 +102,9 @@ void print_result(std::FILE* out, const GapResult& g, const std::vector<std::str
   for (std::size_t i = 0; i < shown; ++i) {
     const Fit& f = d.singles[i];
     const Candidate& c = g.problem.candidates[f.effects[0]];
-    char truck[64];
-    std::snprintf(truck, sizeof truck, "  (beside a truck %.1f sigma from the model's)", f.truck_sigma);
+    char truck[96];
+    std::snprintf(truck, sizeof truck, "  (beside a truck %.1f sigma from the model's%s)", f.truck_sigma,
+                  f.scored_truck_kept ? "; scored beside the truck fitted alone" : "");
     const std::string note = !c.stood_for_by.empty()       ? "  (the nominal " + c.stood_for_by + " stands for it)"
                              : f.plausibility < 0.99       ? "  (outside its realistic range)"
                              : f.truck_plausibility < 0.99 ? std::string(truck)
@@ -201,7 +202,7 @@ std::string result_json(const GapResult& g, const std::vector<std::string>& run_
       << ", \"gain\": " << json_number(f.gain) << ", \"noise_gain\": " << json_number(g.problem.candidates[f.effects[0]].null_gain)
       << ", \"magnitude\": " << json_number(f.magnitude[0]) << ", \"plausibility\": " << json_number(f.plausibility)
       << ", \"truck_sigma\": " << json_number(f.truck_sigma) << ", \"truck_plausibility\": " << json_number(f.truck_plausibility)
-      << "}";
+      << ", \"gain_truck_kept\": " << json_number(f.gain_truck_kept) << "}";
   }
   j << "\n  ],\n  \"rivals\": [";
   for (std::size_t i = 0; d.chosen && i < d.rivals.size(); ++i) {

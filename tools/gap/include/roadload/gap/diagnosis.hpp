@@ -78,6 +78,9 @@ struct Fit {
                                           // most, else the one farthest from the model
   double truck_plausibility = 1;          // exp(-b^2) per offset, b: how far it lies beyond both
                                           // DecisionRule::truck_sigmas and the truck fitted alone
+  double gain_truck_kept = 0;             // held-out gain with the truck kept where it fits alone (when
+                                          // truck_plausibility < 1): the gain is at least the smaller of it and the free one
+  bool scored_truck_kept = false;         // the gain is that one
 };
 
 struct WhereItem {
