@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -128,24 +129,29 @@ std::vector<double> minimise(const Problem& p, const std::vector<std::size_t>& s
   return u;
 }
 
-enum class Truck { fitted, kept_alone };
-
-double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, std::uint8_t fit_half, Truck truck) {
-  Quadratic fit(p, set, fit_half);
-  if (truck == Truck::kept_alone) fit.keep_truck_alone();
-  const Quadratic judge(p, set, static_cast<std::uint8_t>(1 - fit_half));
-  const std::vector<double> u = minimise(p, set, fit);
-  return judge.judged(fit, std::vector<double>(set.size(), 0.0)) - judge.judged(fit, u);
+// The chi-square each half's fit removes from the other half, both folds, minus the penalty; u0 is
+// half 0's fit.
+double held_out_gain(const Problem& p, const std::vector<std::size_t>& set, const std::array<Quadratic, 2>& half, double penalty,
+                     std::vector<double>* u0 = nullptr) {
+  double gain = 0;
+  const std::vector<double> none(set.size(), 0.0);
+  for (std::size_t fit = 0; fit < 2; ++fit) {
+    const std::vector<double> u = minimise(p, set, half[fit]);
+    gain += half[1 - fit].judged(half[fit], none) - half[1 - fit].judged(half[fit], u);
+    if (fit == 0 && u0 != nullptr) *u0 = u;
+  }
+  return gain - penalty;
 }
 
 Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const DecisionRule& rule) {
   Fit f;
   f.effects = set;
   const double penalty = rule.penalty * static_cast<double>(set.size());
-  f.gain = held_out_gain(p, set, 0, Truck::fitted) + held_out_gain(p, set, 1, Truck::fitted) - penalty;
+  std::array<Quadratic, 2> half = {Quadratic(p, set, 0), Quadratic(p, set, 1)};
+  std::vector<double> u0;
+  f.gain = held_out_gain(p, set, half, penalty, &u0);
   const Quadratic all(p, set, kBothHalves);
   const std::vector<double> u = minimise(p, set, all);
-  const std::vector<double> u0 = minimise(p, set, Quadratic(p, set, 0));
   // Interval from the curvature (Fisher information of unit-variance residuals, the nominal
   // parameters moving beside the effects with their prior), widened by the fit's own scatter when
   // it exceeds the noise model's.
@@ -193,7 +199,8 @@ Fit fit_set(const Problem& p, const std::vector<std::size_t>& set, const Decisio
   }
   // What the effects explain with the truck left where it fits alone needs no truck beyond it at all.
   if (f.truck_plausibility < 1) {
-    f.gain_truck_kept = held_out_gain(p, set, 0, Truck::kept_alone) + held_out_gain(p, set, 1, Truck::kept_alone) - penalty;
+    for (Quadratic& q : half) q.keep_truck_alone();
+    f.gain_truck_kept = held_out_gain(p, set, half, penalty);
   }
   if (f.gain > 0) {
     const double kept = std::min(f.gain, f.gain_truck_kept), scaled = f.gain * f.truck_plausibility;
