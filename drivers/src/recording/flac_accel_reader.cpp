@@ -3,6 +3,7 @@
 #include <FLAC/stream_decoder.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -49,33 +50,53 @@ class SensorFile {
   double rate_hz() const { return rate_hz_; }
 
   bool next(AccelSample& out, ErrorLog& errors) {
-    while (pos_ == block_.size()) {
-      block_.clear();
-      pos_ = 0;
-      const bool more = !ended_ && FLAC__stream_decoder_process_single(dec_) &&
-                        FLAC__stream_decoder_get_state(dec_) != FLAC__STREAM_DECODER_END_OF_STREAM;
-      for (ParseError& e : pending_) errors.add(std::move(e));
-      pending_.clear();
-      if (!more && block_.empty()) {
-        if (!ended_ && FLAC__stream_decoder_get_state(dec_) != FLAC__STREAM_DECODER_END_OF_STREAM) {
-          errors.add(ParseError{path_, 0, field(), "cannot be decoded further"});
-        }
-        ended_ = true;
-        // A reader is held past its end (an analysis reports errors last): its decoder goes now.
-        if (dec_ != nullptr) FLAC__stream_decoder_delete(dec_);
-        dec_ = nullptr;
-        block_ = std::vector<AccelSample>();
-        return false;
+    for (;;) {
+      while (pos_ == count_) {
+        if (!decode(errors)) return false;
       }
+      const std::size_t i = pos_++;
+      const std::uint64_t number = frame_first_ + i;
+      const std::int64_t seconds = channel_[3][i], ns = channel_[4][i];
+      if (seconds < 0 || ns < 0 || ns >= kNsPerS) {
+        errors.add(ParseError{path_, 0, "sample " + std::to_string(number) + " stamp", "outside its range"});
+        continue;
+      }
+      out.t = capture_time_from_ns(seconds * kNsPerS + ns);
+      out.sensor = *sensor_;
+      out.x_mps2 = channel_[0][i] * step_mps2_;
+      out.y_mps2 = channel_[1][i] * step_mps2_;
+      out.z_mps2 = channel_[2][i] * step_mps2_;
+      if (std::max({std::abs(out.x_mps2), std::abs(out.y_mps2), std::abs(out.z_mps2)}) > kMaxAccelMps2) {
+        errors.add(ParseError{path_, 0, "sample " + std::to_string(number), "acceleration beyond 2000 m/s^2"});
+        continue;
+      }
+      return true;
     }
-    out = block_[pos_++];
-    return true;
   }
 
  private:
   explicit SensorFile(std::string path) : path_(std::move(path)) {}
 
   std::string field() const { return "frame after sample " + std::to_string(expected_); }
+
+  // The next frame into channel_; false at the end of the stream (the decoder is then gone).
+  bool decode(ErrorLog& errors) {
+    pos_ = count_ = 0;
+    const bool more = !ended_ && FLAC__stream_decoder_process_single(dec_) &&
+                      FLAC__stream_decoder_get_state(dec_) != FLAC__STREAM_DECODER_END_OF_STREAM;
+    for (ParseError& e : pending_) errors.add(std::move(e));
+    pending_.clear();
+    if (more || count_ > 0) return true;
+    if (!ended_ && FLAC__stream_decoder_get_state(dec_) != FLAC__STREAM_DECODER_END_OF_STREAM) {
+      errors.add(ParseError{path_, 0, field(), "cannot be decoded further"});
+    }
+    ended_ = true;
+    // A reader is held past its end (an analysis reports errors last): its decoder and block go now.
+    if (dec_ != nullptr) FLAC__stream_decoder_delete(dec_);
+    dec_ = nullptr;
+    for (auto& c : channel_) c = std::vector<FLAC__int32>();
+    return false;
+  }
 
   static FLAC__StreamDecoderWriteStatus on_frame(const FLAC__StreamDecoder*, const FLAC__Frame* frame,
                                                  const FLAC__int32* const buffer[], void* self) {
@@ -101,24 +122,11 @@ class SensorFile {
       f.expected_ = first + h.blocksize;
       return FLAC__STREAM_DECODER_WRITE_STATUS_CONTINUE;
     }
-    for (unsigned i = 0; i < h.blocksize; ++i) {
-      const std::int64_t ns = buffer[4][i];
-      if (buffer[3][i] < 0 || ns < 0 || ns >= kNsPerS) {
-        f.pending_.push_back(ParseError{f.path_, 0, "sample " + std::to_string(first + i) + " stamp", "outside its range"});
-        continue;
-      }
-      AccelSample s;
-      s.t = capture_time_from_ns(std::int64_t{buffer[3][i]} * kNsPerS + ns);
-      s.sensor = *f.sensor_;
-      s.x_mps2 = buffer[0][i] * f.step_mps2_;
-      s.y_mps2 = buffer[1][i] * f.step_mps2_;
-      s.z_mps2 = buffer[2][i] * f.step_mps2_;
-      if (std::max({std::abs(s.x_mps2), std::abs(s.y_mps2), std::abs(s.z_mps2)}) > kMaxAccelMps2) {
-        f.pending_.push_back(ParseError{f.path_, 0, "sample " + std::to_string(first + i), "acceleration beyond 2000 m/s^2"});
-        continue;
-      }
-      f.block_.push_back(s);
-    }
+    // Kept as the decoder's counts, half an AccelSample's bytes: the eight sensors' blocks are read
+    // interleaved with the whole analysis, and as samples they did not stay in the cache.
+    for (std::size_t c = 0; c < f.channel_.size(); ++c) f.channel_[c].assign(buffer[c], buffer[c] + h.blocksize);
+    f.frame_first_ = first;
+    f.count_ = h.blocksize;
     f.expected_ = first + h.blocksize;
     return FLAC__STREAM_DECODER_WRITE_STATUS_CONTINUE;
   }
@@ -154,8 +162,9 @@ class SensorFile {
   std::optional<std::uint8_t> sensor_;
   double step_mps2_ = 0;
   double rate_hz_ = 0;
-  std::vector<AccelSample> block_;
-  std::size_t pos_ = 0;
+  std::array<std::vector<FLAC__int32>, 5> channel_;  // x, y, z, s, ns of the frame being read
+  std::uint64_t frame_first_ = 0;                    // its first sample's number
+  std::size_t count_ = 0, pos_ = 0;
   std::uint64_t expected_ = 0;  // the next sample number
   std::vector<ParseError> pending_;
   bool ended_ = false;
@@ -174,12 +183,16 @@ class AccelFlacStream final : public Stream {
       primed_ = true;
     }
     // The oldest head, the first of equal ones: a plain minimum over the stamps, a stream that has
-    // ended holding kEnded (a branch per stream on whether it lives cost more than the merge).
+    // ended holding kEnded (a branch per stream on whether it lives cost more than the merge). The
+    // sensors take turns, so which stream wins is not predictable: selects, not branches.
     std::size_t best = 0;
+    std::int64_t best_t = stamps_[0];
     for (std::size_t i = 1; i < stamps_.size(); ++i) {
-      if (stamps_[i] < stamps_[best]) best = i;
+      const bool older = stamps_[i] < best_t;
+      best = older ? i : best;
+      best_t = older ? stamps_[i] : best_t;
     }
-    if (stamps_[best] == kEnded) return false;
+    if (best_t == kEnded) return false;
     const AccelSample s = heads_[best];
     pull(best, errors);
     count(s.t);

@@ -125,8 +125,7 @@ void ModeSpectra::take_distance(std::size_t i) {
   DistanceStream& d = streams_[i];
   const std::size_t n = config_.distance_nperseg, oldest = d.total % n;
   double total = 0;
-  for (std::size_t j = 0; j < n; ++j) {
-    const std::size_t k = (oldest + j) % n;
+  for (std::size_t j = 0, k = oldest; j < n; ++j, k = k + 1 == n ? 0 : k + 1) {
     distance_segment_[j] = d.values[k];
     const int c = d.cells[k];
     distance_group_[j] = c >= 0 && static_cast<std::size_t>(c) < cell_group_.size() ? cell_group_[static_cast<std::size_t>(c)] : -1;

@@ -116,14 +116,20 @@ void SensorGrid::push(const AccelSample& sample) {
   }
   double y = sample.z_mps2;
   for (Biquad& b : s.filter) y = b.step(y);
+  const std::int64_t t1 = to_ns(sample.t), p = config_.period_ns;
   if (s.started && sample.t > s.last_t) {
-    // Grid instants in (last_t, t]: interpolate between the two filtered samples.
-    const std::int64_t t0 = to_ns(s.last_t), t1 = to_ns(sample.t), p = config_.period_ns;
-    const std::int64_t first = (t0 >= 0 ? t0 / p : -((-t0 + p - 1) / p)) + 1;  // floor(t0 / p) + 1
-    for (std::int64_t n = first; n * p <= t1; ++n) {
+    // Grid instants in (last_t, t]: interpolate between the two filtered samples. The first is
+    // carried from the last sample rather than divided out again: a division a sample cost more
+    // than the rest of the interpolation.
+    const std::int64_t t0 = to_ns(s.last_t);
+    std::int64_t n = s.next_n;
+    for (; n * p <= t1; ++n) {
       const double w = static_cast<double>(n * p - t0) / static_cast<double>(t1 - t0);
       put(s, n, s.last_y + w * (y - s.last_y));
     }
+    s.next_n = n;
+  } else if (!s.started || sample.t < s.last_t) {
+    s.next_n = (t1 >= 0 ? t1 / p : -((-t1 + p - 1) / p)) + 1;  // floor(t1 / p) + 1
   }
   s.started = true;
   s.last_t = sample.t;
@@ -147,13 +153,16 @@ bool SensorGrid::copy_from(std::size_t slot_index, std::int64_t end, std::span<d
   const std::vector<double>& src = velocity ? s.velocity : s.values;
   const auto h = static_cast<std::int64_t>(config_.history);
   const auto n = static_cast<std::int64_t>(out.size());
-  if (n > h || (end - n + 1 < s.ready_from && end >= s.warm_from)) return false;
+  const std::int64_t first = end - n + 1;
+  if (n > h || (first < s.ready_from && end >= s.warm_from)) return false;
+  if (n == 0) return true;
+  if (first < 0) return false;
+  // One remainder for the run, then the ring's index steps on: one a value cost as much as the copy.
+  auto k = static_cast<std::size_t>(first % h);
   for (std::int64_t j = 0; j < n; ++j) {
-    const std::int64_t idx = end - n + 1 + j;
-    if (idx < 0) return false;
-    const auto k = static_cast<std::size_t>(idx % h);
-    if (s.index[k] != idx) return false;
+    if (s.index[k] != first + j) return false;
     out[static_cast<std::size_t>(j)] = src[k];
+    if (++k == src.size()) k = 0;
   }
   return true;
 }

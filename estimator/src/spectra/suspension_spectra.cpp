@@ -74,7 +74,7 @@ std::vector<double> SuspensionSpectra::power_coefficients(std::size_t axle) cons
           }
         }
         const AxlePower p = power(s, axle);
-        for (std::size_t f = 0; f < kPowers.size(); ++f) out[((f * 2 + pair) * 3 + term) * bins + k] = p.*kPowers[f];
+        for (std::size_t f = 0; f < kPowers.size(); ++f) out[((pair * bins + k) * 3 + term) * kPowers.size() + f] = p.*kPowers[f];
         unit[k] = 0.0;
       }
     }
@@ -86,19 +86,22 @@ AxlePower SuspensionSpectra::segment_power(std::size_t axle) const {
   const auto u = static_cast<std::size_t>(axles_[axle].axle_slot);
   const std::array<std::span<const std::complex<double>>, 2> us = {slot_spectrum_[u], slot_velocity_[u]};
   const std::array<std::span<const std::complex<double>>, 2> ss = {delayed_, delayed_velocity_};
-  const std::vector<double>& c = coefficients_[axle];
+  const double* c = coefficients_[axle].data();
   const std::size_t bins = delayed_.size();
-  AxlePower p;
-  p.segments = 1.0;
+  // The four powers side by side, as the coefficients are laid out: one pass, kept in registers.
+  std::array<double, kPowers.size()> sum{};
   for (std::size_t pair = 0; pair < 2; ++pair) {
     for (std::size_t k = 0; k < bins; ++k) {
       const std::complex<double> x = us[pair][k], y = ss[pair][k];
       const std::array<double, 3> terms = {std::norm(x), std::norm(y), x.real() * y.real() + x.imag() * y.imag()};
-      for (std::size_t f = 0; f < kPowers.size(); ++f) {
-        for (std::size_t t = 0; t < 3; ++t) p.*kPowers[f] += c[((f * 2 + pair) * 3 + t) * bins + k] * terms[t];
+      for (std::size_t t = 0; t < 3; ++t, c += kPowers.size()) {
+        for (std::size_t f = 0; f < kPowers.size(); ++f) sum[f] += c[f] * terms[t];
       }
     }
   }
+  AxlePower p;
+  p.segments = 1.0;
+  for (std::size_t f = 0; f < kPowers.size(); ++f) p.*kPowers[f] = sum[f];
   return p;
 }
 

@@ -109,6 +109,7 @@ class SensorGrid {
     bool started = false;
     CaptureTime last_t{};
     double last_y = 0;
+    std::int64_t next_n = 0;  // the first grid instant after last_t, once started
     std::vector<double> values, velocity;
     std::vector<std::int64_t> index;  // grid index held in each ring slot
     VelocityIntegrator integrator;

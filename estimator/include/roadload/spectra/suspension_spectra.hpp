@@ -105,7 +105,7 @@ class SuspensionSpectra {
     Pair accel, velocity;
   };
   // Each power's coefficient on each bin of |U|^2, |S|^2 and Re(conj(U) S), of the accelerations
-  // and of the velocities: [((field * 2 + pair) * 3 + term) * bins + bin].
+  // and of the velocities: [((pair * bins + bin) * 3 + term) * 4 + field], the four powers side by side.
   std::vector<double> power_coefficients(std::size_t axle) const;
   // One segment's power on an axle, from the transforms take() holds (segments = 1).
   AxlePower segment_power(std::size_t axle) const;
