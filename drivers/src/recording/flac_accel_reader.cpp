@@ -3,7 +3,6 @@
 #include <FLAC/stream_decoder.h>
 
 #include <algorithm>
-#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -55,17 +54,20 @@ class SensorFile {
         if (!decode(errors)) return false;
       }
       const std::size_t i = pos_++;
+      // The eight sensors' blocks are read in turns, too many streams for the prefetcher to follow.
+      __builtin_prefetch(block_.data() + std::min(i + kPrefetch, count_ - 1));
+      const Counts& c = block_[i];
       const std::uint64_t number = frame_first_ + i;
-      const std::int64_t seconds = channel_[3][i], ns = channel_[4][i];
+      const std::int64_t seconds = c.s, ns = c.ns;
       if (seconds < 0 || ns < 0 || ns >= kNsPerS) {
         errors.add(ParseError{path_, 0, "sample " + std::to_string(number) + " stamp", "outside its range"});
         continue;
       }
       out.t = capture_time_from_ns(seconds * kNsPerS + ns);
       out.sensor = *sensor_;
-      out.x_mps2 = channel_[0][i] * step_mps2_;
-      out.y_mps2 = channel_[1][i] * step_mps2_;
-      out.z_mps2 = channel_[2][i] * step_mps2_;
+      out.x_mps2 = c.x * step_mps2_;
+      out.y_mps2 = c.y * step_mps2_;
+      out.z_mps2 = c.z * step_mps2_;
       if (std::max({std::abs(out.x_mps2), std::abs(out.y_mps2), std::abs(out.z_mps2)}) > kMaxAccelMps2) {
         errors.add(ParseError{path_, 0, "sample " + std::to_string(number), "acceleration beyond 2000 m/s^2"});
         continue;
@@ -79,7 +81,7 @@ class SensorFile {
 
   std::string field() const { return "frame after sample " + std::to_string(expected_); }
 
-  // The next frame into channel_; false at the end of the stream (the decoder is then gone).
+  // The next frame into block_; false at the end of the stream (the decoder is then gone).
   bool decode(ErrorLog& errors) {
     pos_ = count_ = 0;
     const bool more = !ended_ && FLAC__stream_decoder_process_single(dec_) &&
@@ -94,7 +96,7 @@ class SensorFile {
     // A reader is held past its end (an analysis reports errors last): its decoder and block go now.
     if (dec_ != nullptr) FLAC__stream_decoder_delete(dec_);
     dec_ = nullptr;
-    for (auto& c : channel_) c = std::vector<FLAC__int32>();
+    block_ = std::vector<Counts>();
     return false;
   }
 
@@ -122,9 +124,10 @@ class SensorFile {
       f.expected_ = first + h.blocksize;
       return FLAC__STREAM_DECODER_WRITE_STATUS_CONTINUE;
     }
-    // Kept as the decoder's counts, half an AccelSample's bytes: the eight sensors' blocks are read
-    // interleaved with the whole analysis, and as samples they did not stay in the cache.
-    for (std::size_t c = 0; c < f.channel_.size(); ++c) f.channel_[c].assign(buffer[c], buffer[c] + h.blocksize);
+    // Kept as the decoder's counts, half an AccelSample's bytes, a sample's five together: the eight
+    // sensors' blocks are read in turns with the whole analysis between, and did not stay in cache.
+    f.block_.resize(h.blocksize);
+    for (unsigned i = 0; i < h.blocksize; ++i) f.block_[i] = {buffer[0][i], buffer[1][i], buffer[2][i], buffer[3][i], buffer[4][i]};
     f.frame_first_ = first;
     f.count_ = h.blocksize;
     f.expected_ = first + h.blocksize;
@@ -162,8 +165,12 @@ class SensorFile {
   std::optional<std::uint8_t> sensor_;
   double step_mps2_ = 0;
   double rate_hz_ = 0;
-  std::array<std::vector<FLAC__int32>, 5> channel_;  // x, y, z, s, ns of the frame being read
-  std::uint64_t frame_first_ = 0;                    // its first sample's number
+  struct Counts {
+    FLAC__int32 x, y, z, s, ns;
+  };
+  static constexpr std::size_t kPrefetch = 4;  // samples read ahead
+  std::vector<Counts> block_;                  // the frame being read
+  std::uint64_t frame_first_ = 0;              // its first sample's number
   std::size_t count_ = 0, pos_ = 0;
   std::uint64_t expected_ = 0;  // the next sample number
   std::vector<ParseError> pending_;
