@@ -349,12 +349,21 @@ const Record* RecordingReader::next() {
     primed_ = true;
   } else if (has_taken_) {
     advance(taken_);
+    // Only the stream taken has moved: while its head is older than every other, it is taken again
+    // without comparing them all (eight accelerometer samples come for every other record).
+    const CaptureTime t = stamps_[taken_];
+    if (t != CaptureTime::max() && (t < rival_t_ || (t == rival_t_ && taken_ < rival_))) return &heads_[taken_];
   }
   const auto best = oldest_head(
       stamps_.size(), [this](std::size_t i) { return stamps_[i] != CaptureTime::max(); },
       [this](std::size_t i) { return stamps_[i]; });
   has_taken_ = best.has_value();
   taken_ = best.value_or(0);
+  const auto rival = oldest_head(
+      stamps_.size(), [this](std::size_t i) { return i != taken_ && stamps_[i] != CaptureTime::max(); },
+      [this](std::size_t i) { return stamps_[i]; });
+  rival_ = rival.value_or(stamps_.size());
+  rival_t_ = rival ? stamps_[*rival] : CaptureTime::max();
   return has_taken_ ? &heads_[taken_] : nullptr;
 }
 

@@ -159,6 +159,9 @@ class RecordingReader {
   // handed out where it lies rather than copied.
   std::size_t taken_ = 0;
   bool has_taken_ = false;
+  // The oldest head of the other streams when taken_ was chosen, and its stream.
+  std::size_t rival_ = 0;
+  CaptureTime rival_t_ = CaptureTime::max();
 };
 
 }  // namespace roadload::recording
