@@ -54,7 +54,8 @@ class SensorFile {
         if (!decode(errors)) return false;
       }
       const std::size_t i = pos_++;
-      // The eight sensors' blocks are read in turns, too many streams for the prefetcher to follow.
+      // The sensors' blocks are read in turns with the analysis's work between: without this, the
+      // loads of a sample's stamp waited on memory.
       __builtin_prefetch(block_.data() + std::min(i + kPrefetch, count_ - 1));
       const Counts& c = block_[i];
       const std::uint64_t number = frame_first_ + i;
